@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: MIT
+// Shared helpers for every runnel kernel: counter-based random numbers (the same functions as
+// src/runnel/core/rng.hpp, bit for bit) and grid indexing.
+
+// splitmix64 finaliser: a bijective 64-bit mix.
+inline ulong splitmix64(ulong z) {
+  z += 0x9E3779B97F4A7C15UL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9UL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBUL;
+  return z ^ (z >> 31);
+}
+
+// Random bits as a pure function of (seed, stream, counter): independent of thread scheduling.
+inline ulong rng_bits(ulong seed, ulong stream, ulong counter) {
+  return splitmix64(seed ^ splitmix64(stream ^ splitmix64(counter)));
+}
+
+// Uniform in [0, 1) with 24 random bits.
+inline float rng_uniform(ulong seed, ulong stream, ulong counter) {
+  return (float)(rng_bits(seed, stream, counter) >> 40) * (1.0f / 16777216.0f);
+}
+
+inline int grid_index(int i, int j, int nx) { return j * nx + i; }

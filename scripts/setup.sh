@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Installs every Debian 12 package runnel needs. Idempotent: does nothing when all are present.
+set -euo pipefail
+
+packages=(
+  g++ cmake make pkg-config git
+  pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
+  libglm-dev libglfw3-dev libepoxy-dev libimgui-dev
+  libnanoflann-dev libhdf5-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
+  libtomlplusplus-dev libcli11-dev
+  python3 python3-numpy python3-h5py
+  xvfb xdotool x11-utils libgl1-mesa-dri
+  clang-format
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: MIT
+// runnel convert: between the terrain formats (.asc, .png, .npy), formats from the extensions.
+#include <cstdio>
+
+#include "cli/commands.hpp"
+#include "runnel/core/error.hpp"
+
+namespace runnel::cli {
+
+void add_convert_command(CLI::App& app) {
+  struct Options {
+    std::string input, output, range, nodata = "fill";
+    double cell = 0.0;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd =
+      app.add_subcommand("convert",
+                         "Convert a terrain between ESRI ASCII grid (.asc), 16-bit PNG (.png) "
+                         "and NumPy (.npy); formats from the extensions");
+  cmd->add_option("input", opt->input, "terrain to read")->required();
+  cmd->add_option("output", opt->output, "terrain to write")->required();
+  cmd->add_option("--range", opt->range,
+                  "PNG heights MIN:MAX in metres: how a PNG input is read, and the range a "
+                  "PNG output is quantised to (default: stored in runnel PNGs / the terrain's)");
+  cmd->add_option("--cell", opt->cell,
+                  "cell size in metres (NPY and foreign PNG carry none; default 1)");
+  cmd->add_option("--nodata", opt->nodata, "ASC NODATA cells: fill (from neighbours) or refuse")
+      ->check(CLI::IsMember({"fill", "refuse"}))
+      ->capture_default_str();
+  cmd->callback([opt, cmd] {
+    terrain_format_from_path(opt->output);  // fail on a bad output name before reading anything
+    ReadOptions read;
+    WriteOptions write;
+    read.nodata = opt->nodata == "refuse" ? NodataPolicy::kRefuse : NodataPolicy::kFill;
+    if (cmd->count("--cell")) read.cell = opt->cell;
+    if (!opt->range.empty()) {
+      const HeightRange range = parse_range(opt->range, "--range");
+      if (terrain_format_from_path(opt->input) == TerrainFormat::kPng) read.png_range = range;
+      write.png_range = range;
+    }
+    const Heightmap terrain = read_terrain(opt->input, read);
+    write_terrain(opt->output, terrain, write);
+    std::fprintf(stderr, "runnel: %s -> %s (%d x %d vertices, cell %g m, heights %.3f..%.3f m)\n",
+                 opt->input.c_str(), opt->output.c_str(), terrain.nx, terrain.ny, terrain.cell,
+                 terrain.min_height(), terrain.max_height());
+  });
+}
+
+}  // namespace runnel::cli

@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// runnel params: every scenario parameter with its default, unit, range and meaning.
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "runnel/sim/parameters.hpp"
+
+namespace runnel::cli {
+
+void add_params_command(CLI::App& app) {
+  auto markdown = std::make_shared<bool>(false);
+  auto* cmd = app.add_subcommand(
+      "params", "List every scenario parameter (key, default, unit, range, meaning)");
+  cmd->add_flag("--markdown", *markdown, "print docs/parameters.md");
+  cmd->callback([markdown] {
+    if (*markdown) {
+      std::cout << parameters_markdown();
+      return;
+    }
+    for (auto& p : parameter_table()) {
+      std::cout << p.key << " = " << p.default_value
+                << (p.unit.empty() || p.unit == "1" ? "" : " [" + p.unit + "]") << "\n    "
+                << p.help << "\n";
+    }
+  });
+}
+
+}  // namespace runnel::cli

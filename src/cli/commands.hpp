@@ -1,0 +1,21 @@
+// SPDX-License-Identifier: MIT
+// Each subcommand lives in its own file and registers itself on the root app.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+#include "runnel/terrain/terrain_io.hpp"
+
+namespace runnel::cli {
+
+void add_devices_command(CLI::App& app);
+void add_generate_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
+void add_info_command(CLI::App& app);
+void add_params_command(CLI::App& app);
+
+// "MIN:MAX" → a height range; throws an input error naming `flag`.
+HeightRange parse_range(const std::string& text, const std::string& flag);
+
+}  // namespace runnel::cli

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "runnel/compute/opencl.hpp"
+
+namespace runnel {
+
+// One OpenCL device as `runnel devices` lists it.
+struct DeviceInfo {
+  int index = 0;  // position in the global list, what `--device N` selects
+  int platform_index = 0;
+  int device_index = 0;  // within its platform
+  std::string platform;
+  std::string name;
+  std::string type;  // "GPU", "CPU", "accelerator", "other"
+  std::string version;
+  unsigned compute_units = 0;
+  unsigned long long global_memory = 0;  // bytes
+  unsigned long long local_memory = 0;   // bytes
+  unsigned long long max_alloc = 0;      // bytes
+};
+
+// Every device on every platform. Throws an input error naming the package to install when there is
+// none.
+std::vector<DeviceInfo> list_devices();
+
+// The device that `spec` selects. Empty spec: $RUNNEL_DEVICE, else the first GPU, else the first
+// CPU. Spec forms: "gpu", "cpu", an index from `runnel devices`, "P:D" (platform:device) or a name
+// substring.
+DeviceInfo select_device(const std::string& spec);
+
+// The OpenCL context, device and in-order queue (with profiling) that a simulation runs on,
+// and the programs built from the embedded cl/ sources.
+class ComputeContext {
+ public:
+  explicit ComputeContext(const std::string& device_spec = "");
+
+  const DeviceInfo& info() const { return info_; }
+  cl::Context& context() { return context_; }
+  cl::Device& device() { return device_; }
+  cl::CommandQueue& queue() { return queue_; }
+
+  // Builds (once, then cached) a program from embedded files, e.g. {"cl/common.cl", "cl/hash.cl"}.
+  // A compile error throws with the compiler log; its lines name the file and line of the fault.
+  cl::Program& program(const std::vector<std::string>& files, const std::string& options = "");
+  // Builds a program from source text (used by tests to check error reporting).
+  cl::Program build_source(const std::string& source, const std::string& options = "");
+
+ private:
+  DeviceInfo info_;
+  cl::Context context_;
+  cl::Device device_;
+  cl::CommandQueue queue_;
+  std::map<std::string, cl::Program> programs_;
+};
+
+// The text of an embedded source file, prefixed by a #line directive with its path.
+std::string embedded_source(const std::string& path);
+
+// A readable name for an OpenCL error code, e.g. "CL_OUT_OF_RESOURCES".
+const char* cl_error_name(int code);
+
+}  // namespace runnel

@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdio>
+#include <functional>
+#include <string>
+
+namespace runnel {
+
+// Writes a file safely: into a temporary file in the same directory, flushed and synced, then
+// renamed over the target. A crash or a full disk leaves the previous file intact.
+// `write` gets an open FILE*; it throws on failure, and then the temporary file is removed.
+void write_file_atomically(const std::string& path, const std::function<void(std::FILE*)>& write);
+
+}  // namespace runnel

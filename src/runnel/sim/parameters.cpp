@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sim/parameters.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "runnel/core/error.hpp"
+
+namespace runnel {
+namespace {
+
+const char* type_name(ParamType t) {
+  switch (t) {
+    case ParamType::kReal:
+      return "a number";
+    case ParamType::kInteger:
+      return "an integer";
+    case ParamType::kBool:
+      return "true or false";
+    case ParamType::kString:
+      return "a string";
+  }
+  return "";
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+ParamValue parse_text(const ParamSpec& spec, std::string text, const std::string& where) {
+  auto fail = [&]() -> ParamValue {
+    throw input_error(where + ": expected " + type_name(spec.type) + ", got '" + text + "'");
+  };
+  switch (spec.type) {
+    case ParamType::kReal: {
+      double v = 0;
+      const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (ec != std::errc() || p != text.data() + text.size()) return fail();
+      return v;
+    }
+    case ParamType::kInteger: {
+      std::int64_t v = 0;
+      const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (ec != std::errc() || p != text.data() + text.size()) return fail();
+      return v;
+    }
+    case ParamType::kBool:
+      if (text == "true" || text == "1") return true;
+      if (text == "false" || text == "0") return false;
+      return fail();
+    case ParamType::kString:
+      if (text.size() >= 2 && text.front() == '"' && text.back() == '"')
+        text = text.substr(1, text.size() - 2);
+      return text;
+  }
+  return fail();
+}
+
+}  // namespace
+
+const ParamSpec* find_param(const std::string& key) {
+  for (auto& p : parameter_table()) {
+    if (p.key == key) return &p;
+  }
+  return nullptr;
+}
+
+Parameters::Parameters() {
+  for (auto& spec : parameter_table())
+    values_[spec.key] = parse_text(spec, spec.default_value, spec.key);
+}
+
+void Parameters::set_text(const std::string& key, const std::string& text,
+                          const std::string& origin) {
+  const std::string where = origin + " " + key;
+  if (key.rfind("terrain.set.", 0) == 0) {
+    double v = 0;
+    const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || p != text.data() + text.size()) {
+      throw input_error(where + ": expected a number, got '" + text + "'");
+    }
+    generator_values_[key.substr(12)] = v;
+    return;
+  }
+  const ParamSpec* spec = find_param(key);
+  if (!spec) throw input_error(where + ": unknown parameter (see 'runnel params')");
+  set(key, parse_text(*spec, text, where), origin);
+}
+
+void Parameters::set(const std::string& key, const ParamValue& value_in,
+                     const std::string& origin) {
+  const std::string where = origin + " " + key;
+  if (key.rfind("terrain.set.", 0) == 0) {
+    if (auto* d = std::get_if<double>(&value_in))
+      generator_values_[key.substr(12)] = *d;
+    else if (auto* i = std::get_if<std::int64_t>(&value_in))
+      generator_values_[key.substr(12)] = static_cast<double>(*i);
+    else
+      throw input_error(where + ": expected a number");
+    return;
+  }
+  const ParamSpec* spec = find_param(key);
+  if (!spec) throw input_error(where + ": unknown parameter (see 'runnel params')");
+  ParamValue value = value_in;
+  // An integer is a fine value for a real parameter.
+  if (spec->type == ParamType::kReal) {
+    if (auto* i = std::get_if<std::int64_t>(&value)) value = static_cast<double>(*i);
+  }
+  const bool type_ok =
+      (spec->type == ParamType::kReal && std::holds_alternative<double>(value)) ||
+      (spec->type == ParamType::kInteger && std::holds_alternative<std::int64_t>(value)) ||
+      (spec->type == ParamType::kBool && std::holds_alternative<bool>(value)) ||
+      (spec->type == ParamType::kString && std::holds_alternative<std::string>(value));
+  if (!type_ok)
+    throw input_error(where + ": expected " + type_name(spec->type) + ", got '" + to_text(value) +
+                      "'");
+  if (spec->type == ParamType::kReal || spec->type == ParamType::kInteger) {
+    const double v = spec->type == ParamType::kReal
+                         ? std::get<double>(value)
+                         : static_cast<double>(std::get<std::int64_t>(value));
+    if (!std::isfinite(v) || v < spec->min_value || v > spec->max_value) {
+      throw input_error(where + ": " + to_text(value) + " is outside the valid range [" +
+                        format_number(spec->min_value) + ", " + format_number(spec->max_value) +
+                        "]" + (spec->unit.empty() ? "" : " " + spec->unit));
+    }
+  }
+  if (spec->type == ParamType::kString && !spec->choices.empty()) {
+    const auto& s = std::get<std::string>(value);
+    if (std::find(spec->choices.begin(), spec->choices.end(), s) == spec->choices.end()) {
+      std::string list;
+      for (auto& c : spec->choices) list += (list.empty() ? "" : ", ") + c;
+      throw input_error(where + ": '" + s + "' is not one of " + list);
+    }
+  }
+  values_[key] = value;
+}
+
+const ParamValue& Parameters::get(const std::string& key) const {
+  auto it = values_.find(key);
+  if (it == values_.end()) throw runtime_error("internal: parameter '" + key + "' is not declared");
+  return it->second;
+}
+
+double Parameters::real(const std::string& key) const {
+  return std::get<double>(get(key));
+}
+std::int64_t Parameters::integer(const std::string& key) const {
+  return std::get<std::int64_t>(get(key));
+}
+bool Parameters::boolean(const std::string& key) const {
+  return std::get<bool>(get(key));
+}
+const std::string& Parameters::text(const std::string& key) const {
+  return std::get<std::string>(get(key));
+}
+
+std::string Parameters::to_text(const ParamValue& value) {
+  if (auto* d = std::get_if<double>(&value)) {
+    std::ostringstream s;
+    s.precision(17);
+    s << *d;
+    return s.str();
+  }
+  if (auto* i = std::get_if<std::int64_t>(&value)) return std::to_string(*i);
+  if (auto* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
+  return std::get<std::string>(value);
+}
+
+std::string parameters_markdown() {
+  std::ostringstream out;
+  out << "# Parameters\n\n"
+      << "Generated by `runnel params --markdown` from the parameter table "
+         "(src/runnel/sim/parameter_table.cpp);\n"
+      << "a test fails when this file and the table disagree. Set them in a scenario file (TOML, "
+         "one table per\n"
+      << "group: `[terrain]`, ...) or on the command line with `--set key=value`.\n"
+      << "Generator parameters go in `[terrain.set]` (see `runnel generate --help`).\n";
+  std::string group;
+  for (auto& p : parameter_table()) {
+    const std::string g = p.key.substr(0, p.key.find('.'));
+    if (g != group) {
+      group = g;
+      out << "\n## [" << group
+          << "]\n\n| key | type | default | unit | range | meaning |\n|---|---|---|---|---|---|\n";
+    }
+    std::string range;
+    if (p.type == ParamType::kReal || p.type == ParamType::kInteger) {
+      range = format_number(p.min_value) + " .. " + format_number(p.max_value);
+    } else if (!p.choices.empty()) {
+      for (auto& c : p.choices) range += (range.empty() ? "" : ", ") + c;
+    }
+    const char* type = p.type == ParamType::kReal      ? "real"
+                       : p.type == ParamType::kInteger ? "integer"
+                       : p.type == ParamType::kBool    ? "bool"
+                                                       : "string";
+    out << "| `" << p.key << "` | " << type << " | `" << p.default_value << "` | " << p.unit
+        << " | " << range << " | " << p.help << " |\n";
+  }
+  return out.str();
+}
+
+}  // namespace runnel

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace runnel {
+
+enum class ParamType { kReal, kInteger, kBool, kString };
+
+// One simulation parameter, declared once: the scenario reader, `--set`, `runnel params`,
+// docs/parameters.md and the outputs all iterate over this table (docs/architecture.md).
+struct ParamSpec {
+  std::string key;  // dotted TOML key, e.g. "terrain.cell"
+  ParamType type;
+  std::string default_value;  // as TOML-ish text: 1.5, 7, true, "fbm"
+  std::string unit;           // SI unit, "1" for dimensionless, "" for text
+  double min_value;           // valid range for numbers (inclusive)
+  double max_value;
+  std::vector<std::string> choices;  // allowed values for strings; empty = any
+  std::string help;
+};
+
+// The whole table, grouped by the key's first component.
+const std::vector<ParamSpec>& parameter_table();
+const ParamSpec* find_param(const std::string& key);
+
+using ParamValue = std::variant<double, std::int64_t, bool, std::string>;
+
+// A validated set of parameter values: every key of the table has a value (its default unless set).
+class Parameters {
+ public:
+  Parameters();  // all defaults
+
+  // Sets from text (`--set key=value`, TOML values). Throws an input error naming `origin` and the
+  // key.
+  void set_text(const std::string& key, const std::string& text,
+                const std::string& origin = "--set");
+  void set(const std::string& key, const ParamValue& value, const std::string& origin = "--set");
+
+  double real(const std::string& key) const;
+  std::int64_t integer(const std::string& key) const;
+  bool boolean(const std::string& key) const;
+  const std::string& text(const std::string& key) const;
+
+  // Generator parameters ("terrain.set.KEY"); validated against the generator when it runs.
+  std::map<std::string, double>& generator_values() { return generator_values_; }
+  const std::map<std::string, double>& generator_values() const { return generator_values_; }
+
+  const std::map<std::string, ParamValue>& values() const { return values_; }
+  static std::string to_text(const ParamValue& value);
+
+ private:
+  const ParamValue& get(const std::string& key) const;
+  std::map<std::string, ParamValue> values_;
+  std::map<std::string, double> generator_values_;
+};
+
+// docs/parameters.md, generated from the table (`runnel params --markdown`).
+std::string parameters_markdown();
+
+}  // namespace runnel

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <string>
+#include <vector>
+
+#include "runnel/core/heightmap.hpp"
+#include "runnel/sim/parameters.hpp"
+
+namespace runnel {
+
+// Reads a TOML scenario into validated parameters. Unknown keys, wrong types and out-of-range
+// values throw an input error naming the file and the key. A relative terrain.file is resolved
+// against the scenario's folder.
+Parameters load_scenario(const std::string& path);
+// Same, from TOML text (tests; `origin` names the text in errors).
+Parameters parse_scenario(const std::string& toml_text, const std::string& origin,
+                          const std::string& base_dir = "");
+
+// Applies `--set key=value` overrides in order.
+void apply_overrides(Parameters& params, const std::vector<std::string>& assignments);
+
+// The terrain a scenario asks for: its file, or its generator.
+Heightmap load_terrain(const Parameters& params);
+
+}  // namespace runnel

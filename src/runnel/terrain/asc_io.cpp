@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: MIT
+// ESRI ASCII grid (.asc): a header of key/value lines, then nrows lines of ncols values, north
+// first. The file's first row becomes grid row j = 0 (z points south, physics.md §1).
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/terrain/terrain_io.hpp"
+
+namespace runnel {
+namespace {
+
+// A cursor over the file's text that yields whitespace-separated tokens and knows its line.
+class Tokenizer {
+ public:
+  explicit Tokenizer(const std::string& text) : text_(text) {}
+  bool next(std::string_view& token) {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+      if (text_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+    if (pos_ >= text_.size()) return false;
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    token = std::string_view(text_).substr(start, pos_ - start);
+    return true;
+  }
+  int line() const { return line_; }
+  std::size_t pos() const { return pos_; }
+  void rewind(std::size_t pos, int line) {
+    pos_ = pos;
+    line_ = line;
+  }
+
+ private:
+  const std::string& text_;
+  std::size_t pos_ = 0;
+  int line_ = 1;
+};
+
+bool parse_double(std::string_view token, double& value) {
+  const char* first = token.data();
+  if (!token.empty() && token[0] == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), value);
+  return ec == std::errc() && ptr == token.data() + token.size();
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return out;
+}
+
+}  // namespace
+
+Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw input_error(path + ": cannot open for reading");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  if (text.empty()) throw input_error(path + ": empty file, not an ESRI ASCII grid");
+
+  Tokenizer tokens(text);
+  std::map<std::string, double> header;
+  std::string_view key, value;
+  // Header: lines of "key value" where key starts with a letter; data starts at the first number.
+  for (;;) {
+    const std::size_t pos = tokens.pos();
+    const int line = tokens.line();
+    if (!tokens.next(key)) break;
+    if (!std::isalpha(static_cast<unsigned char>(key[0]))) {
+      tokens.rewind(pos, line);
+      break;
+    }
+    const std::string name = lower(key);
+    static const char* known[] = {"ncols",     "nrows",     "xllcorner", "yllcorner",
+                                  "xllcenter", "yllcenter", "cellsize",  "nodata_value"};
+    if (std::find_if(std::begin(known), std::end(known),
+                     [&](const char* k) { return name == k; }) == std::end(known)) {
+      throw input_error(path + ": line " + std::to_string(line) +
+                        ": unknown header key or non-numeric value '" + std::string(key) + "'");
+    }
+    double number = 0.0;
+    if (!tokens.next(value) || !parse_double(value, number)) {
+      throw input_error(path + ": line " + std::to_string(line) + ": header key '" +
+                        std::string(key) + "' has no numeric value");
+    }
+    header[name] = number;
+  }
+  for (const char* required : {"ncols", "nrows", "cellsize"}) {
+    if (!header.count(required))
+      throw input_error(path + ": missing header key '" + required + "'");
+  }
+  const double ncols = header["ncols"], nrows = header["nrows"];
+  if (ncols != std::floor(ncols) || nrows != std::floor(nrows) || ncols < 0 || nrows < 0) {
+    throw input_error(path + ": ncols and nrows must be non-negative integers");
+  }
+  check_terrain_size(path, static_cast<long long>(ncols), static_cast<long long>(nrows));
+  const double cell = header["cellsize"];
+  if (!(cell > 0.0) || !std::isfinite(cell))
+    throw input_error(path + ": cellsize must be positive");
+
+  Heightmap terrain(static_cast<int>(ncols), static_cast<int>(nrows), cell);
+  const double half = header.count("xllcenter") ? 0.5 * cell : 0.0;
+  terrain.origin_x = header.count("xllcenter") ? header["xllcenter"] - half : header["xllcorner"];
+  terrain.origin_z = header.count("yllcenter") ? header["yllcenter"] - half : header["yllcorner"];
+  const bool has_nodata = header.count("nodata_value") > 0;
+  const double nodata_value = has_nodata ? header["nodata_value"] : 0.0;
+
+  long long holes = 0;
+  const long long expected = static_cast<long long>(terrain.size());
+  for (long long k = 0; k < expected; ++k) {
+    if (!tokens.next(value)) {
+      throw input_error(path + ": truncated: expected " + std::to_string(expected) + " heights (" +
+                        std::to_string(terrain.nx) + " x " + std::to_string(terrain.ny) +
+                        "), found " + std::to_string(k));
+    }
+    double v = 0.0;
+    if (!parse_double(value, v)) {
+      throw input_error(path + ": line " + std::to_string(tokens.line()) +
+                        ": non-numeric height '" + std::string(value.substr(0, 32)) + "'");
+    }
+    if (has_nodata && v == nodata_value) {
+      ++holes;
+      terrain.h[k] = std::nanf("");
+      continue;
+    }
+    if (!std::isfinite(v)) {
+      throw input_error(path + ": line " + std::to_string(tokens.line()) + ": height '" +
+                        std::string(value) + "' is not finite");
+    }
+    terrain.h[k] = static_cast<float>(v);
+  }
+  if (tokens.next(value)) {
+    throw input_error(path + ": line " + std::to_string(tokens.line()) +
+                      ": more values than ncols x nrows = " + std::to_string(expected));
+  }
+  if (holes > 0) {
+    if (nodata == NodataPolicy::kRefuse) {
+      throw input_error(path + ": " + std::to_string(holes) +
+                        " NODATA cells (fill them with --nodata fill)");
+    }
+    if (fill_holes(terrain) < 0) throw input_error(path + ": every cell is NODATA");
+    std::cerr << "runnel: " << path << ": filled " << holes
+              << " NODATA cells from their neighbours\n";
+  }
+  return terrain;
+}
+
+void write_asc(const std::string& path, const Heightmap& terrain) {
+  write_file_atomically(path, [&](std::FILE* f) {
+    std::fprintf(f,
+                 "ncols %d\nnrows %d\nxllcorner %.17g\nyllcorner %.17g\ncellsize "
+                 "%.17g\nNODATA_value -9999\n",
+                 terrain.nx, terrain.ny, terrain.origin_x, terrain.origin_z, terrain.cell);
+    // %.9g round-trips every float exactly.
+    for (int j = 0; j < terrain.ny; ++j) {
+      for (int i = 0; i < terrain.nx; ++i) {
+        std::fprintf(f, i + 1 < terrain.nx ? "%.9g " : "%.9g\n",
+                     static_cast<double>(terrain.at(i, j)));
+      }
+    }
+    if (std::ferror(f)) throw runtime_error(path + ": write failed");
+  });
+}
+
+}  // namespace runnel

@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: MIT
+// NumPy .npy arrays (format versions 1.0 to 3.0): a 2-D float32 or float64 array of shape
+// (rows, columns) = (ny, nx), C or Fortran order, either byte order. The format carries no cell
+// size.
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <regex>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/terrain/terrain_io.hpp"
+
+namespace runnel {
+namespace {
+
+constexpr char kMagic[] = "\x93NUMPY";
+
+template <typename T>
+T byteswap_value(T v) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  std::reverse(b, b + sizeof(T));
+  std::memcpy(&v, b, sizeof(T));
+  return v;
+}
+
+}  // namespace
+
+Heightmap read_npy(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw input_error(path + ": cannot open for reading");
+  const std::streamoff file_size = in.tellg();
+  in.seekg(0);
+  char prefix[8] = {0};
+  if (file_size < 10 || !in.read(prefix, 8) || std::memcmp(prefix, kMagic, 6) != 0) {
+    throw input_error(path + ": not a NumPy .npy file (bad magic)");
+  }
+  const int major = static_cast<unsigned char>(prefix[6]);
+  std::uint32_t header_len = 0;
+  std::streamoff header_start = 0;
+  if (major == 1) {
+    unsigned char len[2];
+    in.read(reinterpret_cast<char*>(len), 2);
+    header_len = len[0] | (len[1] << 8);
+    header_start = 10;
+  } else if (major == 2 || major == 3) {
+    unsigned char len[4];
+    in.read(reinterpret_cast<char*>(len), 4);
+    header_len =
+        len[0] | (len[1] << 8) | (len[2] << 16) | (static_cast<std::uint32_t>(len[3]) << 24);
+    header_start = 12;
+  } else {
+    throw input_error(path + ": unsupported .npy format version " + std::to_string(major));
+  }
+  if (!in || header_len > 65536 || header_start + header_len > file_size) {
+    throw input_error(path + ": truncated .npy header");
+  }
+  std::string header(header_len, '\0');
+  in.read(header.data(), header_len);
+
+  std::smatch m;
+  static const std::regex descr_re(R"('descr'\s*:\s*'([<>|=])([a-z])(\d+)')");
+  static const std::regex order_re(R"('fortran_order'\s*:\s*(True|False))");
+  static const std::regex shape_re(R"('shape'\s*:\s*\(([^)]*)\))");
+  if (!std::regex_search(header, m, descr_re))
+    throw input_error(path + ": .npy header has no 'descr'");
+  const char byte_order = m[1].str()[0];
+  const std::string kind = m[2].str();
+  const int item_size = std::stoi(m[3].str());
+  if (kind != "f" || (item_size != 4 && item_size != 8)) {
+    throw input_error(path + ": .npy dtype '" + m[2].str() + m[3].str() +
+                      "' is not float32 or float64");
+  }
+  if (!std::regex_search(header, m, order_re))
+    throw input_error(path + ": .npy header has no 'fortran_order'");
+  const bool fortran = m[1].str() == "True";
+  if (!std::regex_search(header, m, shape_re))
+    throw input_error(path + ": .npy header has no 'shape'");
+  std::vector<long long> shape;
+  static const std::regex dim_re(R"(\d+)");
+  const std::string dims = m[1].str();
+  for (auto it = std::sregex_iterator(dims.begin(), dims.end(), dim_re);
+       it != std::sregex_iterator(); ++it) {
+    if (it->str().size() > 12) throw input_error(path + ": .npy shape is too large");
+    shape.push_back(std::stoll(it->str()));
+  }
+  if (shape.size() != 2) {
+    throw input_error(path + ": .npy array has " + std::to_string(shape.size()) +
+                      " dimensions, expected 2 (rows, columns)");
+  }
+  const long long ny = shape[0], nx = shape[1];
+  check_terrain_size(path, nx, ny);
+  const std::streamoff data_bytes = static_cast<std::streamoff>(nx * ny * item_size);
+  const std::streamoff available = file_size - header_start - header_len;
+  if (available < data_bytes) {
+    throw input_error(path + ": truncated: " + std::to_string(data_bytes) +
+                      " bytes of data expected, " + std::to_string(available) + " present");
+  }
+  if (available > data_bytes)
+    throw input_error(path + ": " + std::to_string(available - data_bytes) +
+                      " bytes of trailing data");
+
+  std::vector<char> raw(static_cast<std::size_t>(data_bytes));
+  in.read(raw.data(), data_bytes);
+  if (!in) throw input_error(path + ": read error");
+  const bool swap = (byte_order == '>' && std::endian::native == std::endian::little) ||
+                    (byte_order == '<' && std::endian::native == std::endian::big);
+
+  Heightmap terrain(static_cast<int>(nx), static_cast<int>(ny), 1.0);
+  for (long long k = 0; k < nx * ny; ++k) {
+    double v = 0.0;
+    if (item_size == 4) {
+      float f;
+      std::memcpy(&f, raw.data() + 4 * k, 4);
+      v = swap ? byteswap_value(f) : f;
+    } else {
+      double d;
+      std::memcpy(&d, raw.data() + 8 * k, 8);
+      v = swap ? byteswap_value(d) : d;
+    }
+    // C order: k = row·nx + col. Fortran order: k = col·ny + row.
+    const long long row = fortran ? k % ny : k / nx;
+    const long long col = fortran ? k / ny : k % nx;
+    terrain.h[static_cast<std::size_t>(row * nx + col)] = static_cast<float>(v);
+  }
+  check_finite_heights(path, terrain);
+  return terrain;
+}
+
+void write_npy(const std::string& path, const Heightmap& terrain) {
+  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
+                       std::to_string(terrain.ny) + ", " + std::to_string(terrain.nx) + "), }";
+  // Pad with spaces so that magic + length + header + '\n' is a multiple of 64 bytes.
+  const std::size_t total = 10 + header.size() + 1;
+  header.append((64 - total % 64) % 64, ' ');
+  header.push_back('\n');
+  write_file_atomically(path, [&](std::FILE* f) {
+    std::fwrite(kMagic, 1, 6, f);
+    const unsigned char version[2] = {1, 0};
+    std::fwrite(version, 1, 2, f);
+    const unsigned char len[2] = {static_cast<unsigned char>(header.size() & 0xff),
+                                  static_cast<unsigned char>(header.size() >> 8)};
+    std::fwrite(len, 1, 2, f);
+    std::fwrite(header.data(), 1, header.size(), f);
+    static_assert(std::endian::native == std::endian::little,
+                  "the .npy writer assumes a little-endian host");
+    std::fwrite(terrain.h.data(), sizeof(float), terrain.h.size(), f);
+    if (std::ferror(f)) throw runtime_error(path + ": write failed");
+  });
+}
+
+}  // namespace runnel

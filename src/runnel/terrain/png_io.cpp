@@ -1,0 +1,208 @@
+// SPDX-License-Identifier: MIT
+// 16-bit grayscale PNG heightmaps. Heights map linearly onto 0..65535 through a range [min, max];
+// runnel stores that range (and the cell size) in tEXt chunks so its own files read back in metres.
+// A PNG without them reads as raw sample values in metres unless a range is given.
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/terrain/terrain_io.hpp"
+
+namespace runnel {
+namespace {
+
+constexpr const char* kRangeKey = "runnel.height_range";
+constexpr const char* kCellKey = "runnel.cell_size";
+
+struct PngErrorState {
+  char message[256] = {0};
+};
+
+void on_png_error(png_structp png, png_const_charp msg) {
+  auto* state = static_cast<PngErrorState*>(png_get_error_ptr(png));
+  std::snprintf(state->message, sizeof(state->message), "%s", msg);
+  png_longjmp(png, 1);
+}
+void on_png_warning(png_structp, png_const_charp) {}
+
+// Everything libpng touches lives here, so nothing with a destructor is live across setjmp.
+struct PngReadResult {
+  png_uint_32 width = 0, height = 0;
+  int bit_depth = 0, color_type = 0;
+  bool has_range = false, has_cell = false;
+  double range_min = 0, range_max = 0, cell = 1.0;
+  // Buffers live in the caller's object so a longjmp out of libpng skips no destructor.
+  std::vector<png_byte> pixels;
+  std::vector<png_bytep> rows;
+};
+
+// Returns an empty string on success, else libpng's message. `samples` is filled by the second
+// call.
+std::string png_read(std::FILE* f, PngReadResult& r, std::vector<std::uint16_t>* samples) {
+  PngErrorState errors;
+  png_structp png =
+      png_create_read_struct(PNG_LIBPNG_VER_STRING, &errors, on_png_error, on_png_warning);
+  if (!png) return "out of memory";
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return errors.message[0] ? errors.message : "corrupt PNG";
+  }
+  png_init_io(png, f);
+  png_read_info(png, info);
+  r.width = png_get_image_width(png, info);
+  r.height = png_get_image_height(png, info);
+  r.bit_depth = png_get_bit_depth(png, info);
+  r.color_type = png_get_color_type(png, info);
+  png_textp text = nullptr;
+  int num_text = 0;
+  png_get_text(png, info, &text, &num_text);
+  for (int t = 0; t < num_text; ++t) {
+    if (std::strcmp(text[t].key, kRangeKey) == 0) {
+      r.has_range = std::sscanf(text[t].text, "%lf %lf", &r.range_min, &r.range_max) == 2;
+    } else if (std::strcmp(text[t].key, kCellKey) == 0) {
+      r.has_cell = std::sscanf(text[t].text, "%lf", &r.cell) == 1;
+    }
+  }
+  if (samples) {
+    if (r.color_type != PNG_COLOR_TYPE_GRAY || (r.bit_depth != 16 && r.bit_depth != 8)) {
+      png_destroy_read_struct(&png, &info, nullptr);
+      return "not a grayscale PNG (need 8- or 16-bit gray, found colour type " +
+             std::to_string(r.color_type) + " at " + std::to_string(r.bit_depth) + " bits)";
+    }
+    if (r.bit_depth == 16) png_set_swap(png);  // PNG is big-endian; we read native uint16
+    png_read_update_info(png, info);
+    const std::size_t row_bytes = png_get_rowbytes(png, info);
+    r.pixels.resize(row_bytes * r.height);
+    r.rows.resize(r.height);
+    for (png_uint_32 y = 0; y < r.height; ++y) r.rows[y] = r.pixels.data() + y * row_bytes;
+    png_read_image(png, r.rows.data());
+    png_read_end(png, nullptr);
+    samples->resize(static_cast<std::size_t>(r.width) * r.height);
+    for (std::size_t k = 0; k < samples->size(); ++k) {
+      if (r.bit_depth == 16) {
+        std::memcpy(&(*samples)[k], r.pixels.data() + 2 * k, 2);
+      } else {
+        (*samples)[k] = r.pixels[k];
+      }
+    }
+  }
+  png_destroy_read_struct(&png, &info, nullptr);
+  return "";
+}
+
+}  // namespace
+
+Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& range) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw input_error(path + ": cannot open for reading");
+  unsigned char signature[8] = {0};
+  if (std::fread(signature, 1, 8, f) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
+    std::fclose(f);
+    throw input_error(path + ": not a PNG file");
+  }
+  std::rewind(f);
+  PngReadResult header;
+  std::string err = png_read(f, header, nullptr);
+  if (err.empty()) {
+    try {
+      check_terrain_size(path, header.width, header.height);
+    } catch (...) {
+      std::fclose(f);
+      throw;
+    }
+    std::rewind(f);
+  }
+  std::vector<std::uint16_t> samples;
+  if (err.empty()) err = png_read(f, header, &samples);
+  std::fclose(f);
+  if (!err.empty()) throw input_error(path + ": corrupt or unsupported PNG: " + err);
+
+  const double max_sample = header.bit_depth == 16 ? 65535.0 : 255.0;
+  double lo = 0.0, hi = max_sample;  // raw sample values in metres
+  if (range) {
+    lo = range->min;
+    hi = range->max;
+  } else if (header.has_range) {
+    lo = header.range_min;
+    hi = header.range_max;
+  }
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo)) {
+    throw input_error(path + ": invalid height range " + std::to_string(lo) + ":" +
+                      std::to_string(hi));
+  }
+  Heightmap terrain(static_cast<int>(header.width), static_cast<int>(header.height),
+                    header.has_cell && header.cell > 0 ? header.cell : 1.0);
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    terrain.h[k] = static_cast<float>(lo + (hi - lo) * (samples[k] / max_sample));
+  }
+  return terrain;
+}
+
+void write_png16(const std::string& path, const Heightmap& terrain,
+                 const std::optional<HeightRange>& range) {
+  double lo = terrain.min_height(), hi = terrain.max_height();
+  if (range) {
+    lo = range->min;
+    hi = range->max;
+  }
+  if (!(hi > lo)) hi = lo + 1.0;  // a flat terrain still gets a valid range
+  std::vector<std::uint16_t> samples(terrain.size());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const double t = (terrain.h[k] - lo) / (hi - lo);
+    samples[k] = static_cast<std::uint16_t>(std::lround(std::clamp(t, 0.0, 1.0) * 65535.0));
+  }
+  std::ostringstream range_text, cell_text;
+  range_text.precision(17);
+  cell_text.precision(17);
+  range_text << lo << " " << hi;
+  cell_text << terrain.cell;
+  const std::string range_str = range_text.str(), cell_str = cell_text.str();
+
+  write_file_atomically(path, [&](std::FILE* f) {
+    PngErrorState errors;
+    png_structp png =
+        png_create_write_struct(PNG_LIBPNG_VER_STRING, &errors, on_png_error, on_png_warning);
+    if (!png) throw runtime_error(path + ": out of memory");
+    png_infop info = png_create_info_struct(png);
+    std::vector<png_bytep> rows(terrain.ny);
+    std::vector<png_byte> bytes(samples.size() * 2);
+    for (std::size_t k = 0; k < samples.size(); ++k) {  // big-endian, as PNG stores 16-bit samples
+      bytes[2 * k] = static_cast<png_byte>(samples[k] >> 8);
+      bytes[2 * k + 1] = static_cast<png_byte>(samples[k] & 0xff);
+    }
+    for (int y = 0; y < terrain.ny; ++y)
+      rows[y] = bytes.data() + static_cast<std::size_t>(y) * terrain.nx * 2;
+    png_text text[2];
+    std::memset(text, 0, sizeof(text));
+    text[0].compression = PNG_TEXT_COMPRESSION_NONE;
+    text[0].key = const_cast<char*>(kRangeKey);
+    text[0].text = const_cast<char*>(range_str.c_str());
+    text[1].compression = PNG_TEXT_COMPRESSION_NONE;
+    text[1].key = const_cast<char*>(kCellKey);
+    text[1].text = const_cast<char*>(cell_str.c_str());
+    volatile bool failed = false;
+    if (setjmp(png_jmpbuf(png))) {
+      failed = true;
+    } else {
+      png_init_io(png, f);
+      png_set_IHDR(png, info, terrain.nx, terrain.ny, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+                   PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+      png_set_text(png, info, text, 2);
+      png_write_info(png, info);
+      png_write_image(png, rows.data());
+      png_write_end(png, nullptr);
+    }
+    png_destroy_write_struct(&png, &info);
+    if (failed) throw runtime_error(path + ": PNG write failed: " + errors.message);
+  });
+}
+
+}  // namespace runnel

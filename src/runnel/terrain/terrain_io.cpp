@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/terrain/terrain_io.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+
+#include "runnel/core/error.hpp"
+
+namespace runnel {
+
+TerrainFormat terrain_format_from_path(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".asc") return TerrainFormat::kAsc;
+  if (ext == ".png") return TerrainFormat::kPng;
+  if (ext == ".npy") return TerrainFormat::kNpy;
+  throw input_error(path + ": unknown terrain format '" + ext + "' (expected .asc, .png or .npy)");
+}
+
+Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
+  const TerrainFormat format = terrain_format_from_path(path);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw input_error(path + ": no such file");
+  if (std::filesystem::is_directory(path, ec))
+    throw input_error(path + ": is a directory, not a terrain file");
+  Heightmap terrain;
+  switch (format) {
+    case TerrainFormat::kAsc:
+      terrain = read_asc(path, options.nodata);
+      break;
+    case TerrainFormat::kPng:
+      terrain = read_png16(path, options.png_range);
+      break;
+    case TerrainFormat::kNpy:
+      terrain = read_npy(path);
+      break;
+  }
+  if (options.cell) {
+    if (!(*options.cell > 0.0) || !std::isfinite(*options.cell)) {
+      throw input_error(path + ": cell size must be a positive number of metres");
+    }
+    terrain.cell = *options.cell;
+  }
+  return terrain;
+}
+
+void write_terrain(const std::string& path, const Heightmap& terrain, const WriteOptions& options) {
+  switch (terrain_format_from_path(path)) {
+    case TerrainFormat::kAsc:
+      write_asc(path, terrain);
+      break;
+    case TerrainFormat::kPng:
+      write_png16(path, terrain, options.png_range);
+      break;
+    case TerrainFormat::kNpy:
+      write_npy(path, terrain);
+      break;
+  }
+}
+
+void check_terrain_size(const std::string& path, long long nx, long long ny) {
+  if (nx < 2 || ny < 2) {
+    throw input_error(path + ": terrain of " + std::to_string(nx) + " x " + std::to_string(ny) +
+                      " vertices is too small (at least 2 x 2)");
+  }
+  if (nx > kMaxSide || ny > kMaxSide || nx * ny > kMaxVertices) {
+    throw input_error(path + ": terrain of " + std::to_string(nx) + " x " + std::to_string(ny) +
+                      " vertices exceeds the limit (" + std::to_string(kMaxSide) + " per side, " +
+                      std::to_string(kMaxVertices) + " in all)");
+  }
+}
+
+void check_finite_heights(const std::string& path, const Heightmap& terrain) {
+  for (int j = 0; j < terrain.ny; ++j) {
+    for (int i = 0; i < terrain.nx; ++i) {
+      if (!std::isfinite(terrain.at(i, j))) {
+        throw input_error(path + ": height at column " + std::to_string(i) + ", row " +
+                          std::to_string(j) + " is not a finite number");
+      }
+    }
+  }
+}
+
+long long fill_holes(Heightmap& terrain) {
+  // Grow valid data into the holes one ring per pass: each hole next to valid vertices takes the
+  // mean of its valid 8-neighbours. Deterministic (a pass reads only the previous pass's values).
+  long long filled = 0;
+  std::vector<std::size_t> holes;
+  for (std::size_t k = 0; k < terrain.h.size(); ++k) {
+    if (std::isnan(terrain.h[k])) holes.push_back(k);
+  }
+  if (holes.size() == terrain.h.size()) return -1;
+  while (!holes.empty()) {
+    std::vector<std::pair<std::size_t, float>> updates;
+    std::vector<std::size_t> remaining;
+    for (std::size_t k : holes) {
+      const int i = static_cast<int>(k % terrain.nx), j = static_cast<int>(k / terrain.nx);
+      double sum = 0.0;
+      int count = 0;
+      for (int dj = -1; dj <= 1; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          const int a = i + di, b = j + dj;
+          if ((di == 0 && dj == 0) || a < 0 || b < 0 || a >= terrain.nx || b >= terrain.ny)
+            continue;
+          const float v = terrain.at(a, b);
+          if (!std::isnan(v)) {
+            sum += v;
+            ++count;
+          }
+        }
+      }
+      if (count > 0)
+        updates.emplace_back(k, static_cast<float>(sum / count));
+      else
+        remaining.push_back(k);
+    }
+    for (auto& [k, v] : updates) terrain.h[k] = v;
+    filled += static_cast<long long>(updates.size());
+    holes.swap(remaining);
+  }
+  return filled;
+}
+
+}  // namespace runnel

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <optional>
+#include <string>
+
+#include "runnel/core/heightmap.hpp"
+
+namespace runnel {
+
+// What a reader does with NODATA holes in an ASCII grid (docs/terrain-formats.md).
+enum class NodataPolicy {
+  kFill,    // fill each hole with the mean of its valid neighbours, growing inwards; warn on stderr
+  kRefuse,  // refuse the file
+};
+
+struct HeightRange {
+  double min = 0.0;
+  double max = 0.0;
+};
+
+struct ReadOptions {
+  NodataPolicy nodata = NodataPolicy::kFill;
+  std::optional<HeightRange> png_range;  // overrides the range stored in a runnel PNG
+  std::optional<double> cell;  // overrides the cell size (NPY and PNG carry none of their own)
+};
+
+struct WriteOptions {
+  std::optional<HeightRange> png_range;  // default: the terrain's own min and max
+};
+
+enum class TerrainFormat { kAsc, kPng, kNpy };
+
+// The format from the file name's extension (.asc, .png, .npy; any case). Throws an input error.
+TerrainFormat terrain_format_from_path(const std::string& path);
+
+// Readers validate everything and throw runnel::Error (exit code 2) naming the file and the reason.
+Heightmap read_terrain(const std::string& path, const ReadOptions& options = {});
+// Writers write atomically (temporary file, then rename).
+void write_terrain(const std::string& path, const Heightmap& terrain,
+                   const WriteOptions& options = {});
+
+// The individual formats.
+Heightmap read_asc(const std::string& path, NodataPolicy nodata);
+void write_asc(const std::string& path, const Heightmap& terrain);
+Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& range);
+void write_png16(const std::string& path, const Heightmap& terrain,
+                 const std::optional<HeightRange>& range);
+Heightmap read_npy(const std::string& path);
+void write_npy(const std::string& path, const Heightmap& terrain);
+
+// Shared validation for every reader: sizes within limits.
+void check_terrain_size(const std::string& path, long long nx, long long ny);
+// Shared validation: every height finite. Reports the first offending vertex.
+void check_finite_heights(const std::string& path, const Heightmap& terrain);
+// Fills NaN holes (marked as NaN) from their neighbours. Returns the number filled.
+long long fill_holes(Heightmap& terrain);
+
+}  // namespace runnel

@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <vector>
+
+#include "runnel/compute/context.hpp"
+#include "runnel/core/heightmap.hpp"
+
+namespace runnel {
+
+// Vertex normals (physics.md §1), 3 floats per vertex. The plain C++ reference (double precision)
+// is the oracle for the kernel in cl/terrain_normals.cl.
+std::vector<float> terrain_normals_reference(const Heightmap& terrain);
+
+// Host side of cl/terrain_normals.cl.
+class TerrainNormals {
+ public:
+  explicit TerrainNormals(ComputeContext& compute);
+  // Enqueues the kernel on buffers already on the device.
+  void enqueue(const cl::Buffer& height, const cl::Buffer& normal, int nx, int ny, float cell);
+  // Convenience: upload, compute, read back.
+  std::vector<float> compute(const Heightmap& terrain);
+
+ private:
+  ComputeContext& compute_;
+  cl::Kernel kernel_;
+};
+
+}  // namespace runnel

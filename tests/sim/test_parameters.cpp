@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+// Scenario files and --set: every key validated, errors name the key; docs agree with the table.
+#include <gtest/gtest.h>
+
+#include "runnel/core/error.hpp"
+#include "runnel/sim/parameters.hpp"
+#include "runnel/sim/scenario.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kUsage);
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Parameters, DefaultsComeFromTheTable) {
+  const Parameters p;
+  EXPECT_EQ(p.integer("terrain.size"), 257);
+  EXPECT_DOUBLE_EQ(p.real("terrain.cell"), 1.0);
+  EXPECT_EQ(p.text("terrain.generator"), "fbm");
+  EXPECT_TRUE(p.boolean("terrain.cell_from_file"));
+}
+
+TEST(Parameters, ScenarioValuesAndOverridesApply) {
+  Parameters p = parse_scenario(
+      "[terrain]\nsize = 65\ncell = 2\ngenerator = \"cone\"\n[terrain.set]\nradius = 0.3\n",
+      "s.toml");
+  EXPECT_EQ(p.integer("terrain.size"), 65);
+  EXPECT_DOUBLE_EQ(p.real("terrain.cell"), 2.0);  // an integer is a valid real
+  EXPECT_DOUBLE_EQ(p.generator_values().at("radius"), 0.3);
+  apply_overrides(p, {"terrain.size=33", "terrain.set.radius=0.2"});
+  EXPECT_EQ(p.integer("terrain.size"), 33);
+  EXPECT_EQ(load_terrain(p).nx, 33);
+  EXPECT_DOUBLE_EQ(p.generator_values().at("radius"), 0.2);
+}
+
+TEST(Parameters, BadScenariosNameTheKey) {
+  EXPECT_NE(
+      error_of([] { parse_scenario("[terrain]\nsizee = 3\n", "s.toml"); }).find("terrain.sizee"),
+      std::string::npos);
+  EXPECT_NE(error_of([] { parse_scenario("[bogus]\nx = 3\n", "s.toml"); }).find("[bogus]"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_scenario("[terrain]\nsize = \"big\"\n", "s.toml");
+            }).find("terrain.size"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_scenario("[terrain]\ncell = 0\n", "s.toml");
+            }).find("outside the valid range"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of([] { parse_scenario("[terrain]\ncell = -1.0\n", "s.toml"); }).find("terrain.cell"),
+      std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_scenario("[terrain]\ngenerator = \"volcano\"\n", "s.toml");
+            }).find("volcano"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_scenario("[terrain\nsize = 3\n", "s.toml"); }).find("s.toml:1"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              parse_scenario("[terrain.set]\nbogus = 1\n", "s.toml");
+              load_terrain(parse_scenario("[terrain.set]\nbogus = 1\n", "s.toml"));
+            }).find("terrain.set.bogus"),
+            std::string::npos);
+  Parameters p;
+  EXPECT_NE(error_of([&] { apply_overrides(p, {"run.sed=3"}); }).find("run.sed"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { apply_overrides(p, {"terrain.size"}); }).find("key=value"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { apply_overrides(p, {"terrain.size=1.5"}); }).find("integer"),
+            std::string::npos);
+}
+
+TEST(Parameters, DefaultScenarioLoads) {
+  const Parameters p = load_scenario(test::source_dir() + "/data/scenarios/default.toml");
+  const Heightmap t = load_terrain(p);
+  EXPECT_GE(t.nx, 256);
+  EXPECT_GE(t.ny, 256);
+}
+
+TEST(Parameters, DocsAreGeneratedFromTheTable) {
+  const std::string docs = test::read_text(test::source_dir() + "/docs/parameters.md");
+  EXPECT_EQ(docs, parameters_markdown())
+      << "regenerate with: build/runnel params --markdown > docs/parameters.md";
+}
+
+}  // namespace
+}  // namespace runnel

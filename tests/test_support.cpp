@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+#include "test_support.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace runnel::test {
+
+ScratchDir::ScratchDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "scratch";
+  for (char& c : name) {
+    if (c == '/') c = '_';
+  }
+  root_ = std::filesystem::temp_directory_path() /
+          ("runnel-test-" + std::to_string(getpid()) + "-" + name);
+  std::filesystem::remove_all(root_);
+  std::filesystem::create_directories(root_);
+}
+
+ScratchDir::~ScratchDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(root_, ec);
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+namespace {
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+}  // namespace
+
+CliResult run_cli(const std::vector<std::string>& args, const std::string& env) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string tag = std::to_string(getpid()) + "-" + std::to_string(std::random_device{}());
+  const std::string out_path = (dir / ("runnel-cli-out-" + tag)).string();
+  const std::string err_path = (dir / ("runnel-cli-err-" + tag)).string();
+  std::string cmd = env.empty() ? "" : env + " ";
+  cmd += shell_quote(RUNNEL_BINARY);
+  for (auto& a : args) cmd.append(" ").append(shell_quote(a));
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+  cmd.append(" </dev/null >").append(out_path).append(" 2>").append(err_path);
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_text(out_path);
+  r.err = read_text(err_path);
+  std::filesystem::remove(out_path);
+  std::filesystem::remove(err_path);
+  return r;
+}
+
+std::string source_dir() {
+  return RUNNEL_SOURCE_DIR;
+}
+
+std::string shared_data(const std::string& name) {
+  const auto p = std::filesystem::path(RUNNEL_SOURCE_DIR) / ".." / "shared" / "data" / name;
+  return std::filesystem::exists(p) ? p.string() : "";
+}
+
+}  // namespace runnel::test

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// Helpers shared by the tests: scratch folders, files, and running the runnel binary.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace runnel::test {
+
+// A fresh, empty folder for one test, removed when the test ends.
+class ScratchDir {
+ public:
+  ScratchDir();
+  ~ScratchDir();
+  std::string path(const std::string& name) const { return (root_ / name).string(); }
+  const std::filesystem::path& root() const { return root_; }
+
+ private:
+  std::filesystem::path root_;
+};
+
+void write_text(const std::string& path, const std::string& text);
+std::string read_text(const std::string& path);
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+// Runs the runnel binary with `args` (shell-quoted here) and captures its output.
+CliResult run_cli(const std::vector<std::string>& args, const std::string& env = "");
+
+std::string source_dir();
+std::string shared_data(const std::string& name);  // ../shared/data/NAME, "" if absent
+
+}  // namespace runnel::test
