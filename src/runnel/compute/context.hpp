@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "runnel/compute/opencl.hpp"
+#include "runnel/compute/profiler.hpp"
 
 namespace runnel {
 
@@ -42,6 +43,8 @@ class ComputeContext {
   cl::Context& context() { return context_; }
   cl::Device& device() { return device_; }
   cl::CommandQueue& queue() { return queue_; }
+  // Every kernel launch goes through here, so profiling can time each one (`runnel bench`).
+  KernelProfiler& profiler() { return profiler_; }
 
   // Builds (once, then cached) a program from embedded files, e.g. {"cl/common.cl", "cl/hash.cl"}.
   // A compile error throws with the compiler log; its lines name the file and line of the fault.
@@ -54,6 +57,7 @@ class ComputeContext {
   cl::Context context_;
   cl::Device device_;
   cl::CommandQueue queue_;
+  KernelProfiler profiler_{queue_};
   std::map<std::string, cl::Program> programs_;
 };
 

@@ -137,6 +137,7 @@ void Parameters::set(const std::string& key, const ParamValue& value_in,
     }
   }
   values_[key] = value;
+  explicit_.insert(key);
 }
 
 const ParamValue& Parameters::get(const std::string& key) const {

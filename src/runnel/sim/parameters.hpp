@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -40,6 +41,9 @@ class Parameters {
                 const std::string& origin = "--set");
   void set(const std::string& key, const ParamValue& value, const std::string& origin = "--set");
 
+  // Whether the key was set explicitly (scenario, --set), rather than holding its default.
+  bool was_set(const std::string& key) const { return explicit_.count(key) > 0; }
+
   double real(const std::string& key) const;
   std::int64_t integer(const std::string& key) const;
   bool boolean(const std::string& key) const;
@@ -56,6 +60,7 @@ class Parameters {
   const ParamValue& get(const std::string& key) const;
   std::map<std::string, ParamValue> values_;
   std::map<std::string, double> generator_values_;
+  std::set<std::string> explicit_;
 };
 
 // docs/parameters.md, generated from the table (`runnel params --markdown`).

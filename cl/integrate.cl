@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// Kick-drift-kick leapfrog (physics.md §2), density integrated like position:
+//   kick_drift: v += a·dt/2, ρ += (dρ/dt)·dt/2, x += v·dt, age += dt, then the boundary response
+//   kick:       v += a·dt/2, ρ += (dρ/dt)·dt/2   (with the rates at the new positions)
+// Boundaries after the drift: a particle below the terrain is put back on it (+ε along the normal)
+// with restitution e and friction μ (the next issue's Möller–Trumbore collision refines this);
+// vertical walls at the domain edges reflect it, or, without walls, a particle that leaves the
+// domain is marked dead (removed at the next sort) and counted as outflow.
+// Units: m, s. Compile-time constants (host -D): SPH_WALLS, SPH_SURFACE_EPS, SPH_RESTITUTION,
+// SPH_FRICTION.
+
+__kernel void kick_drift(__global float* x, __global float* y, __global float* z, __global float* vx,
+                         __global float* vy, __global float* vz, __global float* rho, __global float* age,
+                         __global uint* id, const __global float* ax, const __global float* ay,
+                         const __global float* az, const __global float* drho, const uint n, const float dt,
+                         const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
+                         const int tny, const float tcell, const float domain_x, const float domain_z,
+                         volatile __global int* counters) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float half_dt = 0.5f * dt;
+  float3 v = (float3)(vx[i] + ax[i] * half_dt, vy[i] + ay[i] * half_dt, vz[i] + az[i] * half_dt);
+  rho[i] += drho[i] * half_dt;
+  float3 p = (float3)(x[i], y[i], z[i]) + v * dt;
+  age[i] += dt;
+
+#if SPH_WALLS
+  if (p.x < SPH_SURFACE_EPS) { p.x = SPH_SURFACE_EPS; v.x = fabs(v.x) * SPH_RESTITUTION; }
+  if (p.x > domain_x - SPH_SURFACE_EPS) { p.x = domain_x - SPH_SURFACE_EPS; v.x = -fabs(v.x) * SPH_RESTITUTION; }
+  if (p.z < SPH_SURFACE_EPS) { p.z = SPH_SURFACE_EPS; v.z = fabs(v.z) * SPH_RESTITUTION; }
+  if (p.z > domain_z - SPH_SURFACE_EPS) { p.z = domain_z - SPH_SURFACE_EPS; v.z = -fabs(v.z) * SPH_RESTITUTION; }
+#else
+  if (p.x < 0.0f || p.x > domain_x || p.z < 0.0f || p.z > domain_z) {
+    id[i] |= DEAD_FLAG;
+    atomic_inc(&counters[1]);
+  }
+#endif
+  const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, p.x, p.z);
+  if (p.y < s.height + SPH_SURFACE_EPS) {
+    p.y = s.height + SPH_SURFACE_EPS;
+    const float vn = dot(v, s.normal);
+    if (vn < 0.0f) {
+      const float3 vt = v - vn * s.normal;
+      v = vt * (1.0f - SPH_FRICTION) - (SPH_RESTITUTION * vn) * s.normal;
+    }
+    atomic_inc(&counters[0]);
+  }
+  x[i] = p.x;
+  y[i] = p.y;
+  z[i] = p.z;
+  vx[i] = v.x;
+  vy[i] = v.y;
+  vz[i] = v.z;
+}
+
+__kernel void kick(__global float* vx, __global float* vy, __global float* vz, __global float* rho,
+                   const __global float* ax, const __global float* ay, const __global float* az,
+                   const __global float* drho, const uint n, const float dt) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float half_dt = 0.5f * dt;
+  vx[i] += ax[i] * half_dt;
+  vy[i] += ay[i] * half_dt;
+  vz[i] += az[i] * half_dt;
+  rho[i] += drho[i] * half_dt;
+}
+
+// Health and time-step statistics, one row of 6 floats per block of particles:
+// max |v|², max |a|², min ρ, max ρ, number of non-finite values, max |dρ/dt|.
+// The host reduces the rows (max and min do not depend on order).
+__kernel void step_stats(const __global float* vx, const __global float* vy, const __global float* vz,
+                         const __global float* ax, const __global float* ay, const __global float* az,
+                         const __global float* rho, const __global float* drho, const uint n, const uint chunk,
+                         __global float* stats) {
+  const uint block = get_global_id(0);
+  const uint begin = block * chunk;
+  const uint end = min(begin + chunk, n);
+  float v2max = 0.0f, a2max = 0.0f, rmin = INFINITY, rmax = -INFINITY, bad = 0.0f, drmax = 0.0f;
+  for (uint i = begin; i < end; ++i) {
+    const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
+    const float a2 = ax[i] * ax[i] + ay[i] * ay[i] + az[i] * az[i];
+    if (!isfinite(v2) || !isfinite(a2) || !isfinite(rho[i]) || !isfinite(drho[i])) {
+      bad += 1.0f;
+      continue;
+    }
+    v2max = fmax(v2max, v2);
+    a2max = fmax(a2max, a2);
+    rmin = fmin(rmin, rho[i]);
+    rmax = fmax(rmax, rho[i]);
+    drmax = fmax(drmax, fabs(drho[i]));
+  }
+  __global float* row = stats + 6 * block;
+  row[0] = v2max;
+  row[1] = a2max;
+  row[2] = rmin;
+  row[3] = rmax;
+  row[4] = bad;
+  row[5] = drmax;
+}

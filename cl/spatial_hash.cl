@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+// Spatial hash: Morton cell keys, a stable LSD radix sort (8 bits per pass), the reordering of the
+// particle arrays, and the cell start/end tables (physics.md §2, "Neighbour search").
+//
+// Determinism: the sort splits the particles into RADIX_BLOCKS contiguous chunks. Each chunk's
+// digit histogram, one serial exclusive scan in (digit, chunk) order, then each chunk scatters its
+// elements in order. No atomics: the permutation is a pure function of the keys.
+
+#define RADIX 256
+
+// key: Morton code of the particle's cell; dead particles get dead_key (> every live key) so the
+// sort moves them to the end, where they are dropped.
+__kernel void hash_keys(const __global float* x, const __global float* y, const __global float* z,
+                        const __global uint* id, __global uint* key, __global uint* index, const uint n,
+                        const float ox, const float oy, const float oz, const float inv_cell, const int gx,
+                        const int gy, const int gz, const uint dead_key) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const Grid g = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  key[i] = (id[i] & DEAD_FLAG) ? dead_key : morton_key(cell_of((float3)(x[i], y[i], z[i]), g));
+  index[i] = i;
+}
+
+// hist[digit * blocks + block] = how many keys of the block's chunk have that digit.
+__kernel void radix_histogram(const __global uint* key, const uint n, const uint shift, const uint chunk,
+                              __global uint* hist) {
+  const uint block = get_global_id(0);
+  const uint blocks = get_global_size(0);
+  uint counts[RADIX];
+  for (int d = 0; d < RADIX; ++d) counts[d] = 0;
+  const uint begin = block * chunk;
+  const uint end = min(begin + chunk, n);
+  for (uint i = begin; i < end; ++i) counts[(key[i] >> shift) & (RADIX - 1)]++;
+  for (int d = 0; d < RADIX; ++d) hist[d * blocks + block] = counts[d];
+}
+
+// Exclusive prefix sum over the whole histogram, in place. One work-item: the table is small.
+__kernel void radix_scan(__global uint* hist, const uint count) {
+  if (get_global_id(0) != 0) return;
+  uint sum = 0;
+  for (uint k = 0; k < count; ++k) {
+    const uint v = hist[k];
+    hist[k] = sum;
+    sum += v;
+  }
+}
+
+__kernel void radix_scatter(const __global uint* key_in, const __global uint* value_in, __global uint* key_out,
+                            __global uint* value_out, const __global uint* hist, const uint n, const uint shift,
+                            const uint chunk) {
+  const uint block = get_global_id(0);
+  const uint blocks = get_global_size(0);
+  uint offset[RADIX];
+  for (int d = 0; d < RADIX; ++d) offset[d] = hist[d * blocks + block];
+  const uint begin = block * chunk;
+  const uint end = min(begin + chunk, n);
+  for (uint i = begin; i < end; ++i) {
+    const uint k = key_in[i];
+    const uint pos = offset[(k >> shift) & (RADIX - 1)]++;
+    key_out[pos] = k;
+    value_out[pos] = value_in[i];
+  }
+}
+
+// Gathers one float field into sorted order.
+__kernel void reorder_float(const __global uint* perm, const __global float* in, __global float* out, const uint n) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  out[i] = in[perm[i]];
+}
+
+__kernel void reorder_uint(const __global uint* perm, const __global uint* in, __global uint* out, const uint n) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  out[i] = in[perm[i]];
+}
+
+// After sorting: the first and one-past-last sorted index of every occupied cell (the tables were
+// filled with EMPTY_CELL), and the number of live particles (dead ones sort to the end).
+__kernel void cell_bounds(const __global uint* key, const __global float* x, const __global float* y,
+                          const __global float* z, const uint n, const float ox, const float oy, const float oz,
+                          const float inv_cell, const int gx, const int gy, const int gz, const uint dead_key,
+                          __global uint* cell_start, __global uint* cell_end, __global uint* alive) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const uint k = key[i];
+  if (k == dead_key) {
+    if (i == 0) alive[0] = 0;
+    return;
+  }
+  if (i + 1 == n || key[i + 1] == dead_key) alive[0] = i + 1;
+  const Grid g = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const uint cell = linear_cell(cell_of((float3)(x[i], y[i], z[i]), g), g);
+  if (i == 0 || key[i - 1] != k) cell_start[cell] = i;
+  if (i + 1 == n || key[i + 1] != k) cell_end[cell] = i + 1;
+}
+
+// The neighbour sets the hash yields (for tests and debugging): for each particle, the ids of every
+// other particle within `radius`, up to max_neighbours, and their count.
+__kernel void neighbour_list(const __global float* x, const __global float* y, const __global float* z,
+                             const __global uint* id, const uint n, const float ox, const float oy, const float oz,
+                             const float inv_cell, const int gx, const int gy, const int gz,
+                             const __global uint* cell_start, const __global uint* cell_end, const float radius,
+                             const uint max_neighbours, __global uint* count, __global uint* neighbours) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const float3 pi = (float3)(x[i], y[i], z[i]);
+  uint found = 0;
+  NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end)
+  if (j != i) {
+    const float3 d = pi - (float3)(x[j], y[j], z[j]);
+    if (dot(d, d) < radius * radius) {
+      if (found < max_neighbours) neighbours[i * max_neighbours + found] = id[j];
+      ++found;
+    }
+  }
+  NEIGHBOUR_LOOP_END
+  count[i] = found;
+}

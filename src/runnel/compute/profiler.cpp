@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/compute/profiler.hpp"
+
+namespace runnel {
+
+void KernelProfiler::launch(cl::Kernel& kernel, std::size_t global, const char* name) {
+  if (global == 0) return;
+  if (!enabled_) {
+    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global));
+    return;
+  }
+  cl::Event event;
+  queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NullRange, nullptr, &event);
+  pending_.emplace_back(name, event);
+  // Bound the list: events of a long run are folded in as they complete.
+  if (pending_.size() > 4096) collect();
+}
+
+const std::map<std::string, double>& KernelProfiler::collect() {
+  if (!pending_.empty()) queue_.finish();
+  for (auto& [name, event] : pending_) {
+    const cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+    const cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+    seconds_[name] += 1e-9 * static_cast<double>(end - start);
+    calls_[name] += 1;
+  }
+  pending_.clear();
+  return seconds_;
+}
+
+}  // namespace runnel

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "runnel/compute/context.hpp"
+
+namespace runnel {
+
+// The particle fields, declared once. Persistent fields travel with the particle when the spatial
+// hash reorders the arrays; rate fields are recomputed every step and are never reordered.
+enum ParticleField : int {
+  kX, kY, kZ,        // position, m
+  kVx, kVy, kVz,     // velocity, m/s
+  kRho,              // density, kg/m³
+  kSediment,         // carried sediment volume, m³
+  kAge,              // s
+  kLifespan,         // s; the particle evaporates when age exceeds it
+  kId,               // stable id (uint32; the top bit marks a dead particle)
+  kPersistentFieldCount,
+  kAx = kPersistentFieldCount, kAy, kAz,  // acceleration, m/s²
+  kDrho,                                  // dρ/dt, kg/m³/s
+  kFieldCount
+};
+
+struct ParticleFieldInfo {
+  const char* name;
+  const char* unit;
+  bool is_uint;
+};
+const ParticleFieldInfo& particle_field_info(ParticleField f);
+
+inline constexpr std::uint32_t kDeadFlag = 0x80000000u;
+
+// Particles on the host, structure of arrays; index by ParticleField (id is kept as uint32).
+struct HostParticles {
+  std::array<std::vector<float>, kPersistentFieldCount> f;  // f[kId] unused
+  std::vector<std::uint32_t> id;
+
+  std::size_t size() const { return id.size(); }
+  void resize(std::size_t n);
+  // Appends one particle; sediment and age 0.
+  void push(float x, float y, float z, float vx, float vy, float vz, float rho, float lifespan);
+};
+
+// Particle state in device buffers (structure of arrays). Capacity grows on demand by a factor,
+// copying device to device; particles are appended from the host without touching the others.
+class ParticleStore {
+ public:
+  explicit ParticleStore(ComputeContext& compute, std::size_t initial_capacity = 1024);
+
+  std::size_t size() const { return size_; }
+  std::size_t capacity() const { return capacity_; }
+  cl::Buffer& buffer(ParticleField f) { return current_[f]; }
+  cl::Buffer& scratch(ParticleField f) { return scratch_[f]; }
+  // After the hash has gathered every persistent field into scratch: scratch becomes current.
+  void swap_scratch();
+  // Drops the particles past n (dead ones, sorted to the end).
+  void truncate(std::size_t n);
+
+  // Appends particles; ids are assigned here, consecutively from the next free id. Returns the first id.
+  std::uint32_t append(HostParticles particles);
+  std::uint32_t next_id() const { return next_id_; }
+  void set_next_id(std::uint32_t id) { next_id_ = id; }
+
+  // Downloads every persistent field (blocking).
+  HostParticles download();
+  // Replaces the whole state (checkpoint restore); ids are kept as given.
+  void upload(const HostParticles& particles);
+
+  // Device bytes per particle of capacity: current + scratch persistent fields, rates, sort keys.
+  static std::size_t bytes_per_particle();
+
+ private:
+  void grow_to(std::size_t needed);
+  ComputeContext& compute_;
+  std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
+  std::uint32_t next_id_ = 0;
+  std::array<cl::Buffer, kFieldCount> current_;
+  std::array<cl::Buffer, kPersistentFieldCount> scratch_;
+};
+
+}  // namespace runnel

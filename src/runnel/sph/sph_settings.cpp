@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sph/sph_settings.hpp"
+
+#include <cstdio>
+
+#include "runnel/core/error.hpp"
+
+namespace runnel {
+namespace {
+
+// A float constant for the kernel compiler: the double cast to float there, as on the host.
+std::string define(const char* name, double value) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, " -D%s=((float)(%.17g))", name, value);
+  return buf;
+}
+
+}  // namespace
+
+SphSettings SphSettings::from(const Parameters& p, double default_spacing, double reference_speed) {
+  SphSettings s;
+  s.spacing = p.real("sph.spacing") > 0 ? p.real("sph.spacing") : default_spacing;
+  if (!(s.spacing > 0)) throw input_error("sph.spacing: must be positive");
+  s.h = p.real("sph.h_factor") * s.spacing;
+  s.rho0 = p.real("sph.rho0");
+  s.c0 = p.real("sph.c0") > 0 ? p.real("sph.c0") : 10.0 * reference_speed;
+  if (!(s.c0 > 0)) throw input_error("sph.c0: must be positive (no reference speed to derive it from)");
+  s.alpha_visc = p.real("sph.alpha_visc");
+  s.delta = p.real("sph.delta");
+  s.cfl = p.real("sph.cfl");
+  s.dt_min = p.real("sph.dt_min");
+  s.dt_max = p.real("sph.dt_max");
+  if (s.dt_min >= s.dt_max) throw input_error("sph.dt_min: must be smaller than sph.dt_max");
+  s.gravity = p.real("sph.gravity");
+  s.restitution = p.real("sph.restitution");
+  s.friction = p.real("sph.friction");
+  s.surface_eps = p.real("sph.surface_eps") * s.spacing;
+  s.density_min = p.real("sph.density_min");
+  s.density_max = p.real("sph.density_max");
+  s.clamp_negative_pressure = p.boolean("sph.clamp_negative_pressure");
+  s.walls = p.boolean("sph.walls");
+  return s;
+}
+
+std::string SphSettings::build_options() const {
+  std::string o;
+  o += define("SPH_H", h);
+  o += define("SPH_MASS", mass());
+  o += define("SPH_RHO0", rho0);
+  o += define("SPH_C0", c0);
+  o += define("SPH_B", tait_b());
+  o += define("SPH_ALPHA_VISC", alpha_visc);
+  o += define("SPH_DELTA", delta);
+  o += define("SPH_GRAVITY", gravity);
+  o += define("SPH_RESTITUTION", restitution);
+  o += define("SPH_FRICTION", friction);
+  o += define("SPH_SURFACE_EPS", surface_eps);
+  o += std::string(" -DSPH_CLAMP_NEGATIVE_PRESSURE=") + (clamp_negative_pressure ? "1" : "0");
+  o += std::string(" -DSPH_WALLS=") + (walls ? "1" : "0");
+  return o;
+}
+
+}  // namespace runnel

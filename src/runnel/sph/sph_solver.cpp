@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sph/sph_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "runnel/compute/launch.hpp"
+#include "runnel/core/error.hpp"
+
+namespace runnel {
+namespace {
+
+const std::vector<std::string> kSphSources = {"cl/common.cl",        "cl/grid.cl",       "cl/sph_kernel.cl",
+                                              "cl/terrain_sample.cl", "cl/sph_forces.cl", "cl/integrate.cl"};
+constexpr cl_uint kStatBlocks = 256;
+constexpr int kStatColumns = 6;
+
+GridSpec fluid_grid(const SphSettings& s, const Heightmap& floor, double top) {
+  const double margin = 2.0 * s.h;
+  const double lo[3] = {-margin, floor.min_height() - margin, -margin};
+  const double hi[3] = {(floor.nx - 1) * floor.cell + margin, std::max(top, floor.max_height() + margin),
+                        (floor.ny - 1) * floor.cell + margin};
+  return GridSpec::covering(lo, hi, 2.0 * s.h);
+}
+
+}  // namespace
+
+SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor, double top)
+    : compute_(compute),
+      settings_(settings),
+      terrain_(compute, floor),
+      store_(compute),
+      hash_(compute, fluid_grid(settings, floor, top)) {
+  cl::Program& program = compute.program(kSphSources, settings.build_options());
+  forces_ = cl::Kernel(program, "sph_forces");
+  kick_drift_ = cl::Kernel(program, "kick_drift");
+  kick_ = cl::Kernel(program, "kick");
+  stats_ = cl::Kernel(program, "step_stats");
+  stats_buffer_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
+  counters_buffer_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_int));
+  const cl_int zero = 0;
+  compute.queue().enqueueFillBuffer(counters_buffer_, zero, 0, 2 * sizeof(cl_int));
+}
+
+void SphSolver::add(HostParticles particles) {
+  if (particles.size() == 0) return;
+  store_.append(std::move(particles));
+  rates_ready_ = false;
+}
+
+void SphSolver::prepare() {
+  build_hash();
+  compute_rates();
+  choose_next_dt();
+  rates_ready_ = true;
+}
+
+// One kick-drift-kick step; reads like the algorithm.
+void SphSolver::step() {
+  if (!rates_ready_) prepare();
+  kick_drift();      // v, ρ += rates·dt/2; x += v·dt; terrain and wall contact
+  build_hash();      // sort by cell, reorder, drop dead particles, cell tables
+  compute_rates();   // dρ/dt and dv/dt at the new positions
+  kick();            // v, ρ += rates·dt/2
+  time_ += dt_;
+  ++steps_;
+  choose_next_dt();  // CFL and acceleration limits; stops on NaN or a collapsing step
+}
+
+void SphSolver::kick_drift() {
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  auto& k = kick_drift_;
+  const ParticleField fields[] = {kX, kY, kZ, kVx, kVy, kVz, kRho, kAge, kId, kAx, kAy, kAz, kDrho};
+  cl_uint a = 0;
+  for (ParticleField f : fields) k.setArg(a++, store_.buffer(f));
+  k.setArg(a++, n);
+  k.setArg(a++, static_cast<float>(dt_));
+  terrain_.set_args(k, a);
+  a += 5;
+  k.setArg(a++, static_cast<float>(terrain_.extent_x()));
+  k.setArg(a++, static_cast<float>(terrain_.extent_z()));
+  k.setArg(a++, counters_buffer_);
+  compute_.profiler().launch(k, round_up_work(n), "kick_drift");
+}
+
+void SphSolver::build_hash() { hash_.build(store_); }
+
+void SphSolver::compute_rates() {
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  auto& k = forces_;
+  cl_uint a = 0;
+  for (ParticleField f : {kX, kY, kZ, kVx, kVy, kVz, kRho}) k.setArg(a++, store_.buffer(f));
+  k.setArg(a++, n);
+  hash_.set_grid_args(k, a);
+  a += 7;
+  k.setArg(a++, hash_.cell_start());
+  k.setArg(a++, hash_.cell_end());
+  terrain_.set_args(k, a);
+  a += 5;
+  k.setArg(a++, static_cast<float>(terrain_.extent_x()));
+  k.setArg(a++, static_cast<float>(terrain_.extent_z()));
+  for (ParticleField f : {kAx, kAy, kAz, kDrho}) k.setArg(a++, store_.buffer(f));
+  compute_.profiler().launch(k, round_up_work(n), "sph_forces");
+}
+
+void SphSolver::kick() {
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  set_args(kick_, store_.buffer(kVx), store_.buffer(kVy), store_.buffer(kVz), store_.buffer(kRho),
+           store_.buffer(kAx), store_.buffer(kAy), store_.buffer(kAz), store_.buffer(kDrho), n,
+           static_cast<float>(dt_));
+  compute_.profiler().launch(kick_, round_up_work(n), "kick");
+}
+
+void SphSolver::choose_next_dt() {
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  health_ = SphHealth{};
+  const auto& s = settings_;
+  if (n == 0) {
+    dt_ = s.dt_max;
+    return;
+  }
+  const cl_uint chunk = (n + kStatBlocks - 1) / kStatBlocks;
+  set_args(stats_, store_.buffer(kVx), store_.buffer(kVy), store_.buffer(kVz), store_.buffer(kAx),
+           store_.buffer(kAy), store_.buffer(kAz), store_.buffer(kRho), store_.buffer(kDrho), n, chunk,
+           stats_buffer_);
+  compute_.profiler().launch(stats_, kStatBlocks, "step_stats");
+  float rows[kStatBlocks * kStatColumns];
+  compute_.queue().enqueueReadBuffer(stats_buffer_, CL_TRUE, 0, sizeof(rows), rows);
+  double v2 = 0, a2 = 0, rmin = INFINITY, rmax = -INFINITY, drmax = 0;
+  long long bad = 0;
+  for (cl_uint b = 0; b < kStatBlocks; ++b) {
+    const float* r = rows + kStatColumns * b;
+    if (b * chunk >= n) break;
+    v2 = std::max(v2, double(r[0]));
+    a2 = std::max(a2, double(r[1]));
+    rmin = std::min(rmin, double(r[2]));
+    rmax = std::max(rmax, double(r[3]));
+    bad += static_cast<long long>(r[4]);
+    drmax = std::max(drmax, double(r[5]));
+  }
+  health_ = {std::sqrt(v2), std::sqrt(a2), rmin, rmax, drmax, bad};
+  const std::string where = "SPH step " + std::to_string(steps_) + " (t = " + std::to_string(time_) + " s): ";
+  if (bad > 0) throw runtime_error(where + std::to_string(bad) + " particles have NaN or infinite values");
+  if (rmin < s.density_min * s.rho0 || rmax > s.density_max * s.rho0) {
+    std::ostringstream msg;
+    msg << where << "density " << (rmin < s.density_min * s.rho0 ? rmin : rmax) << " kg/m^3 is outside the sane range ["
+        << s.density_min * s.rho0 << ", " << s.density_max * s.rho0 << "] (sph.density_min/max): the run is unstable";
+    throw runtime_error(msg.str());
+  }
+  double dt = s.h / (s.c0 + health_.v_max);
+  if (health_.a_max > 0) dt = std::min(dt, std::sqrt(s.h / health_.a_max));
+  dt = std::min(s.cfl * dt, s.dt_max);
+  if (dt < s.dt_min) {
+    std::ostringstream msg;
+    msg << where << "time step " << dt << " s fell below sph.dt_min = " << s.dt_min << " s (|v|max " << health_.v_max
+        << " m/s, |a|max " << health_.a_max << " m/s^2): the run is unstable";
+    throw runtime_error(msg.str());
+  }
+  dt_ = dt;
+}
+
+void SphSolver::restore_clock(double time, double dt, std::uint64_t steps) {
+  time_ = time;
+  dt_ = dt;
+  steps_ = steps;
+}
+
+SphCounters SphSolver::counters() {
+  cl_int c[2] = {0, 0};
+  compute_.queue().enqueueReadBuffer(counters_buffer_, CL_TRUE, 0, sizeof(c), c);
+  return {c[0], c[1]};
+}
+
+}  // namespace runnel

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <memory>
+
+#include "runnel/compute/context.hpp"
+#include "runnel/core/heightmap.hpp"
+#include "runnel/sph/particle_store.hpp"
+#include "runnel/sph/sph_settings.hpp"
+#include "runnel/sph/spatial_hash.hpp"
+#include "runnel/terrain/device_terrain.hpp"
+
+namespace runnel {
+
+// Health of the particle state after a step, from the step_stats kernel.
+struct SphHealth {
+  double v_max = 0, a_max = 0;      // m/s, m/s²
+  double rho_min = 0, rho_max = 0;  // kg/m³
+  double drho_max = 0;              // kg/m³/s
+  long long nonfinite = 0;          // particles with NaN or inf
+};
+
+// Events counted on the device (integer atomics: the counts do not depend on order).
+struct SphCounters {
+  long long surface_projections = 0;  // particles put back above the terrain
+  long long outflow_particles = 0;    // particles that left an open domain edge
+};
+
+// The weakly compressible SPH solver (physics.md §2) on a terrain floor, with kick-drift-kick
+// leapfrog and an adaptive time step. Host code of cl/sph_forces.cl and cl/integrate.cl.
+class SphSolver {
+ public:
+  // `top` is the highest y the fluid is expected to reach (m): the hash grid spans the terrain's
+  // footprint from below its lowest point to `top`; particles above are clamped into the top cells.
+  SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor, double top);
+
+  ParticleStore& particles() { return store_; }
+  DeviceTerrain& terrain() { return terrain_; }
+  SpatialHash& hash() { return hash_; }
+  const SphSettings& settings() const { return settings_; }
+
+  // Appends particles (ids assigned); their rates are computed at the next step.
+  void add(HostParticles particles);
+
+  // One adaptive time step. Throws runnel::Error naming the step and the cause on NaN/inf,
+  // a density outside the sane range, or a time step below dt_min.
+  void step();
+  // Computes the rates and the next time step for the current state without advancing.
+  void prepare();
+
+  double time() const { return time_; }
+  double dt() const { return dt_; }
+  std::uint64_t steps() const { return steps_; }
+  void restore_clock(double time, double dt, std::uint64_t steps);
+  const SphHealth& health() const { return health_; }
+  SphCounters counters();
+
+ private:
+  void kick_drift();
+  void build_hash();
+  void compute_rates();
+  void kick();
+  void choose_next_dt();
+
+  ComputeContext& compute_;
+  SphSettings settings_;
+  DeviceTerrain terrain_;
+  ParticleStore store_;
+  SpatialHash hash_;
+  cl::Kernel forces_, kick_drift_, kick_, stats_;
+  cl::Buffer stats_buffer_, counters_buffer_;
+  bool rates_ready_ = false;
+  double time_ = 0.0;
+  double dt_ = 0.0;
+  std::uint64_t steps_ = 0;
+  SphHealth health_;
+};
+
+}  // namespace runnel
