@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // runnel validate: the SPH reference cases, a JSON summary on stdout and CSVs in --out.
+#include <unistd.h>
 #include <filesystem>
 #include <iostream>
-#include <unistd.h>
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
@@ -18,29 +18,36 @@ void add_validate_command(CLI::App& app) {
     std::vector<std::string> sets;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("validate", "Run an SPH reference case and compare it with its reference: "
-                                             "hydrostatic (pressure = rho0 g d) or dambreak (Koshizuka & Oka 1996)");
-  cmd->add_option("case", opt->which, "hydrostatic or dambreak")->required()->check(CLI::IsMember({"hydrostatic", "dambreak"}));
-  cmd->add_option("--resolution", opt->resolution, "particles across the length scale (hydrostatic: layers in the "
-                                                   "column, default 16; dambreak: across L, default 20)");
+  auto* cmd =
+      app.add_subcommand("validate",
+                         "Run an SPH reference case and compare it with its reference: "
+                         "hydrostatic (pressure = rho0 g d) or dambreak (Koshizuka & Oka 1996)");
+  cmd->add_option("case", opt->which, "hydrostatic or dambreak")
+      ->required()
+      ->check(CLI::IsMember({"hydrostatic", "dambreak"}));
+  cmd->add_option("--resolution", opt->resolution,
+                  "particles across the length scale (hydrostatic: layers in the "
+                  "column, default 16; dambreak: across L, default 20)");
   cmd->add_option("--out", opt->out, "folder for pressure.csv / front.csv (created)");
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->callback([opt] {
     ValidationOptions v;
     v.resolution = opt->resolution;
-    if (opt->resolution < 0 || opt->resolution > 2000) throw input_error("--resolution: must be in 1..2000");
+    if (opt->resolution < 0 || opt->resolution > 2000)
+      throw input_error("--resolution: must be in 1..2000");
     apply_overrides(v.params, opt->sets);
     if (!opt->out.empty()) {
       std::error_code ec;
       std::filesystem::create_directories(opt->out, ec);
-      if (ec) throw input_error("--out " + opt->out + ": cannot create the folder: " + ec.message());
+      if (ec)
+        throw input_error("--out " + opt->out + ": cannot create the folder: " + ec.message());
       v.out_dir = opt->out;
     }
     v.progress = isatty(STDERR_FILENO);
     ComputeContext compute(opt->device);
-    const ValidationResult r =
-        opt->which == "hydrostatic" ? validate_hydrostatic(compute, v) : validate_dambreak(compute, v);
+    const ValidationResult r = opt->which == "hydrostatic" ? validate_hydrostatic(compute, v)
+                                                           : validate_dambreak(compute, v);
     std::cout << r.summary_json() << "\n";
   });
 }

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   runnel::cli::add_info_command(app);
   runnel::cli::add_params_command(app);
   runnel::cli::add_validate_command(app);
+  runnel::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -10,7 +10,8 @@ void KernelProfiler::launch(cl::Kernel& kernel, std::size_t global, const char* 
     return;
   }
   cl::Event event;
-  queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NullRange, nullptr, &event);
+  queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NullRange, nullptr,
+                              &event);
   pending_.emplace_back(name, event);
   // Bound the list: events of a long run are folded in as they complete.
   if (pending_.size() > 4096) collect();

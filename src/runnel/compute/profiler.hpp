@@ -22,7 +22,10 @@ class KernelProfiler {
 
   // Waits for the queue and adds the finished launches' times. Seconds per kernel name.
   const std::map<std::string, double>& collect();
-  void reset() { seconds_.clear(); calls_.clear(); }
+  void reset() {
+    seconds_.clear();
+    calls_.clear();
+  }
   const std::map<std::string, long long>& calls() const { return calls_; }
 
  private:

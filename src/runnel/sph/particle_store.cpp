@@ -11,16 +11,18 @@ namespace {
 constexpr double kGrowthFactor = 1.5;  // amortised growth; keeps spare capacity below 50 %
 
 const ParticleFieldInfo kFieldInfo[kFieldCount] = {
-    {"x", "m", false},        {"y", "m", false},          {"z", "m", false},   {"vx", "m/s", false},
-    {"vy", "m/s", false},     {"vz", "m/s", false},       {"rho", "kg/m^3", false},
-    {"sediment", "m^3", false}, {"age", "s", false},      {"lifespan", "s", false},
-    {"id", "1", true},        {"ax", "m/s^2", false},     {"ay", "m/s^2", false},
-    {"az", "m/s^2", false},   {"drho", "kg/m^3/s", false},
+    {"x", "m", false},        {"y", "m", false},          {"z", "m", false},
+    {"vx", "m/s", false},     {"vy", "m/s", false},       {"vz", "m/s", false},
+    {"rho", "kg/m^3", false}, {"sediment", "m^3", false}, {"age", "s", false},
+    {"lifespan", "s", false}, {"id", "1", true},          {"ax", "m/s^2", false},
+    {"ay", "m/s^2", false},   {"az", "m/s^2", false},     {"drho", "kg/m^3/s", false},
 };
 
 }  // namespace
 
-const ParticleFieldInfo& particle_field_info(ParticleField f) { return kFieldInfo[f]; }
+const ParticleFieldInfo& particle_field_info(ParticleField f) {
+  return kFieldInfo[f];
+}
 
 void HostParticles::resize(std::size_t n) {
   for (int k = 0; k < kPersistentFieldCount; ++k) {
@@ -29,15 +31,18 @@ void HostParticles::resize(std::size_t n) {
   id.resize(n, 0);
 }
 
-void HostParticles::push(float x, float y, float z, float vx, float vy, float vz, float rho, float lifespan) {
-  const float values[kPersistentFieldCount] = {x, y, z, vx, vy, vz, rho, 0.0f, 0.0f, lifespan, 0.0f};
+void HostParticles::push(float x, float y, float z, float vx, float vy, float vz, float rho,
+                         float lifespan) {
+  const float values[kPersistentFieldCount] = {x,   y,    z,    vx,       vy,  vz,
+                                               rho, 0.0f, 0.0f, lifespan, 0.0f};
   for (int k = 0; k < kPersistentFieldCount; ++k) {
     if (k != kId) f[k].push_back(values[k]);
   }
   id.push_back(0);
 }
 
-ParticleStore::ParticleStore(ComputeContext& compute, std::size_t initial_capacity) : compute_(compute) {
+ParticleStore::ParticleStore(ComputeContext& compute, std::size_t initial_capacity)
+    : compute_(compute) {
   grow_to(std::max<std::size_t>(initial_capacity, 64));
 }
 
@@ -57,7 +62,8 @@ void ParticleStore::grow_to(std::size_t needed) {
     if (size_ > 0) compute_.queue().enqueueCopyBuffer(current_[k], grown, 0, 0, size_ * 4);
     current_[k] = grown;
   }
-  for (int k = 0; k < kPersistentFieldCount; ++k) scratch_[k] = cl::Buffer(ctx, CL_MEM_READ_WRITE, new_capacity * 4);
+  for (int k = 0; k < kPersistentFieldCount; ++k)
+    scratch_[k] = cl::Buffer(ctx, CL_MEM_READ_WRITE, new_capacity * 4);
   capacity_ = new_capacity;
 }
 
@@ -65,24 +71,29 @@ void ParticleStore::swap_scratch() {
   for (int k = 0; k < kPersistentFieldCount; ++k) std::swap(current_[k], scratch_[k]);
 }
 
-void ParticleStore::truncate(std::size_t n) { size_ = std::min(size_, n); }
+void ParticleStore::truncate(std::size_t n) {
+  size_ = std::min(size_, n);
+}
 
 std::uint32_t ParticleStore::append(HostParticles p) {
   const std::size_t k = p.size();
   const std::uint32_t first = next_id_;
   if (k == 0) return first;
-  if (static_cast<std::uint64_t>(next_id_) + k >= kDeadFlag) throw runtime_error("particle ids exhausted (2^31)");
+  if (static_cast<std::uint64_t>(next_id_) + k >= kDeadFlag)
+    throw runtime_error("particle ids exhausted (2^31)");
   for (std::size_t i = 0; i < k; ++i) p.id[i] = next_id_ + static_cast<std::uint32_t>(i);
   next_id_ += static_cast<std::uint32_t>(k);
   grow_to(size_ + k);
   auto& q = compute_.queue();
   for (int f = 0; f < kPersistentFieldCount; ++f) {
-    const void* src = f == kId ? static_cast<const void*>(p.id.data()) : static_cast<const void*>(p.f[f].data());
+    const void* src =
+        f == kId ? static_cast<const void*>(p.id.data()) : static_cast<const void*>(p.f[f].data());
     q.enqueueWriteBuffer(current_[f], CL_TRUE, size_ * 4, k * 4, src);
   }
   // Rates start at zero until the first force evaluation.
   const float zero = 0.0f;
-  for (int f = kPersistentFieldCount; f < kFieldCount; ++f) q.enqueueFillBuffer(current_[f], zero, size_ * 4, k * 4);
+  for (int f = kPersistentFieldCount; f < kFieldCount; ++f)
+    q.enqueueFillBuffer(current_[f], zero, size_ * 4, k * 4);
   size_ += k;
   return first;
 }
@@ -99,12 +110,19 @@ HostParticles ParticleStore::download() {
   return p;
 }
 
+std::vector<float> ParticleStore::read_field(ParticleField f) {
+  std::vector<float> out(size_);
+  if (size_ > 0) compute_.queue().enqueueReadBuffer(current_[f], CL_TRUE, 0, size_ * 4, out.data());
+  return out;
+}
+
 void ParticleStore::upload(const HostParticles& p) {
   size_ = 0;
   grow_to(p.size());
   auto& q = compute_.queue();
   for (int f = 0; f < kPersistentFieldCount && p.size() > 0; ++f) {
-    const void* src = f == kId ? static_cast<const void*>(p.id.data()) : static_cast<const void*>(p.f[f].data());
+    const void* src =
+        f == kId ? static_cast<const void*>(p.id.data()) : static_cast<const void*>(p.f[f].data());
     q.enqueueWriteBuffer(current_[f], CL_TRUE, 0, p.size() * 4, src);
   }
   size_ = p.size();

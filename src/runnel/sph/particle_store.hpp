@@ -11,16 +11,22 @@ namespace runnel {
 // The particle fields, declared once. Persistent fields travel with the particle when the spatial
 // hash reorders the arrays; rate fields are recomputed every step and are never reordered.
 enum ParticleField : int {
-  kX, kY, kZ,        // position, m
-  kVx, kVy, kVz,     // velocity, m/s
-  kRho,              // density, kg/m³
-  kSediment,         // carried sediment volume, m³
-  kAge,              // s
-  kLifespan,         // s; the particle evaporates when age exceeds it
-  kId,               // stable id (uint32; the top bit marks a dead particle)
+  kX,
+  kY,
+  kZ,  // position, m
+  kVx,
+  kVy,
+  kVz,        // velocity, m/s
+  kRho,       // density, kg/m³
+  kSediment,  // carried sediment volume, m³
+  kAge,       // s
+  kLifespan,  // s; the particle evaporates when age exceeds it
+  kId,        // stable id (uint32; the top bit marks a dead particle)
   kPersistentFieldCount,
-  kAx = kPersistentFieldCount, kAy, kAz,  // acceleration, m/s²
-  kDrho,                                  // dρ/dt, kg/m³/s
+  kAx = kPersistentFieldCount,
+  kAy,
+  kAz,    // acceleration, m/s²
+  kDrho,  // dρ/dt, kg/m³/s
   kFieldCount
 };
 
@@ -59,13 +65,17 @@ class ParticleStore {
   // Drops the particles past n (dead ones, sorted to the end).
   void truncate(std::size_t n);
 
-  // Appends particles; ids are assigned here, consecutively from the next free id. Returns the first id.
+  // Appends particles; ids are assigned here, consecutively from the next free id. Returns the
+  // first id.
   std::uint32_t append(HostParticles particles);
   std::uint32_t next_id() const { return next_id_; }
   void set_next_id(std::uint32_t id) { next_id_ = id; }
 
   // Downloads every persistent field (blocking).
   HostParticles download();
+  // Downloads one field of the live particles as floats (ids as their float value is not useful:
+  // use download()).
+  std::vector<float> read_field(ParticleField f);
   // Replaces the whole state (checkpoint restore); ids are kept as given.
   void upload(const HostParticles& particles);
 

@@ -37,7 +37,8 @@ int GridSpec::key_bits() const {
   return 3 * bits + 1;
 }
 
-SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid) : compute_(compute), grid_(grid) {
+SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid)
+    : compute_(compute), grid_(grid) {
   const int bits = grid.key_bits();
   dead_key_ = 1u << (bits - 1);  // one past every Morton code of the grid
   passes_ = (bits + 7) / 8;
@@ -106,7 +107,8 @@ void SpatialHash::build(ParticleStore& store) {
     prof.launch(histogram_, kRadixBlocks, "radix_histogram");
     set_args(scan_, hist_, static_cast<cl_uint>(256 * kRadixBlocks));
     prof.launch(scan_, 1, "radix_scan");
-    set_args(scatter_, keys_[in], values_[in], keys_[1 - in], values_[1 - in], hist_, n, shift, chunk);
+    set_args(scatter_, keys_[in], values_[in], keys_[1 - in], values_[1 - in], hist_, n, shift,
+             chunk);
     prof.launch(scatter_, kRadixBlocks, "radix_scatter");
     in = 1 - in;
   }
@@ -114,8 +116,8 @@ void SpatialHash::build(ParticleStore& store) {
   // 3. Gather every persistent field into the sorted order.
   for (int f = 0; f < kPersistentFieldCount; ++f) {
     cl::Kernel& k = f == kId ? reorder_uint_ : reorder_float_;
-    set_args(k, values_[in], store.buffer(static_cast<ParticleField>(f)), store.scratch(static_cast<ParticleField>(f)),
-             n);
+    set_args(k, values_[in], store.buffer(static_cast<ParticleField>(f)),
+             store.scratch(static_cast<ParticleField>(f)), n);
     prof.launch(k, round_up_work(n), "reorder");
   }
   store.swap_scratch();
@@ -137,13 +139,15 @@ void SpatialHash::build(ParticleStore& store) {
   store.truncate(alive);
 }
 
-std::vector<std::vector<std::uint32_t>> SpatialHash::neighbour_lists(ParticleStore& store, float radius) {
+std::vector<std::vector<std::uint32_t>> SpatialHash::neighbour_lists(ParticleStore& store,
+                                                                     float radius) {
   const cl_uint n = static_cast<cl_uint>(store.size());
   const cl_uint max_neighbours = 512;
   std::vector<std::vector<std::uint32_t>> lists(n);
   if (n == 0) return lists;
   cl::Buffer count(compute_.context(), CL_MEM_READ_WRITE, n * sizeof(cl_uint));
-  cl::Buffer ids(compute_.context(), CL_MEM_READ_WRITE, static_cast<std::size_t>(n) * max_neighbours * sizeof(cl_uint));
+  cl::Buffer ids(compute_.context(), CL_MEM_READ_WRITE,
+                 static_cast<std::size_t>(n) * max_neighbours * sizeof(cl_uint));
   auto& k = neighbour_list_;
   k.setArg(0, store.buffer(kX));
   k.setArg(1, store.buffer(kY));

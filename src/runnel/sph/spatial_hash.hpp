@@ -20,10 +20,10 @@ struct GridSpec {
   int key_bits() const;  // Morton bits of a live key, plus one for the dead key
 };
 
-// Host side of cl/spatial_hash.cl: sorts particles by the Morton key of their cell with a deterministic
-// stable radix sort, gathers every persistent field into that order, drops dead particles, and
-// builds the cell start/end tables that the neighbour loops read. Owns no particle data
-// (CompactNSearch's lesson): it only computes an order and cell ranges for the store.
+// Host side of cl/spatial_hash.cl: sorts particles by the Morton key of their cell with a
+// deterministic stable radix sort, gathers every persistent field into that order, drops dead
+// particles, and builds the cell start/end tables that the neighbour loops read. Owns no particle
+// data (CompactNSearch's lesson): it only computes an order and cell ranges for the store.
 class SpatialHash {
  public:
   SpatialHash(ComputeContext& compute, const GridSpec& grid);
@@ -50,7 +50,8 @@ class SpatialHash {
   int passes_;
   std::size_t capacity_ = 0;
   cl::Buffer keys_[2], values_[2], hist_, alive_, cell_start_, cell_end_;
-  cl::Kernel hash_keys_, histogram_, scan_, scatter_, reorder_float_, reorder_uint_, cell_bounds_, neighbour_list_;
+  cl::Kernel hash_keys_, histogram_, scan_, scatter_, reorder_float_, reorder_uint_, cell_bounds_,
+      neighbour_list_;
 };
 
 }  // namespace runnel

@@ -24,7 +24,8 @@ SphSettings SphSettings::from(const Parameters& p, double default_spacing, doubl
   s.h = p.real("sph.h_factor") * s.spacing;
   s.rho0 = p.real("sph.rho0");
   s.c0 = p.real("sph.c0") > 0 ? p.real("sph.c0") : 10.0 * reference_speed;
-  if (!(s.c0 > 0)) throw input_error("sph.c0: must be positive (no reference speed to derive it from)");
+  if (!(s.c0 > 0))
+    throw input_error("sph.c0: must be positive (no reference speed to derive it from)");
   s.alpha_visc = p.real("sph.alpha_visc");
   s.delta = p.real("sph.delta");
   s.cfl = p.real("sph.cfl");

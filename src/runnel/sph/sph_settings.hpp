@@ -8,21 +8,21 @@ namespace runnel {
 
 // The SPH parameters of one run, resolved: no "auto" values left. Built from the parameter table.
 struct SphSettings {
-  double spacing = 0.1;       // dx, m
-  double h = 0.12;            // smoothing length, m
-  double rho0 = 1000.0;       // kg/m³
-  double c0 = 20.0;           // m/s
+  double spacing = 0.1;  // dx, m
+  double h = 0.12;       // smoothing length, m
+  double rho0 = 1000.0;  // kg/m³
+  double c0 = 20.0;      // m/s
   double alpha_visc = 0.02;
   double delta = 0.1;
   double cfl = 0.25;
-  double dt_min = 1e-7;       // s
-  double dt_max = 1e-2;       // s
-  double gravity = 9.81;      // m/s²
+  double dt_min = 1e-7;   // s
+  double dt_max = 1e-2;   // s
+  double gravity = 9.81;  // m/s²
   double restitution = 0.0;
   double friction = 0.0;
   double surface_eps = 0.001;  // m
-  double density_min = 0.5;   // × ρ0
-  double density_max = 1.5;   // × ρ0
+  double density_min = 0.5;    // × ρ0
+  double density_max = 1.5;    // × ρ0
   bool clamp_negative_pressure = true;
   bool walls = false;
 

@@ -11,22 +11,25 @@
 namespace runnel {
 namespace {
 
-const std::vector<std::string> kSphSources = {"cl/common.cl",        "cl/grid.cl",       "cl/sph_kernel.cl",
-                                              "cl/terrain_sample.cl", "cl/sph_forces.cl", "cl/integrate.cl"};
+const std::vector<std::string> kSphSources = {"cl/common.cl",     "cl/grid.cl",
+                                              "cl/sph_kernel.cl", "cl/terrain_sample.cl",
+                                              "cl/sph_forces.cl", "cl/integrate.cl"};
 constexpr cl_uint kStatBlocks = 256;
 constexpr int kStatColumns = 6;
 
 GridSpec fluid_grid(const SphSettings& s, const Heightmap& floor, double top) {
   const double margin = 2.0 * s.h;
   const double lo[3] = {-margin, floor.min_height() - margin, -margin};
-  const double hi[3] = {(floor.nx - 1) * floor.cell + margin, std::max(top, floor.max_height() + margin),
+  const double hi[3] = {(floor.nx - 1) * floor.cell + margin,
+                        std::max(top, floor.max_height() + margin),
                         (floor.ny - 1) * floor.cell + margin};
   return GridSpec::covering(lo, hi, 2.0 * s.h);
 }
 
 }  // namespace
 
-SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor, double top)
+SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor,
+                     double top)
     : compute_(compute),
       settings_(settings),
       terrain_(compute, floor),
@@ -37,7 +40,8 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   kick_drift_ = cl::Kernel(program, "kick_drift");
   kick_ = cl::Kernel(program, "kick");
   stats_ = cl::Kernel(program, "step_stats");
-  stats_buffer_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
+  stats_buffer_ =
+      cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
   counters_buffer_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_int));
   const cl_int zero = 0;
   compute.queue().enqueueFillBuffer(counters_buffer_, zero, 0, 2 * sizeof(cl_int));
@@ -59,10 +63,10 @@ void SphSolver::prepare() {
 // One kick-drift-kick step; reads like the algorithm.
 void SphSolver::step() {
   if (!rates_ready_) prepare();
-  kick_drift();      // v, ρ += rates·dt/2; x += v·dt; terrain and wall contact
-  build_hash();      // sort by cell, reorder, drop dead particles, cell tables
-  compute_rates();   // dρ/dt and dv/dt at the new positions
-  kick();            // v, ρ += rates·dt/2
+  kick_drift();     // v, ρ += rates·dt/2; x += v·dt; terrain and wall contact
+  build_hash();     // sort by cell, reorder, drop dead particles, cell tables
+  compute_rates();  // dρ/dt and dv/dt at the new positions
+  kick();           // v, ρ += rates·dt/2
   time_ += dt_;
   ++steps_;
   choose_next_dt();  // CFL and acceleration limits; stops on NaN or a collapsing step
@@ -84,7 +88,9 @@ void SphSolver::kick_drift() {
   compute_.profiler().launch(k, round_up_work(n), "kick_drift");
 }
 
-void SphSolver::build_hash() { hash_.build(store_); }
+void SphSolver::build_hash() {
+  hash_.build(store_);
+}
 
 void SphSolver::compute_rates() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
@@ -122,8 +128,8 @@ void SphSolver::choose_next_dt() {
   }
   const cl_uint chunk = (n + kStatBlocks - 1) / kStatBlocks;
   set_args(stats_, store_.buffer(kVx), store_.buffer(kVy), store_.buffer(kVz), store_.buffer(kAx),
-           store_.buffer(kAy), store_.buffer(kAz), store_.buffer(kRho), store_.buffer(kDrho), n, chunk,
-           stats_buffer_);
+           store_.buffer(kAy), store_.buffer(kAz), store_.buffer(kRho), store_.buffer(kDrho), n,
+           chunk, stats_buffer_);
   compute_.profiler().launch(stats_, kStatBlocks, "step_stats");
   float rows[kStatBlocks * kStatColumns];
   compute_.queue().enqueueReadBuffer(stats_buffer_, CL_TRUE, 0, sizeof(rows), rows);
@@ -140,12 +146,15 @@ void SphSolver::choose_next_dt() {
     drmax = std::max(drmax, double(r[5]));
   }
   health_ = {std::sqrt(v2), std::sqrt(a2), rmin, rmax, drmax, bad};
-  const std::string where = "SPH step " + std::to_string(steps_) + " (t = " + std::to_string(time_) + " s): ";
-  if (bad > 0) throw runtime_error(where + std::to_string(bad) + " particles have NaN or infinite values");
+  const std::string where =
+      "SPH step " + std::to_string(steps_) + " (t = " + std::to_string(time_) + " s): ";
+  if (bad > 0)
+    throw runtime_error(where + std::to_string(bad) + " particles have NaN or infinite values");
   if (rmin < s.density_min * s.rho0 || rmax > s.density_max * s.rho0) {
     std::ostringstream msg;
-    msg << where << "density " << (rmin < s.density_min * s.rho0 ? rmin : rmax) << " kg/m^3 is outside the sane range ["
-        << s.density_min * s.rho0 << ", " << s.density_max * s.rho0 << "] (sph.density_min/max): the run is unstable";
+    msg << where << "density " << (rmin < s.density_min * s.rho0 ? rmin : rmax)
+        << " kg/m^3 is outside the sane range [" << s.density_min * s.rho0 << ", "
+        << s.density_max * s.rho0 << "] (sph.density_min/max): the run is unstable";
     throw runtime_error(msg.str());
   }
   double dt = s.h / (s.c0 + health_.v_max);
@@ -153,8 +162,8 @@ void SphSolver::choose_next_dt() {
   dt = std::min(s.cfl * dt, s.dt_max);
   if (dt < s.dt_min) {
     std::ostringstream msg;
-    msg << where << "time step " << dt << " s fell below sph.dt_min = " << s.dt_min << " s (|v|max " << health_.v_max
-        << " m/s, |a|max " << health_.a_max << " m/s^2): the run is unstable";
+    msg << where << "time step " << dt << " s fell below sph.dt_min = " << s.dt_min << " s (|v|max "
+        << health_.v_max << " m/s, |a|max " << health_.a_max << " m/s^2): the run is unstable";
     throw runtime_error(msg.str());
   }
   dt_ = dt;

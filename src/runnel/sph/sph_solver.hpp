@@ -6,8 +6,8 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
 #include "runnel/sph/particle_store.hpp"
-#include "runnel/sph/sph_settings.hpp"
 #include "runnel/sph/spatial_hash.hpp"
+#include "runnel/sph/sph_settings.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
 namespace runnel {
@@ -32,7 +32,8 @@ class SphSolver {
  public:
   // `top` is the highest y the fluid is expected to reach (m): the hash grid spans the terrain's
   // footprint from below its lowest point to `top`; particles above are clamped into the top cells.
-  SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor, double top);
+  SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor,
+            double top);
 
   ParticleStore& particles() { return store_; }
   DeviceTerrain& terrain() { return terrain_; }

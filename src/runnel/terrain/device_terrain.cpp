@@ -15,11 +15,14 @@ DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain)
 }
 
 void DeviceTerrain::upload(const Heightmap& terrain) {
-  compute_.queue().enqueueWriteBuffer(height_, CL_TRUE, 0, terrain.size() * sizeof(float), terrain.h.data());
+  compute_.queue().enqueueWriteBuffer(height_, CL_TRUE, 0, terrain.size() * sizeof(float),
+                                      terrain.h.data());
   refresh_normals();
 }
 
-void DeviceTerrain::refresh_normals() { normals_.enqueue(height_, normal_, nx_, ny_, cell_); }
+void DeviceTerrain::refresh_normals() {
+  normals_.enqueue(height_, normal_, nx_, ny_, cell_);
+}
 
 void DeviceTerrain::set_args(cl::Kernel& k, cl_uint i) const {
   k.setArg(i + 0, height_);

@@ -20,7 +20,7 @@ namespace runnel {
 ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const int resolution = options.resolution > 0 ? options.resolution : 20;  // particles across L
-  const double L = 1.0;                                                      // m
+  const double L = 1.0;                                                     // m
   const double dx = L / resolution;
   const int slab = 4;  // particles through the slab
   Parameters params = options.params;
@@ -48,7 +48,8 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
   while (next_sample * sample_every <= t_star_end + 1e-9) {
     solver.step();
     const double t = solver.time() / time_unit, x = front_now();
-    while (next_sample * sample_every <= t + 1e-12 && next_sample * sample_every <= t_star_end + 1e-9) {
+    while (next_sample * sample_every <= t + 1e-12 &&
+           next_sample * sample_every <= t_star_end + 1e-9) {
       const double ts = next_sample * sample_every;
       front.emplace_back(ts, prev_x + (x - prev_x) * (ts - prev_t) / (t - prev_t));
       ++next_sample;
@@ -70,13 +71,15 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
     return front.back().second;
   };
   double error_sum = 0;
-  for (const auto& m : koshizuka_oka_1996()) error_sum += std::fabs(interpolate(m.t_star) - m.x_over_l) / m.x_over_l;
+  for (const auto& m : koshizuka_oka_1996())
+    error_sum += std::fabs(interpolate(m.t_star) - m.x_over_l) / m.x_over_l;
 
   if (!options.out_dir.empty()) {
-    write_file_atomically((std::filesystem::path(options.out_dir) / "front.csv").string(), [&](std::FILE* f) {
-      std::fprintf(f, "t_star,x_over_L\n");
-      for (auto& [ts, x] : front) std::fprintf(f, "%.2f,%.6f\n", ts, x);
-    });
+    write_file_atomically((std::filesystem::path(options.out_dir) / "front.csv").string(),
+                          [&](std::FILE* f) {
+                            std::fprintf(f, "t_star,x_over_L\n");
+                            for (auto& [ts, x] : front) std::fprintf(f, "%.2f,%.6f\n", ts, x);
+                          });
   }
   ValidationResult r;
   r.name = "dambreak";

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Hydrostatic tank (Adami, Hu & Adams 2012): a water column of height H at rest in a closed box.
 // After settling, the pressure at depth d must be ρ0·g·d. Only the core of the column is measured
-// (particles farther than 2h from the side walls, whose mirror model carries part of the weight). The column starts with the hydrostatic
-// density, runs for `settle` seconds, and the pressure is averaged over the last quarter.
-// relative_error = Σ|p̄_i − ρ0 g d̄_i| / Σ ρ0 g d̄_i over the particles below the top three layers,
-// p̄_i and d̄_i each particle's pressure and depth averaged over the last quarter (by particle id).
+// (particles farther than 2h from the side walls, whose mirror model carries part of the weight).
+// The column starts with the hydrostatic density, runs for `settle` seconds, and the pressure is
+// averaged over the last quarter. relative_error = Σ|p̄_i − ρ0 g d̄_i| / Σ ρ0 g d̄_i over the
+// particles below the top three layers, p̄_i and d̄_i each particle's pressure and depth averaged
+// over the last quarter (by particle id).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,7 +24,7 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
   const auto start = std::chrono::steady_clock::now();
   const int layers = options.resolution > 0 ? options.resolution : 16;
   const int width_cells = 10;  // particles across the box (each way)
-  const double height = 0.4;  // m
+  const double height = 0.4;   // m
   const double dx = height / layers;
   Parameters params = options.params;
   params.set("sph.walls", true, "validate");
@@ -68,7 +69,8 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
       sum[1] += s.tait_b() * (std::pow(r, 7.0) - 1.0);
     }
     ++samples;
-    if (options.progress) std::fprintf(stderr, "hydrostatic: t = %.3f / %.3f s\r", solver.time(), settle);
+    if (options.progress)
+      std::fprintf(stderr, "hydrostatic: t = %.3f / %.3f s\r", solver.time(), settle);
   }
   if (options.progress) std::fprintf(stderr, "\n");
 
@@ -88,14 +90,16 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
     row[3] += 1;
   }
   double worst_layer = 0;
-  for (auto& [layer, row] : profile) worst_layer = std::max(worst_layer, std::fabs(row[1] - row[2]) / row[2]);
+  for (auto& [layer, row] : profile)
+    worst_layer = std::max(worst_layer, std::fabs(row[1] - row[2]) / row[2]);
   if (!options.out_dir.empty()) {
-    write_file_atomically((std::filesystem::path(options.out_dir) / "pressure.csv").string(), [&](std::FILE* f) {
-      std::fprintf(f, "depth,pressure,expected\n");
-      for (auto& [layer, row] : profile) {
-        std::fprintf(f, "%.6g,%.6g,%.6g\n", row[0] / row[3], row[1] / row[3], row[2] / row[3]);
-      }
-    });
+    write_file_atomically(
+        (std::filesystem::path(options.out_dir) / "pressure.csv").string(), [&](std::FILE* f) {
+          std::fprintf(f, "depth,pressure,expected\n");
+          for (auto& [layer, row] : profile) {
+            std::fprintf(f, "%.6g,%.6g,%.6g\n", row[0] / row[3], row[1] / row[3], row[2] / row[3]);
+          }
+        });
   }
   ValidationResult r;
   r.name = "hydrostatic";

@@ -5,7 +5,9 @@
 
 namespace runnel {
 
-Heightmap flat_floor(int x_cells, int z_cells, double cell) { return Heightmap(x_cells + 1, z_cells + 1, cell, 0.0f); }
+Heightmap flat_floor(int x_cells, int z_cells, double cell) {
+  return Heightmap(x_cells + 1, z_cells + 1, cell, 0.0f);
+}
 
 HostParticles hydrostatic_block(const SphSettings& s, double lx, double ly, double lz) {
   const double dx = s.spacing;
@@ -19,8 +21,8 @@ HostParticles hydrostatic_block(const SphSettings& s, double lx, double ly, doub
         const double y = (j + 0.5) * dx;
         const double pressure = s.rho0 * s.gravity * (ly - y);
         const double rho = s.rho0 * std::pow(1.0 + pressure / s.tait_b(), 1.0 / 7.0);
-        p.push(static_cast<float>((i + 0.5) * dx), static_cast<float>(y), static_cast<float>((k + 0.5) * dx), 0, 0, 0,
-               static_cast<float>(rho), 1e30f);
+        p.push(static_cast<float>((i + 0.5) * dx), static_cast<float>(y),
+               static_cast<float>((k + 0.5) * dx), 0, 0, 0, static_cast<float>(rho), 1e30f);
       }
     }
   }

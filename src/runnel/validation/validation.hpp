@@ -11,10 +11,10 @@ namespace runnel {
 
 // The SPH reference cases (physics.md §5): `runnel validate CASE`.
 struct ValidationOptions {
-  int resolution = 0;        // particles across the case's length scale; 0: the case's default
-  std::string out_dir;       // where CSVs go; empty: none
-  Parameters params;         // sph.* overrides (--set)
-  bool progress = false;     // progress lines on stderr
+  int resolution = 0;     // particles across the case's length scale; 0: the case's default
+  std::string out_dir;    // where CSVs go; empty: none
+  Parameters params;      // sph.* overrides (--set)
+  bool progress = false;  // progress lines on stderr
 };
 
 struct ValidationResult {
@@ -28,9 +28,11 @@ struct ValidationResult {
   std::string summary_json() const;
 };
 
-// A water column of height H settles in a closed box; pressure against ρ0·g·d below the top three layers.
+// A water column of height H settles in a closed box; pressure against ρ0·g·d below the top three
+// layers.
 ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationOptions& options);
-// A column L wide and 2L high collapses in a tank 4L long; surge front against Koshizuka & Oka 1996.
+// A column L wide and 2L high collapses in a tank 4L long; surge front against Koshizuka & Oka
+// 1996.
 ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOptions& options);
 
 // The Koshizuka & Oka (1996) surge-front measurements: t* = t·sqrt(g/L), x/L.

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+// runnel bench: throughput benchmarks that print JSON (never timed tests).
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "runnel/core/error.hpp"
+#include "runnel/sim/scenario.hpp"
+#include "runnel/validation/sph_benchmark.hpp"
+
+namespace runnel::cli {
+
+void add_bench_command(CLI::App& app) {
+  struct Options {
+    std::string which, device;
+    long long particles = 100000;
+    int steps = 20;
+    std::vector<std::string> sets;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("bench", "Measure throughput and print JSON with per-kernel times from OpenCL "
+                                          "profiling events. sph: a block of N particles settling in a tank");
+  cmd->add_option("model", opt->which, "what to measure: sph")->required()->check(CLI::IsMember({"sph"}));
+  cmd->add_option("--particles", opt->particles, "number of particles")->capture_default_str();
+  cmd->add_option("--steps", opt->steps, "timed steps (after 3 warm-up steps)")->capture_default_str();
+  cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
+  cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
+  cmd->callback([opt] {
+    if (opt->particles < 8 || opt->particles > 100000000) throw input_error("--particles: must be in 8..1e8");
+    if (opt->steps < 1 || opt->steps > 1000000) throw input_error("--steps: must be in 1..1e6");
+    Parameters params;
+    apply_overrides(params, opt->sets);
+    ComputeContext compute(opt->device);
+    std::cout << benchmark_sph(compute, opt->particles, opt->steps, params).str() << "\n";
+  });
+}
+
+}  // namespace runnel::cli

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: MIT
+// The spatial hash yields exactly the neighbour sets of a KD-tree radius search (nanoflann), on
+// random, clustered, cell-border and out-of-grid particle sets; its sort is deterministic.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nanoflann.hpp>
+#include <random>
+#include <set>
+
+#include "runnel/sph/spatial_hash.hpp"
+
+namespace runnel {
+namespace {
+
+struct Cloud {
+  std::vector<float> x, y, z;
+  std::size_t kdtree_get_point_count() const { return x.size(); }
+  float kdtree_get_pt(std::size_t i, std::size_t d) const { return d == 0 ? x[i] : d == 1 ? y[i] : z[i]; }
+  template <class B>
+  bool kdtree_get_bbox(B&) const {
+    return false;
+  }
+};
+
+HostParticles to_particles(const Cloud& c) {
+  HostParticles p;
+  for (std::size_t i = 0; i < c.x.size(); ++i) p.push(c.x[i], c.y[i], c.z[i], 0, 0, 0, 1000, 1);
+  return p;
+}
+
+// Grid over [0, 4]³ with cell 0.25 (radius = cell, as 2h).
+GridSpec test_grid() {
+  const double lo[3] = {0, 0, 0}, hi[3] = {4, 4, 4};
+  return GridSpec::covering(lo, hi, 0.25);
+}
+
+void expect_same_neighbours(const Cloud& cloud) {
+  ComputeContext compute("cpu");
+  ParticleStore store(compute, 16);  // small, so appending grows it
+  store.append(to_particles(cloud));
+  SpatialHash hash(compute, test_grid());
+  hash.build(store);
+  ASSERT_EQ(store.size(), cloud.x.size());
+  const float radius = 0.25f;
+  const auto lists = hash.neighbour_lists(store, radius);
+  const HostParticles sorted = store.download();
+
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Cloud>, Cloud, 3>;
+  Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  tree.buildIndex();
+  std::size_t compared = 0;
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const std::uint32_t id = sorted.id[i];  // ids are the original indices
+    const float q[3] = {cloud.x[id], cloud.y[id], cloud.z[id]};
+    std::vector<std::pair<std::uint32_t, float>> matches;
+    tree.radiusSearch(q, radius * radius, matches, nanoflann::SearchParams());
+    std::set<std::uint32_t> expected, ambiguous;
+    for (auto& [j, d2] : matches) {
+      if (j == id) continue;
+      // Pairs within round-off of the radius may fall either way in float arithmetic.
+      if (std::fabs(std::sqrt(d2) - radius) < 1e-5f) ambiguous.insert(j);
+      else expected.insert(j);
+    }
+    std::set<std::uint32_t> got(lists[i].begin(), lists[i].end());
+    for (auto j : ambiguous) got.erase(j);
+    ASSERT_EQ(got, expected) << "particle " << id << " at " << q[0] << "," << q[1] << "," << q[2];
+    compared += expected.size();
+  }
+  EXPECT_GT(compared, 0u);
+}
+
+TEST(SpatialHash, RandomParticlesMatchKdTree) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> u(0.0f, 4.0f);
+  Cloud c;
+  for (int i = 0; i < 3000; ++i) {
+    c.x.push_back(u(rng));
+    c.y.push_back(u(rng));
+    c.z.push_back(u(rng));
+  }
+  expect_same_neighbours(c);
+}
+
+TEST(SpatialHash, ClusteredParticlesWithEmptyCellsMatchKdTree) {
+  std::mt19937 rng(2);
+  std::normal_distribution<float> g(0.0f, 0.15f);
+  Cloud c;
+  const float centres[3][3] = {{1, 1, 1}, {3, 2.5f, 1.5f}, {2, 3.2f, 3.2f}};
+  for (auto& centre : centres) {
+    for (int i = 0; i < 800; ++i) {
+      c.x.push_back(centre[0] + g(rng));
+      c.y.push_back(centre[1] + g(rng));
+      c.z.push_back(centre[2] + g(rng));
+    }
+  }
+  expect_same_neighbours(c);
+}
+
+TEST(SpatialHash, ParticlesOnCellBordersAndOutsideTheGridMatchKdTree) {
+  Cloud c;
+  // Exactly on cell borders: a lattice with the cell's own spacing, offset by half a radius.
+  for (int i = 0; i < 9; ++i) {
+    for (int j = 0; j < 9; ++j) {
+      for (int k = 0; k < 3; ++k) {
+        c.x.push_back(0.25f * i);
+        c.y.push_back(0.25f * j);
+        c.z.push_back(0.125f * k + 1.0f);
+      }
+    }
+  }
+  // Outside the grid on every side, some far away, some clustered just past an edge.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-0.6f, 0.0f), far(5.0f, 50.0f);
+  for (int i = 0; i < 400; ++i) {
+    c.x.push_back(u(rng));
+    c.y.push_back(2.0f + u(rng));
+    c.z.push_back(4.0f - u(rng));
+    c.x.push_back(far(rng));
+    c.y.push_back(-far(rng));
+    c.z.push_back(1.0f);
+  }
+  expect_same_neighbours(c);
+}
+
+TEST(SpatialHash, SortIsByMortonCellAndDeterministic) {
+  ComputeContext compute("cpu");
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(0.0f, 4.0f);
+  HostParticles p;
+  for (int i = 0; i < 5000; ++i) p.push(u(rng), u(rng), u(rng), 0, 0, 0, 1000, 1);
+  std::vector<std::uint32_t> orders[2];
+  for (auto& order : orders) {
+    ParticleStore store(compute);
+    store.append(p);
+    SpatialHash hash(compute, test_grid());
+    hash.build(store);
+    order = store.download().id;
+  }
+  EXPECT_EQ(orders[0], orders[1]);
+  // Stable: within one cell, ids (original order) ascend.
+  ParticleStore store(compute);
+  store.append(p);
+  SpatialHash hash(compute, test_grid());
+  hash.build(store);
+  const HostParticles s = store.download();
+  auto cell = [](float v) { return std::min(15, static_cast<int>(v / 0.25f)); };
+  for (std::size_t i = 1; i < s.size(); ++i) {
+    const bool same = cell(s.f[kX][i]) == cell(s.f[kX][i - 1]) && cell(s.f[kY][i]) == cell(s.f[kY][i - 1]) &&
+                      cell(s.f[kZ][i]) == cell(s.f[kZ][i - 1]);
+    if (same) {
+      ASSERT_LT(s.id[i - 1], s.id[i]);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace runnel
