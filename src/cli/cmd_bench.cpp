@@ -17,15 +17,21 @@ void add_bench_command(CLI::App& app) {
     std::vector<std::string> sets;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("bench", "Measure throughput and print JSON with per-kernel times from OpenCL "
-                                          "profiling events. sph: a block of N particles settling in a tank");
-  cmd->add_option("model", opt->which, "what to measure: sph")->required()->check(CLI::IsMember({"sph"}));
+  auto* cmd =
+      app.add_subcommand("bench",
+                         "Measure throughput and print JSON with per-kernel times from OpenCL "
+                         "profiling events. sph: a block of N particles settling in a tank");
+  cmd->add_option("model", opt->which, "what to measure: sph")
+      ->required()
+      ->check(CLI::IsMember({"sph"}));
   cmd->add_option("--particles", opt->particles, "number of particles")->capture_default_str();
-  cmd->add_option("--steps", opt->steps, "timed steps (after 3 warm-up steps)")->capture_default_str();
+  cmd->add_option("--steps", opt->steps, "timed steps (after 3 warm-up steps)")
+      ->capture_default_str();
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->callback([opt] {
-    if (opt->particles < 8 || opt->particles > 100000000) throw input_error("--particles: must be in 8..1e8");
+    if (opt->particles < 8 || opt->particles > 100000000)
+      throw input_error("--particles: must be in 8..1e8");
     if (opt->steps < 1 || opt->steps > 1000000) throw input_error("--steps: must be in 1..1e6");
     Parameters params;
     apply_overrides(params, opt->sets);

@@ -17,7 +17,9 @@ namespace {
 struct Cloud {
   std::vector<float> x, y, z;
   std::size_t kdtree_get_point_count() const { return x.size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t d) const { return d == 0 ? x[i] : d == 1 ? y[i] : z[i]; }
+  float kdtree_get_pt(std::size_t i, std::size_t d) const {
+    return d == 0 ? x[i] : d == 1 ? y[i] : z[i];
+  }
   template <class B>
   bool kdtree_get_bbox(B&) const {
     return false;
@@ -47,7 +49,8 @@ void expect_same_neighbours(const Cloud& cloud) {
   const auto lists = hash.neighbour_lists(store, radius);
   const HostParticles sorted = store.download();
 
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Cloud>, Cloud, 3>;
+  using Tree =
+      nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Cloud>, Cloud, 3>;
   Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   tree.buildIndex();
   std::size_t compared = 0;
@@ -60,8 +63,10 @@ void expect_same_neighbours(const Cloud& cloud) {
     for (auto& [j, d2] : matches) {
       if (j == id) continue;
       // Pairs within round-off of the radius may fall either way in float arithmetic.
-      if (std::fabs(std::sqrt(d2) - radius) < 1e-5f) ambiguous.insert(j);
-      else expected.insert(j);
+      if (std::fabs(std::sqrt(d2) - radius) < 1e-5f)
+        ambiguous.insert(j);
+      else
+        expected.insert(j);
     }
     std::set<std::uint32_t> got(lists[i].begin(), lists[i].end());
     for (auto j : ambiguous) got.erase(j);
@@ -147,7 +152,8 @@ TEST(SpatialHash, SortIsByMortonCellAndDeterministic) {
   const HostParticles s = store.download();
   auto cell = [](float v) { return std::min(15, static_cast<int>(v / 0.25f)); };
   for (std::size_t i = 1; i < s.size(); ++i) {
-    const bool same = cell(s.f[kX][i]) == cell(s.f[kX][i - 1]) && cell(s.f[kY][i]) == cell(s.f[kY][i - 1]) &&
+    const bool same = cell(s.f[kX][i]) == cell(s.f[kX][i - 1]) &&
+                      cell(s.f[kY][i]) == cell(s.f[kY][i - 1]) &&
                       cell(s.f[kZ][i]) == cell(s.f[kZ][i - 1]);
     if (same) {
       ASSERT_LT(s.id[i - 1], s.id[i]);

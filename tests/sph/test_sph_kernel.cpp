@@ -23,7 +23,8 @@ Probe probe(const std::vector<float>& r, double h = kH) {
   static ComputeContext compute("cpu");
   SphSettings s;
   s.h = h;
-  cl::Kernel k(compute.program({"cl/common.cl", "cl/sph_kernel.cl", "cl/sph_kernel_probe.cl"}, s.build_options()),
+  cl::Kernel k(compute.program({"cl/common.cl", "cl/sph_kernel.cl", "cl/sph_kernel_probe.cl"},
+                               s.build_options()),
                "sph_kernel_probe");
   const std::size_t n = r.size();
   auto& ctx = compute.context();
@@ -47,7 +48,9 @@ double lattice_sum(double h_factor, double ox, double oy, double oz) {
   std::vector<float> r;
   for (int i = -4; i <= 4; ++i) {
     for (int j = -4; j <= 4; ++j) {
-      for (int k = -4; k <= 4; ++k) r.push_back(static_cast<float>(std::sqrt((i + ox) * (i + ox) + (j + oy) * (j + oy) + (k + oz) * (k + oz))));
+      for (int k = -4; k <= 4; ++k)
+        r.push_back(static_cast<float>(
+            std::sqrt((i + ox) * (i + ox) + (j + oy) * (j + oy) + (k + oz) * (k + oz))));
     }
   }
   const Probe p = probe(r, h);
@@ -63,7 +66,8 @@ double lattice_sum(double h_factor, double ox, double oy, double oz) {
 TEST(SphKernel, LatticeSumOfWTimesVolumeIsOne) {
   // Within 1 % wherever the point lies, from h = 1.3 dx on.
   for (double hf : {1.3, 1.5, 2.0}) {
-    for (double off : {0.0, 0.25, 0.5}) EXPECT_NEAR(lattice_sum(hf, off, 0.5 * off, 0.3 * off), 1.0, 0.01) << hf << " " << off;
+    for (double off : {0.0, 0.25, 0.5})
+      EXPECT_NEAR(lattice_sum(hf, off, 0.5 * off, 0.3 * off), 1.0, 0.01) << hf << " " << off;
   }
   // At the default h = 1.2 dx a point on a node sums to 1.0175 (the self term W(0) weighs in):
   // within 2 % there, and exactly 1 on average over positions in the cell (Poisson summation).
@@ -72,7 +76,8 @@ TEST(SphKernel, LatticeSumOfWTimesVolumeIsOne) {
   const int n = 4;
   for (int a = 0; a < n; ++a) {
     for (int b = 0; b < n; ++b) {
-      for (int c = 0; c < n; ++c) mean += lattice_sum(1.2, (a + 0.5) / n, (b + 0.5) / n, (c + 0.5) / n);
+      for (int c = 0; c < n; ++c)
+        mean += lattice_sum(1.2, (a + 0.5) / n, (b + 0.5) / n, (c + 0.5) / n);
     }
   }
   EXPECT_NEAR(mean / (n * n * n), 1.0, 0.002);
@@ -83,7 +88,8 @@ TEST(SphKernel, DeviceMatchesReferenceAndVanishesAtSupport) {
   for (int k = 0; k <= 250; ++k) r.push_back(static_cast<float>(k * 2.5 * kH / 250));
   const Probe p = probe(r);
   for (std::size_t k = 0; k < r.size(); ++k) {
-    const double w = sph_reference::wendland_w(r[k], kH), f = sph_reference::wendland_grad_factor(r[k], kH);
+    const double w = sph_reference::wendland_w(r[k], kH),
+                 f = sph_reference::wendland_grad_factor(r[k], kH);
     ASSERT_NEAR(p.w[k], w, 1e-5 * sph_reference::wendland_w(0, kH)) << r[k];
     ASSERT_NEAR(p.grad[k], f, 1e-5 * std::fabs(sph_reference::wendland_grad_factor(0, kH))) << r[k];
     ASSERT_NEAR(p.g[k], sph_reference::wall_integral(r[k], kH), 1e-4 / kH) << r[k];
@@ -97,7 +103,8 @@ TEST(SphKernel, DeviceMatchesReferenceAndVanishesAtSupport) {
   // The kernel's derivative is the gradient factor times r (finite difference).
   for (double r0 : {0.3 * kH, 0.9 * kH, 1.7 * kH}) {
     const double e = 1e-6;
-    const double dw = (sph_reference::wendland_w(r0 + e, kH) - sph_reference::wendland_w(r0 - e, kH)) / (2 * e);
+    const double dw =
+        (sph_reference::wendland_w(r0 + e, kH) - sph_reference::wendland_w(r0 - e, kH)) / (2 * e);
     EXPECT_NEAR(dw, sph_reference::wendland_grad_factor(r0, kH) * r0, 1e-6 * std::fabs(dw) + 1e-9);
   }
 }

@@ -9,14 +9,17 @@
 
 namespace runnel {
 
-JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps, const Parameters& params_in) {
+JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps,
+                         const Parameters& params_in) {
   // A block twice as wide as it is high, filling the tank's floor: the water is 1 m deep.
   const int high = std::max(2, static_cast<int>(std::lround(std::cbrt(particles / 4.0))));
-  const int wide = std::max(2, static_cast<int>(std::lround(std::sqrt(static_cast<double>(particles) / high))));
+  const int wide =
+      std::max(2, static_cast<int>(std::lround(std::sqrt(static_cast<double>(particles) / high))));
   const double depth = 1.0, dx = depth / high;
   Parameters params = params_in;
   params.set("sph.walls", true, "bench");
-  const SphSettings s = SphSettings::from(params, dx, std::sqrt(params.real("sph.gravity") * depth));
+  const SphSettings s =
+      SphSettings::from(params, dx, std::sqrt(params.real("sph.gravity") * depth));
   SphSolver solver(compute, s, flat_floor(1, 1, wide * dx), 1.5 * depth);
   solver.add(hydrostatic_block(s, wide * dx, depth, wide * dx));
   const long long n = static_cast<long long>(solver.particles().size());
@@ -29,7 +32,8 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < steps; ++k) solver.step();
   compute.queue().finish();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto& kernel_seconds = profiler.collect();
   profiler.enable(false);
 

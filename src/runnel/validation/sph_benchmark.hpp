@@ -8,6 +8,7 @@ namespace runnel {
 
 // `runnel bench sph`: a block of N particles settling under gravity in a closed tank, timed over
 // S steps after a warm-up, with per-kernel times from OpenCL profiling events.
-JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps, const Parameters& params);
+JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps,
+                         const Parameters& params);
 
 }  // namespace runnel

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: MIT
+// `runnel validate` and `runnel bench sph` end to end: JSON on stdout, CSVs in --out, bad flags.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::run_cli;
+using test::ScratchDir;
+
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return -1e300;
+  return std::stod(json.substr(at + key.size() + 4));
+}
+
+TEST(CliSph, ValidateDambreakWritesFrontCsvAndJson) {
+  ScratchDir dir;
+  const auto r = run_cli({"validate", "dambreak", "--resolution", "12", "--out", dir.path("db")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"case", "particles", "steps", "wall_seconds", "relative_error"}) {
+    EXPECT_NE(r.out.find(std::string("\"") + key + "\""), std::string::npos) << key;
+  }
+  EXPECT_LT(json_number(r.out, "relative_error"), 0.10) << r.out;
+  std::istringstream csv(test::read_text(dir.path("db/front.csv")));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "t_star,x_over_L");
+  int rows = 0;
+  double last_t = -1, first_x = 0;
+  while (std::getline(csv, line)) {
+    double t, x;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf", &t, &x), 2) << line;
+    EXPECT_NEAR(t, 0.05 * rows, 1e-9);
+    if (rows == 0) first_x = x;
+    last_t = t;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 49);  // 0, 0.05, ..., 2.4
+  EXPECT_NEAR(last_t, 2.4, 1e-9);
+  EXPECT_NEAR(first_x, 1.0, 1e-3);  // the column's edge at x = L
+}
+
+TEST(CliSph, ValidateHydrostaticWritesPressureCsv) {
+  ScratchDir dir;
+  const auto r = run_cli({"validate", "hydrostatic", "--resolution", "8", "--out", dir.path("hs")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"case\": \"hydrostatic\""), std::string::npos);
+  const std::string csv = test::read_text(dir.path("hs/pressure.csv"));
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "depth,pressure,expected");
+}
+
+TEST(CliSph, BenchPrintsThroughputAndKernelTimes) {
+  const auto r = run_cli({"bench", "sph", "--particles", "4000", "--steps", "3"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(json_number(r.out, "particle_steps_per_second"), 0.0);
+  EXPECT_GT(json_number(r.out, "particles"), 3000.0);
+  EXPECT_NE(r.out.find("\"sph_forces\""), std::string::npos);
+  EXPECT_NE(r.out.find("\"radix_scatter\""), std::string::npos);
+}
+
+TEST(CliSph, BadValidateAndBenchArgumentsExitWithTwo) {
+  for (std::vector<std::string> args : std::vector<std::vector<std::string>>{
+           {"validate", "tsunami"},
+           {"validate", "dambreak", "--resolution", "-3"},
+           {"validate", "dambreak", "--set", "sph.bogus=1"},
+           {"validate", "dambreak", "--set", "sph.cfl=7"},
+           {"bench", "sph", "--particles", "2"},
+           {"bench", "sph", "--device", "no-such-device"}}) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args[1] << ": " << r.err;
+    EXPECT_FALSE(r.err.empty());
+  }
+}
+
+}  // namespace
+}  // namespace runnel

@@ -1,0 +1,224 @@
+// SPDX-License-Identifier: MIT
+// The SPH solver on PoCL: rates against the C++ reference, momentum conservation, determinism,
+// failure handling, capacity growth, outflow, and the hydrostatic case at a coarse resolution.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "runnel/core/error.hpp"
+#include "runnel/sph/sph_reference.hpp"
+#include "runnel/sph/sph_solver.hpp"
+#include "runnel/validation/tank.hpp"
+#include "runnel/validation/validation.hpp"
+
+namespace runnel {
+namespace {
+
+ComputeContext& compute() {
+  static ComputeContext c("cpu");
+  return c;
+}
+
+SphSettings settings(double gravity = 9.81, bool walls = true) {
+  Parameters p;
+  p.set("sph.gravity", gravity);
+  p.set("sph.walls", walls);
+  return SphSettings::from(p, 0.1, 2.0);  // dx = 0.1 m, c0 = 20 m/s
+}
+
+// A jittered blob of particles in the middle of a 4 m box, far from the floor and every wall.
+HostParticles blob(int per_side, std::uint32_t seed, double speed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> jitter(-0.02f, 0.02f), vel(-1.0f, 1.0f), rho(995.0f, 1010.0f);
+  HostParticles p;
+  for (int i = 0; i < per_side; ++i) {
+    for (int j = 0; j < per_side; ++j) {
+      for (int k = 0; k < per_side; ++k) {
+        p.push(1.6f + 0.1f * i + jitter(rng), 1.6f + 0.1f * j + jitter(rng), 1.6f + 0.1f * k + jitter(rng),
+               speed * vel(rng), speed * vel(rng), speed * vel(rng), rho(rng), 1e30f);
+      }
+    }
+  }
+  return p;
+}
+
+TEST(SphSolver, RatesMatchTheCppReference) {
+  const SphSettings s = settings();
+  SphSolver solver(compute(), s, flat_floor(1, 1, 4.0), 4.0);
+  solver.add(blob(7, 1, 0.5));
+  solver.prepare();
+  const HostParticles p = solver.particles().download();
+  const auto ax = solver.particles().read_field(kAx), ay = solver.particles().read_field(kAy),
+             az = solver.particles().read_field(kAz), drho = solver.particles().read_field(kDrho);
+  const auto ref = sph_reference::interaction_rates(p, s);
+  double a_scale = 0, d_scale = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    a_scale = std::max(a_scale, std::hypot(ref.ax[i], ref.ay[i] + s.gravity, ref.az[i]));
+    d_scale = std::max(d_scale, std::fabs(ref.drho[i]));
+  }
+  ASSERT_GT(a_scale, 1.0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    ASSERT_NEAR(ax[i], ref.ax[i], 2e-4 * a_scale) << i;
+    ASSERT_NEAR(ay[i], ref.ay[i], 2e-4 * a_scale) << i;
+    ASSERT_NEAR(az[i], ref.az[i], 2e-4 * a_scale) << i;
+    ASSERT_NEAR(drho[i], ref.drho[i], 2e-4 * d_scale) << i;
+  }
+}
+
+TEST(SphSolver, PairForcesAreAntisymmetric) {
+  const SphSettings s = settings(0.0);
+  SphSolver solver(compute(), s, flat_floor(1, 1, 4.0), 4.0);
+  HostParticles p;
+  p.push(2.0f, 2.0f, 2.0f, 0.3f, 0, 0, 1010.0f, 1e30f);
+  p.push(2.07f, 2.05f, 1.98f, -0.2f, 0.1f, 0, 1003.0f, 1e30f);
+  solver.add(p);
+  solver.prepare();
+  const auto ax = solver.particles().read_field(kAx), ay = solver.particles().read_field(kAy),
+             az = solver.particles().read_field(kAz);
+  EXPECT_GT(std::fabs(ax[0]), 1.0f);
+  EXPECT_FLOAT_EQ(ax[0], -ax[1]);
+  EXPECT_FLOAT_EQ(ay[0], -ay[1]);
+  EXPECT_FLOAT_EQ(az[0], -az[1]);
+}
+
+TEST(SphSolver, MomentumIsConservedInAClosedBoxWithoutGravity) {
+  const SphSettings s = settings(0.0);
+  SphSolver solver(compute(), s, flat_floor(1, 1, 4.0), 4.0);
+  solver.add(blob(8, 2, 0.3));
+  auto momentum = [&] {
+    const HostParticles p = solver.particles().download();
+    std::array<double, 4> m{0, 0, 0, 0};  // Σv per axis, Σ|v|
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      m[0] += p.f[kVx][i];
+      m[1] += p.f[kVy][i];
+      m[2] += p.f[kVz][i];
+      m[3] += std::fabs(p.f[kVx][i]) + std::fabs(p.f[kVy][i]) + std::fabs(p.f[kVz][i]);
+    }
+    return m;
+  };
+  const auto before = momentum();
+  for (int k = 0; k < 200; ++k) solver.step();
+  const auto after = momentum();
+  EXPECT_GT(solver.time(), 0.0);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(after[a], before[a], 1e-5 * before[3]) << "axis " << a;
+  EXPECT_EQ(solver.particles().size(), 512u);
+}
+
+TEST(SphSolver, SameInputsGiveBitwiseIdenticalState) {
+  std::vector<HostParticles> results;
+  for (int run = 0; run < 2; ++run) {
+    Parameters params;
+    params.set("sph.walls", true);
+    const SphSettings s = SphSettings::from(params, 0.05, std::sqrt(9.81 * 2.0 * 0.5));
+    SphSolver solver(compute(), s, flat_floor(10, 1, 0.2), 1.5);
+    solver.add(hydrostatic_block(s, 0.5, 1.0, 0.2));
+    for (int k = 0; k < 150; ++k) solver.step();
+    results.push_back(solver.particles().download());
+  }
+  ASSERT_EQ(results[0].size(), results[1].size());
+  for (int f = 0; f < kPersistentFieldCount; ++f) {
+    if (f == kId) {
+      EXPECT_EQ(results[0].id, results[1].id);
+    } else {
+      EXPECT_EQ(0, std::memcmp(results[0].f[f].data(), results[1].f[f].data(), results[0].size() * 4)) << f;
+    }
+  }
+}
+
+TEST(SphSolver, NanInTheStateStopsTheStepWithItsNumber) {
+  SphSolver solver(compute(), settings(), flat_floor(1, 1, 4.0), 4.0);
+  HostParticles p = blob(4, 3, 0.1);
+  p.f[kVy][5] = std::nanf("");
+  solver.add(p);
+  try {
+    solver.step();
+    FAIL() << "a NaN velocity went unnoticed";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kRuntime);
+    EXPECT_NE(std::string(e.what()).find("SPH step 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("NaN"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SphSolver, CollapsingTimeStepAndInsaneDensityStopTheRun) {
+  Parameters p;
+  p.set("sph.dt_min", 0.05);
+  p.set("sph.dt_max", 1.0);
+  SphSolver slow(compute(), SphSettings::from(p, 0.1, 2.0), flat_floor(1, 1, 4.0), 4.0);
+  slow.add(blob(4, 4, 0.1));
+  try {
+    slow.step();
+    FAIL() << "dt below dt_min went unnoticed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("sph.dt_min"), std::string::npos) << e.what();
+  }
+  SphSolver dense(compute(), settings(), flat_floor(1, 1, 4.0), 4.0);
+  HostParticles q = blob(4, 5, 0.1);
+  q.f[kRho][3] = 2000.0f;
+  dense.add(q);
+  EXPECT_THROW(dense.step(), Error);
+}
+
+TEST(SphSolver, CapacityGrowsAndKeepsEveryParticle) {
+  ParticleStore store(compute(), 64);
+  HostParticles all;
+  for (int batch = 0; batch < 6; ++batch) {
+    HostParticles p = blob(5, 10 + batch, 1.0);
+    store.append(p);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      all.push(p.f[kX][i], p.f[kY][i], p.f[kZ][i], p.f[kVx][i], p.f[kVy][i], p.f[kVz][i], p.f[kRho][i], 1e30f);
+    }
+  }
+  EXPECT_GE(store.capacity(), 750u);
+  const HostParticles back = store.download();
+  ASSERT_EQ(back.size(), all.size());
+  for (std::size_t i = 0; i < back.size(); ++i) {
+    ASSERT_EQ(back.id[i], i);
+    ASSERT_EQ(back.f[kX][i], all.f[kX][i]);
+    ASSERT_EQ(back.f[kVz][i], all.f[kVz][i]);
+  }
+  EXPECT_LE(ParticleStore::bytes_per_particle(), 256u);
+}
+
+TEST(SphSolver, ParticlesLeavingAnOpenDomainAreRemovedAndCounted) {
+  SphSolver solver(compute(), settings(9.81, false), flat_floor(1, 1, 4.0), 4.0);
+  HostParticles p;
+  for (int i = 0; i < 20; ++i) p.push(3.9f, 1.0f + 0.3f * i, 2.0f, 5.0f, 0, 0, 1000.0f, 1e30f);  // moving east
+  for (int i = 0; i < 10; ++i) p.push(2.0f, 1.0f + 0.3f * i, 2.0f, 0, 0, 0, 1000.0f, 1e30f);    // falling
+  solver.add(p);
+  for (int k = 0; k < 100; ++k) solver.step();
+  EXPECT_EQ(solver.particles().size(), 10u);
+  EXPECT_EQ(solver.counters().outflow_particles, 20);
+  for (std::uint32_t id : solver.particles().download().id) EXPECT_GE(id, 20u);
+}
+
+TEST(SphValidation, HydrostaticPressureAtCoarseResolution) {
+  ValidationOptions options;
+  options.resolution = 10;
+  const ValidationResult r = validate_hydrostatic(compute(), options);
+  EXPECT_GT(r.particles, 500);
+  EXPECT_LT(r.relative_error, 0.05) << r.summary_json();
+}
+
+TEST(SphValidation, ReferenceCurveEqualsTheShippedCsv) {
+  // The compiled-in measurements equal data/reference/dambreak_koshizuka_oka_1996.csv.
+  FILE* f = std::fopen(RUNNEL_SOURCE_DIR "/data/reference/dambreak_koshizuka_oka_1996.csv", "r");
+  ASSERT_NE(f, nullptr);
+  char line[256];
+  std::size_t row = 0;
+  while (std::fgets(line, sizeof line, f)) {
+    double t, x, ts, xl;
+    if (std::sscanf(line, "%lf,%lf,%lf,%lf", &t, &x, &ts, &xl) != 4) continue;
+    ASSERT_LT(row, koshizuka_oka_1996().size());
+    EXPECT_DOUBLE_EQ(koshizuka_oka_1996()[row].t_star, ts);
+    EXPECT_DOUBLE_EQ(koshizuka_oka_1996()[row].x_over_l, xl);
+    ++row;
+  }
+  std::fclose(f);
+  EXPECT_EQ(row, koshizuka_oka_1996().size());
+}
+
+}  // namespace
+}  // namespace runnel
