@@ -62,14 +62,8 @@ __kernel void radix_scatter(const __global uint* key_in, const __global uint* va
   }
 }
 
-// Gathers one float field into sorted order.
-__kernel void reorder_float(const __global uint* perm, const __global float* in, __global float* out, const uint n) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  out[i] = in[perm[i]];
-}
-
-__kernel void reorder_uint(const __global uint* perm, const __global uint* in, __global uint* out, const uint n) {
+// Gathers one field into sorted order, as 4-byte words (bit-exact for floats and integers alike).
+__kernel void reorder_words(const __global uint* perm, const __global uint* in, __global uint* out, const uint n) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   out[i] = in[perm[i]];

@@ -11,12 +11,16 @@ namespace {
 constexpr double kGrowthFactor = 1.5;  // amortised growth; keeps spare capacity below 50 %
 
 const ParticleFieldInfo kFieldInfo[kFieldCount] = {
-    {"x", "m", false},        {"y", "m", false},          {"z", "m", false},
-    {"vx", "m/s", false},     {"vy", "m/s", false},       {"vz", "m/s", false},
-    {"rho", "kg/m^3", false}, {"sediment", "m^3", false}, {"age", "s", false},
-    {"lifespan", "s", false}, {"id", "1", true},          {"ax", "m/s^2", false},
-    {"ay", "m/s^2", false},   {"az", "m/s^2", false},     {"drho", "kg/m^3/s", false},
+    {"x", "m", false},          {"y", "m", false},           {"z", "m", false},
+    {"vx", "m/s", false},       {"vy", "m/s", false},        {"vz", "m/s", false},
+    {"rho", "kg/m^3", false},   {"sediment", "quanta", true}, {"age", "s", false},
+    {"lifespan", "s", false},   {"contacts", "1", true},     {"id", "1", true},
+    {"ax", "m/s^2", false},     {"ay", "m/s^2", false},      {"az", "m/s^2", false},
+    {"drho", "kg/m^3/s", false},
 };
+static_assert(sizeof(kFieldInfo) / sizeof(kFieldInfo[0]) == kFieldCount);
+
+bool is_float_field(int k) { return !kFieldInfo[k].is_integer; }
 
 }  // namespace
 
@@ -26,9 +30,24 @@ const ParticleFieldInfo& particle_field_info(ParticleField f) {
 
 void HostParticles::resize(std::size_t n) {
   for (int k = 0; k < kPersistentFieldCount; ++k) {
-    if (k != kId) f[k].resize(n, 0.0f);
+    if (is_float_field(k)) f[k].resize(n, 0.0f);
   }
+  sediment.resize(n, 0);
+  contacts.resize(n, 0);
   id.resize(n, 0);
+}
+
+void* HostParticles::data(ParticleField field) {
+  return const_cast<void*>(static_cast<const HostParticles*>(this)->data(field));
+}
+
+const void* HostParticles::data(ParticleField field) const {
+  switch (field) {
+    case kSediment: return sediment.data();
+    case kContacts: return contacts.data();
+    case kId: return id.data();
+    default: return f[field].data();
+  }
 }
 
 void HostParticles::push(float x, float y, float z, float vx, float vy, float vz, float rho,
@@ -104,8 +123,7 @@ HostParticles ParticleStore::download() {
   if (size_ == 0) return p;
   auto& q = compute_.queue();
   for (int f = 0; f < kPersistentFieldCount; ++f) {
-    void* dst = f == kId ? static_cast<void*>(p.id.data()) : static_cast<void*>(p.f[f].data());
-    q.enqueueReadBuffer(current_[f], CL_TRUE, 0, size_ * 4, dst);
+    q.enqueueReadBuffer(current_[f], CL_TRUE, 0, size_ * 4, p.data(static_cast<ParticleField>(f)));
   }
   return p;
 }

@@ -11,43 +11,46 @@ namespace runnel {
 // The particle fields, declared once. Persistent fields travel with the particle when the spatial
 // hash reorders the arrays; rate fields are recomputed every step and are never reordered.
 enum ParticleField : int {
-  kX,
-  kY,
-  kZ,  // position, m
-  kVx,
-  kVy,
-  kVz,        // velocity, m/s
-  kRho,       // density, kg/m³
-  kSediment,  // carried sediment volume, m³
-  kAge,       // s
-  kLifespan,  // s; the particle evaporates when age exceeds it
-  kId,        // stable id (uint32; the top bit marks a dead particle)
+  // clang-format off
+  kX, kY, kZ,        // position, m
+  kVx, kVy, kVz,     // velocity, m/s
+  kRho,              // density, kg/m³
+  kSediment,         // carried sediment, int32 count of volume quanta (erosion.height_quantum · cell²)
+  kAge,              // s
+  kLifespan,         // s; the particle evaporates when age exceeds it
+  kContacts,         // uint32: erosion events so far (the acidity model's budget)
+  kId,               // stable id (uint32; the top bit marks a dead particle)
   kPersistentFieldCount,
-  kAx = kPersistentFieldCount,
-  kAy,
-  kAz,    // acceleration, m/s²
-  kDrho,  // dρ/dt, kg/m³/s
+  kAx = kPersistentFieldCount, kAy, kAz,  // acceleration, m/s²
+  kDrho,                                  // dρ/dt, kg/m³/s
   kFieldCount
+  // clang-format on
 };
 
 struct ParticleFieldInfo {
   const char* name;
   const char* unit;
-  bool is_uint;
+  bool is_integer;  // int32/uint32 on the device, not float
 };
 const ParticleFieldInfo& particle_field_info(ParticleField f);
 
 inline constexpr std::uint32_t kDeadFlag = 0x80000000u;
 
-// Particles on the host, structure of arrays; index by ParticleField (id is kept as uint32).
+// Particles on the host, structure of arrays. Float fields in f[field]; the integer fields have
+// their own vectors (f[kSediment], f[kContacts], f[kId] stay empty).
 struct HostParticles {
-  std::array<std::vector<float>, kPersistentFieldCount> f;  // f[kId] unused
+  std::array<std::vector<float>, kPersistentFieldCount> f;
+  std::vector<std::int32_t> sediment;  // volume quanta
+  std::vector<std::uint32_t> contacts;
   std::vector<std::uint32_t> id;
 
   std::size_t size() const { return id.size(); }
   void resize(std::size_t n);
-  // Appends one particle; sediment and age 0.
+  // Appends one particle; sediment, age and contacts 0.
   void push(float x, float y, float z, float vx, float vy, float vz, float rho, float lifespan);
+  // The 4-byte elements of one persistent field, whatever its type.
+  void* data(ParticleField field);
+  const void* data(ParticleField field) const;
 };
 
 // Particle state in device buffers (structure of arrays). Capacity grows on demand by a factor,

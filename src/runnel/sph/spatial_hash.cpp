@@ -47,8 +47,7 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid)
   histogram_ = cl::Kernel(program, "radix_histogram");
   scan_ = cl::Kernel(program, "radix_scan");
   scatter_ = cl::Kernel(program, "radix_scatter");
-  reorder_float_ = cl::Kernel(program, "reorder_float");
-  reorder_uint_ = cl::Kernel(program, "reorder_uint");
+  reorder_ = cl::Kernel(program, "reorder_words");
   cell_bounds_ = cl::Kernel(program, "cell_bounds");
   neighbour_list_ = cl::Kernel(program, "neighbour_list");
   auto& ctx = compute.context();
@@ -113,12 +112,11 @@ void SpatialHash::build(ParticleStore& store) {
     in = 1 - in;
   }
 
-  // 3. Gather every persistent field into the sorted order.
+  // 3. Gather every persistent field into the sorted order (as 4-byte words: bit-exact for floats too).
   for (int f = 0; f < kPersistentFieldCount; ++f) {
-    cl::Kernel& k = f == kId ? reorder_uint_ : reorder_float_;
-    set_args(k, values_[in], store.buffer(static_cast<ParticleField>(f)),
+    set_args(reorder_, values_[in], store.buffer(static_cast<ParticleField>(f)),
              store.scratch(static_cast<ParticleField>(f)), n);
-    prof.launch(k, round_up_work(n), "reorder");
+    prof.launch(reorder_, round_up_work(n), "reorder");
   }
   store.swap_scratch();
 
