@@ -2,26 +2,27 @@
 // Kick-drift-kick leapfrog (physics.md §2), density integrated like position:
 //   kick_drift: v += a·dt/2, ρ += (dρ/dt)·dt/2, x += v·dt, age += dt, then the boundary response
 //   kick:       v += a·dt/2, ρ += (dρ/dt)·dt/2   (with the rates at the new positions)
-// Boundaries after the drift: a particle below the terrain is put back on it (+ε along the normal)
-// with restitution e and friction μ (the next issue's Möller–Trumbore collision refines this);
-// vertical walls at the domain edges reflect it, or, without walls, a particle that leaves the
-// domain is marked dead (removed at the next sort) and counted as outflow.
+// Boundaries after the drift: vertical walls at the domain edges reflect a particle, or, without
+// walls, a particle that leaves the domain is marked dead (removed at the next sort) and its
+// sediment booked as outflow. Then the step's segment is tested against the terrain triangles
+// (collide.cl); a particle still below the surface (the terrain rose under it) is projected up.
 // Units: m, s. Compile-time constants (host -D): SPH_WALLS, SPH_SURFACE_EPS, SPH_RESTITUTION,
 // SPH_FRICTION.
 
 __kernel void kick_drift(__global float* x, __global float* y, __global float* z, __global float* vx,
                          __global float* vy, __global float* vz, __global float* rho, __global float* age,
-                         __global uint* id, const __global float* ax, const __global float* ay,
-                         const __global float* az, const __global float* drho, const uint n, const float dt,
-                         const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
-                         const int tny, const float tcell, const float domain_x, const float domain_z,
-                         volatile __global int* counters) {
+                         __global int* sediment, __global uint* id, const __global float* ax,
+                         const __global float* ay, const __global float* az, const __global float* drho,
+                         const uint n, const float dt, const __global float* terrain_height,
+                         const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
+                         const float domain_x, const float domain_z, volatile __global long* counters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float half_dt = 0.5f * dt;
   float3 v = (float3)(vx[i] + ax[i] * half_dt, vy[i] + ay[i] * half_dt, vz[i] + az[i] * half_dt);
   rho[i] += drho[i] * half_dt;
-  float3 p = (float3)(x[i], y[i], z[i]) + v * dt;
+  const float3 start = (float3)(x[i], y[i], z[i]);
+  float3 p = start + v * dt;
   age[i] += dt;
 
 #if SPH_WALLS
@@ -31,19 +32,25 @@ __kernel void kick_drift(__global float* x, __global float* y, __global float* z
   if (p.z > domain_z - SPH_SURFACE_EPS) { p.z = domain_z - SPH_SURFACE_EPS; v.z = -fabs(v.z) * SPH_RESTITUTION; }
 #else
   if (p.x < 0.0f || p.x > domain_x || p.z < 0.0f || p.z > domain_z) {
+    // Outflow: the particle leaves with its sediment, which the mass balance books as outflow.
     id[i] |= DEAD_FLAG;
-    atomic_inc(&counters[1]);
+    atom_inc(&counters[COUNTER_OUTFLOW_PARTICLES]);
+    atom_add(&counters[COUNTER_OUTFLOW_SEDIMENT], (long)sediment[i]);
+    sediment[i] = 0;
   }
 #endif
+  // Continuous collision along the step, then a guard for particles the terrain rose under.
+  const TerrainHit hit = collide_segment(terrain_height, terrain_normal, tnx, tny, tcell, start, p - start);
+  if (hit.t >= 0.0f) {
+    p = hit.point + SPH_SURFACE_EPS * hit.normal;
+    v = contact_response(v, hit.normal);
+    atom_inc(&counters[COUNTER_COLLISIONS]);
+  }
   const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, p.x, p.z);
   if (p.y < s.height + SPH_SURFACE_EPS) {
     p.y = s.height + SPH_SURFACE_EPS;
-    const float vn = dot(v, s.normal);
-    if (vn < 0.0f) {
-      const float3 vt = v - vn * s.normal;
-      v = vt * (1.0f - SPH_FRICTION) - (SPH_RESTITUTION * vn) * s.normal;
-    }
-    atomic_inc(&counters[0]);
+    v = contact_response(v, s.normal);
+    atom_inc(&counters[COUNTER_PROJECTIONS]);
   }
   x[i] = p.x;
   y[i] = p.y;

@@ -64,13 +64,13 @@ TEST(CliSph, BenchPrintsThroughputAndKernelTimes) {
 }
 
 TEST(CliSph, BadValidateAndBenchArgumentsExitWithTwo) {
-  for (std::vector<std::string> args : std::vector<std::vector<std::string>>{
-           {"validate", "tsunami"},
-           {"validate", "dambreak", "--resolution", "-3"},
-           {"validate", "dambreak", "--set", "sph.bogus=1"},
-           {"validate", "dambreak", "--set", "sph.cfl=7"},
-           {"bench", "sph", "--particles", "2"},
-           {"bench", "sph", "--device", "no-such-device"}}) {
+  for (std::vector<std::string> args :
+       std::vector<std::vector<std::string>>{{"validate", "tsunami"},
+                                             {"validate", "dambreak", "--resolution", "-3"},
+                                             {"validate", "dambreak", "--set", "sph.bogus=1"},
+                                             {"validate", "dambreak", "--set", "sph.cfl=7"},
+                                             {"bench", "sph", "--particles", "2"},
+                                             {"bench", "sph", "--device", "no-such-device"}}) {
     const auto r = run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args[1] << ": " << r.err;
     EXPECT_FALSE(r.err.empty());

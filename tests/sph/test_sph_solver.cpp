@@ -31,13 +31,15 @@ SphSettings settings(double gravity = 9.81, bool walls = true) {
 // A jittered blob of particles in the middle of a 4 m box, far from the floor and every wall.
 HostParticles blob(int per_side, std::uint32_t seed, double speed) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> jitter(-0.02f, 0.02f), vel(-1.0f, 1.0f), rho(995.0f, 1010.0f);
+  std::uniform_real_distribution<float> jitter(-0.02f, 0.02f), vel(-1.0f, 1.0f),
+      rho(995.0f, 1010.0f);
   HostParticles p;
   for (int i = 0; i < per_side; ++i) {
     for (int j = 0; j < per_side; ++j) {
       for (int k = 0; k < per_side; ++k) {
-        p.push(1.6f + 0.1f * i + jitter(rng), 1.6f + 0.1f * j + jitter(rng), 1.6f + 0.1f * k + jitter(rng),
-               speed * vel(rng), speed * vel(rng), speed * vel(rng), rho(rng), 1e30f);
+        p.push(1.6f + 0.1f * i + jitter(rng), 1.6f + 0.1f * j + jitter(rng),
+               1.6f + 0.1f * k + jitter(rng), speed * vel(rng), speed * vel(rng), speed * vel(rng),
+               rho(rng), 1e30f);
       }
     }
   }
@@ -120,7 +122,8 @@ TEST(SphSolver, SameInputsGiveBitwiseIdenticalState) {
   ASSERT_EQ(results[0].size(), results[1].size());
   for (int f = 0; f < kPersistentFieldCount; ++f) {
     const auto field = static_cast<ParticleField>(f);
-    EXPECT_EQ(0, std::memcmp(results[0].data(field), results[1].data(field), results[0].size() * 4)) << f;
+    EXPECT_EQ(0, std::memcmp(results[0].data(field), results[1].data(field), results[0].size() * 4))
+        << f;
   }
 }
 
@@ -165,7 +168,8 @@ TEST(SphSolver, CapacityGrowsAndKeepsEveryParticle) {
     HostParticles p = blob(5, 10 + batch, 1.0);
     store.append(p);
     for (std::size_t i = 0; i < p.size(); ++i) {
-      all.push(p.f[kX][i], p.f[kY][i], p.f[kZ][i], p.f[kVx][i], p.f[kVy][i], p.f[kVz][i], p.f[kRho][i], 1e30f);
+      all.push(p.f[kX][i], p.f[kY][i], p.f[kZ][i], p.f[kVx][i], p.f[kVy][i], p.f[kVz][i],
+               p.f[kRho][i], 1e30f);
     }
   }
   EXPECT_GE(store.capacity(), 750u);
@@ -182,8 +186,10 @@ TEST(SphSolver, CapacityGrowsAndKeepsEveryParticle) {
 TEST(SphSolver, ParticlesLeavingAnOpenDomainAreRemovedAndCounted) {
   SphSolver solver(compute(), settings(9.81, false), flat_floor(1, 1, 4.0), 4.0);
   HostParticles p;
-  for (int i = 0; i < 20; ++i) p.push(3.9f, 1.0f + 0.3f * i, 2.0f, 5.0f, 0, 0, 1000.0f, 1e30f);  // moving east
-  for (int i = 0; i < 10; ++i) p.push(2.0f, 1.0f + 0.3f * i, 2.0f, 0, 0, 0, 1000.0f, 1e30f);    // falling
+  for (int i = 0; i < 20; ++i)
+    p.push(3.9f, 1.0f + 0.3f * i, 2.0f, 5.0f, 0, 0, 1000.0f, 1e30f);  // moving east
+  for (int i = 0; i < 10; ++i)
+    p.push(2.0f, 1.0f + 0.3f * i, 2.0f, 0, 0, 0, 1000.0f, 1e30f);  // falling
   solver.add(p);
   for (int k = 0; k < 100; ++k) solver.step();
   EXPECT_EQ(solver.particles().size(), 10u);

@@ -112,7 +112,8 @@ void SpatialHash::build(ParticleStore& store) {
     in = 1 - in;
   }
 
-  // 3. Gather every persistent field into the sorted order (as 4-byte words: bit-exact for floats too).
+  // 3. Gather every persistent field into the sorted order (as 4-byte words: bit-exact for floats
+  // too).
   for (int f = 0; f < kPersistentFieldCount; ++f) {
     set_args(reorder_, values_[in], store.buffer(static_cast<ParticleField>(f)),
              store.scratch(static_cast<ParticleField>(f)), n);

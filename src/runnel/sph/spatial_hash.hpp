@@ -50,8 +50,7 @@ class SpatialHash {
   int passes_;
   std::size_t capacity_ = 0;
   cl::Buffer keys_[2], values_[2], hist_, alive_, cell_start_, cell_end_;
-  cl::Kernel hash_keys_, histogram_, scan_, scatter_, reorder_, cell_bounds_,
-      neighbour_list_;
+  cl::Kernel hash_keys_, histogram_, scan_, scatter_, reorder_, cell_bounds_, neighbour_list_;
 };
 
 }  // namespace runnel

@@ -11,9 +11,9 @@
 namespace runnel {
 namespace {
 
-const std::vector<std::string> kSphSources = {"cl/common.cl",     "cl/grid.cl",
-                                              "cl/sph_kernel.cl", "cl/terrain_sample.cl",
-                                              "cl/sph_forces.cl", "cl/integrate.cl"};
+const std::vector<std::string> kSphSources = {
+    "cl/common.cl",         "cl/counters.cl", "cl/grid.cl",       "cl/sph_kernel.cl",
+    "cl/terrain_sample.cl", "cl/collide.cl",  "cl/sph_forces.cl", "cl/integrate.cl"};
 constexpr cl_uint kStatBlocks = 256;
 constexpr int kStatColumns = 6;
 
@@ -42,9 +42,10 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   stats_ = cl::Kernel(program, "step_stats");
   stats_buffer_ =
       cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
-  counters_buffer_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_int));
-  const cl_int zero = 0;
-  compute.queue().enqueueFillBuffer(counters_buffer_, zero, 0, 2 * sizeof(cl_int));
+  counters_buffer_ =
+      cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kCounterCount * sizeof(cl_long));
+  const cl_long zero = 0;
+  compute.queue().enqueueFillBuffer(counters_buffer_, zero, 0, kCounterCount * sizeof(cl_long));
 }
 
 void SphSolver::add(HostParticles particles) {
@@ -75,7 +76,8 @@ void SphSolver::step() {
 void SphSolver::kick_drift() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   auto& k = kick_drift_;
-  const ParticleField fields[] = {kX, kY, kZ, kVx, kVy, kVz, kRho, kAge, kId, kAx, kAy, kAz, kDrho};
+  const ParticleField fields[] = {kX,   kY,        kZ,  kVx, kVy, kVz, kRho,
+                                  kAge, kSediment, kId, kAx, kAy, kAz, kDrho};
   cl_uint a = 0;
   for (ParticleField f : fields) k.setArg(a++, store_.buffer(f));
   k.setArg(a++, n);
@@ -176,9 +178,16 @@ void SphSolver::restore_clock(double time, double dt, std::uint64_t steps) {
 }
 
 SphCounters SphSolver::counters() {
-  cl_int c[2] = {0, 0};
+  cl_long c[kCounterCount] = {0};
   compute_.queue().enqueueReadBuffer(counters_buffer_, CL_TRUE, 0, sizeof(c), c);
-  return {c[0], c[1]};
+  return {c[0], c[1], c[2], c[3], c[4], c[5]};
+}
+
+void SphSolver::restore_counters(const SphCounters& c) {
+  const cl_long values[kCounterCount] = {c.surface_projections,  c.outflow_particles,
+                                         c.collisions,           c.outflow_sediment,
+                                         c.evaporated_particles, c.lost_sediment};
+  compute_.queue().enqueueWriteBuffer(counters_buffer_, CL_TRUE, 0, sizeof(values), values);
 }
 
 }  // namespace runnel

@@ -20,11 +20,17 @@ struct SphHealth {
   long long nonfinite = 0;          // particles with NaN or inf
 };
 
-// Events counted on the device (integer atomics: the counts do not depend on order).
+// Events counted on the device (64-bit integer atomics: the counts do not depend on order).
+// The order is the one of cl/counters.cl.
 struct SphCounters {
-  long long surface_projections = 0;  // particles put back above the terrain
-  long long outflow_particles = 0;    // particles that left an open domain edge
+  long long surface_projections = 0;   // particles found below the terrain and put back on it
+  long long outflow_particles = 0;     // particles that left an open domain edge
+  long long collisions = 0;            // Möller–Trumbore hits with the terrain
+  long long outflow_sediment = 0;      // sediment quanta carried out through open edges
+  long long evaporated_particles = 0;  // particles removed at the end of their lifespan
+  long long lost_sediment = 0;         // quanta not deposited on evaporation (deposit_fraction < 1)
 };
+inline constexpr int kCounterCount = 6;
 
 // The weakly compressible SPH solver (physics.md §2) on a terrain floor, with kick-drift-kick
 // leapfrog and an adaptive time step. Host code of cl/sph_forces.cl and cl/integrate.cl.
@@ -55,6 +61,8 @@ class SphSolver {
   void restore_clock(double time, double dt, std::uint64_t steps);
   const SphHealth& health() const { return health_; }
   SphCounters counters();
+  void restore_counters(const SphCounters& counters);
+  cl::Buffer& counters_buffer() { return counters_buffer_; }
 
  private:
   void kick_drift();

@@ -1,27 +1,69 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/terrain/device_terrain.hpp"
 
+#include <cmath>
+
+#include "runnel/compute/launch.hpp"
+#include "runnel/core/error.hpp"
+
 namespace runnel {
 
-DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain)
+DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, double quantum)
     : compute_(compute),
       normals_(compute),
       nx_(terrain.nx),
       ny_(terrain.ny),
       cell_(static_cast<float>(terrain.cell)),
+      quantum_(quantum),
+      origin_x_(terrain.origin_x),
+      origin_z_(terrain.origin_z),
+      height_fixed_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(cl_long)),
+      delta_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(cl_long)),
       height_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(float)),
-      normal_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * 3 * sizeof(float)) {
+      normal_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * 3 * sizeof(float)),
+      apply_(compute.program({"cl/terrain_apply.cl"}), "terrain_apply") {
+  if (!(quantum > 0)) throw input_error("erosion.height_quantum: must be positive");
   upload(terrain);
 }
 
 void DeviceTerrain::upload(const Heightmap& terrain) {
-  compute_.queue().enqueueWriteBuffer(height_, CL_TRUE, 0, terrain.size() * sizeof(float),
-                                      terrain.h.data());
-  refresh_normals();
+  std::vector<std::int64_t> fixed(terrain.size());
+  for (std::size_t k = 0; k < fixed.size(); ++k) fixed[k] = std::llround(terrain.h[k] / quantum_);
+  upload_fixed(fixed);
 }
 
-void DeviceTerrain::refresh_normals() {
+void DeviceTerrain::upload_fixed(const std::vector<std::int64_t>& fixed) {
+  auto& q = compute_.queue();
+  q.enqueueWriteBuffer(height_fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_long), fixed.data());
+  const cl_long zero = 0;
+  q.enqueueFillBuffer(delta_, zero, 0, fixed.size() * sizeof(cl_long));
+  refresh_view();
+}
+
+void DeviceTerrain::apply() {
+  refresh_view();
+}
+
+void DeviceTerrain::refresh_view() {
+  const cl_uint n = static_cast<cl_uint>(nx_) * ny_;
+  runnel::set_args(apply_, height_fixed_, delta_, height_, n, static_cast<float>(quantum_));
+  compute_.profiler().launch(apply_, round_up_work(n), "terrain_apply");
   normals_.enqueue(height_, normal_, nx_, ny_, cell_);
+}
+
+Heightmap DeviceTerrain::download() {
+  Heightmap t(nx_, ny_, cell_);
+  t.origin_x = origin_x_;
+  t.origin_z = origin_z_;
+  compute_.queue().enqueueReadBuffer(height_, CL_TRUE, 0, t.size() * sizeof(float), t.h.data());
+  return t;
+}
+
+std::vector<std::int64_t> DeviceTerrain::download_fixed() {
+  std::vector<std::int64_t> fixed(static_cast<std::size_t>(nx_) * ny_);
+  compute_.queue().enqueueReadBuffer(height_fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_long),
+                                     fixed.data());
+  return fixed;
 }
 
 void DeviceTerrain::set_args(cl::Kernel& k, cl_uint i) const {

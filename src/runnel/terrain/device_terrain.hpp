@@ -1,35 +1,57 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cstdint>
+#include <vector>
+
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
 
 namespace runnel {
 
-// The heightmap and its vertex normals on the device, as every terrain-aware kernel reads them:
-// (height, normal, nx, ny, cell) — five kernel arguments in that order.
+// The terrain on the device. The state is fixed point: 64-bit integer counts of a height quantum
+// q (m), so every erosion, deposition and talus exchange moves an exact integer amount and the
+// terrain volume is an exact integer sum. Kernels read a float view (height) and vertex normals,
+// refreshed after each application of the per-step changes (`apply`), and add their changes to
+// `delta` with 64-bit integer atomics. Host side of cl/terrain_apply.cl.
 class DeviceTerrain {
  public:
-  DeviceTerrain(ComputeContext& compute, const Heightmap& terrain);
-  // Uploads new heights (same size) and recomputes the normals on the device.
+  DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, double quantum = 1e-6);
+  // Replaces the heights (same size): rounds them to the quantum, refreshes the view and normals.
   void upload(const Heightmap& terrain);
-  void refresh_normals();
-  void set_args(cl::Kernel& kernel, cl_uint first_index) const;
+  void upload_fixed(const std::vector<std::int64_t>& fixed);
+  // Adds the accumulated deltas to the fixed-point heights, clears them, refreshes view and
+  // normals.
+  void apply();
+  // The float view as a heightmap, and the exact fixed-point state.
+  Heightmap download();
+  std::vector<std::int64_t> download_fixed();
 
+  // (height, normal, nx, ny, cell): the five kernel arguments every terrain-aware kernel takes.
+  void set_args(cl::Kernel& kernel, cl_uint first_index) const;
   cl::Buffer& height() { return height_; }
   cl::Buffer& normal() { return normal_; }
+  cl::Buffer& delta() { return delta_; }
+  cl::Buffer& height_fixed() { return height_fixed_; }
   int nx() const { return nx_; }
   int ny() const { return ny_; }
   float cell() const { return cell_; }
+  double quantum() const { return quantum_; }
+  // m³ per quantum count at one vertex: the volume quantum of sediment.
+  double volume_quantum() const { return quantum_ * static_cast<double>(cell_) * cell_; }
   double extent_x() const { return (nx_ - 1) * static_cast<double>(cell_); }
   double extent_z() const { return (ny_ - 1) * static_cast<double>(cell_); }
 
  private:
+  void refresh_view();
   ComputeContext& compute_;
   TerrainNormals normals_;
   int nx_, ny_;
   float cell_;
-  cl::Buffer height_, normal_;
+  double quantum_;
+  double origin_x_, origin_z_;
+  cl::Buffer height_fixed_, delta_, height_, normal_;
+  cl::Kernel apply_;
 };
 
 }  // namespace runnel
