@@ -16,6 +16,7 @@ void add_info_command(CLI::App& app);
 void add_params_command(CLI::App& app);
 void add_validate_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_run_command(CLI::App& app);
 
 // "MIN:MAX" → a height range; throws an input error naming `flag`.
 HeightRange parse_range(const std::string& text, const std::string& flag);

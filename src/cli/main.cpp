@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version",
                        std::string("runnel ") + runnel::kVersion + " (" + runnel::kRevision + ")");
   app.require_subcommand(1);
+  runnel::cli::add_run_command(app);
   runnel::cli::add_devices_command(app);
   runnel::cli::add_generate_command(app);
   runnel::cli::add_convert_command(app);

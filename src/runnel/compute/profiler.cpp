@@ -1,17 +1,22 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/compute/profiler.hpp"
 
+#include "runnel/compute/launch.hpp"
+
 namespace runnel {
 
 void KernelProfiler::launch(cl::Kernel& kernel, std::size_t global, const char* name) {
   if (global == 0) return;
+  // A fixed work-group size: PoCL compiles a kernel once per work-group size, and letting it pick
+  // one for each new global size would recompile as the particle count changes.
+  const cl::NDRange local =
+      global % kWorkMultiple == 0 ? cl::NDRange(kWorkMultiple) : cl::NullRange;
   if (!enabled_) {
-    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global));
+    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), local);
     return;
   }
   cl::Event event;
-  queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NullRange, nullptr,
-                              &event);
+  queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), local, nullptr, &event);
   pending_.emplace_back(name, event);
   // Bound the list: events of a long run are folded in as they complete.
   if (pending_.size() > 4096) collect();

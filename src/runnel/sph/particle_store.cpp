@@ -125,6 +125,21 @@ std::uint32_t ParticleStore::append(HostParticles p) {
   return first;
 }
 
+std::size_t ParticleStore::extend(std::size_t k) {
+  const std::size_t first = size_;
+  if (k == 0) return first;
+  if (static_cast<std::uint64_t>(next_id_) + k >= kDeadFlag)
+    throw runtime_error("particle ids exhausted (2^31)");
+  grow_to(size_ + k);
+  const float zero = 0.0f;
+  for (int f = kPersistentFieldCount; f < kFieldCount; ++f) {
+    compute_.queue().enqueueFillBuffer(current_[f], zero, size_ * 4, k * 4);
+  }
+  next_id_ += static_cast<std::uint32_t>(k);
+  size_ += k;
+  return first;
+}
+
 HostParticles ParticleStore::download() {
   HostParticles p;
   p.resize(size_);

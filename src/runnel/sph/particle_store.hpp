@@ -68,6 +68,9 @@ class ParticleStore {
   // Drops the particles past n (dead ones, sorted to the end).
   void truncate(std::size_t n);
 
+  // Makes room for k particles at the end, to be written by a kernel (rain): grows the capacity,
+  // zeroes their rates, reserves k ids. Returns the index of the first new particle.
+  std::size_t extend(std::size_t k);
   // Appends particles; ids are assigned here, consecutively from the next free id. Returns the
   // first id.
   std::uint32_t append(HostParticles particles);

@@ -29,10 +29,10 @@ GridSpec fluid_grid(const SphSettings& s, const Heightmap& floor, double top) {
 }  // namespace
 
 SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor,
-                     double top)
+                     double top, double height_quantum)
     : compute_(compute),
       settings_(settings),
-      terrain_(compute, floor),
+      terrain_(compute, floor, height_quantum),
       store_(compute),
       hash_(compute, fluid_grid(settings, floor, top)) {
   cl::Program& program = compute.program(kSphSources, settings.build_options());
@@ -63,8 +63,16 @@ void SphSolver::prepare() {
 
 // One kick-drift-kick step; reads like the algorithm.
 void SphSolver::step() {
+  drift();
+  complete_step();
+}
+
+void SphSolver::drift() {
   if (!rates_ready_) prepare();
-  kick_drift();     // v, ρ += rates·dt/2; x += v·dt; terrain and wall contact
+  kick_drift();  // v, ρ += rates·dt/2; x += v·dt; walls, outflow, terrain collision
+}
+
+void SphSolver::complete_step() {
   build_hash();     // sort by cell, reorder, drop dead particles, cell tables
   compute_rates();  // dρ/dt and dv/dt at the new positions
   kick();           // v, ρ += rates·dt/2
@@ -124,8 +132,8 @@ void SphSolver::choose_next_dt() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   health_ = SphHealth{};
   const auto& s = settings_;
-  if (n == 0) {
-    dt_ = s.dt_max;
+  if (n == 0) {  // no fluid yet: the acoustic limit, so rain that arrives next starts stable
+    dt_ = std::min(s.cfl * s.h / s.c0, s.dt_max);
     return;
   }
   const cl_uint chunk = (n + kStatBlocks - 1) / kStatBlocks;

@@ -38,20 +38,27 @@ class SphSolver {
  public:
   // `top` is the highest y the fluid is expected to reach (m): the hash grid spans the terrain's
   // footprint from below its lowest point to `top`; particles above are clamped into the top cells.
+  // `height_quantum` (m) is the fixed-point quantum of the terrain's heights.
   SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor,
-            double top);
+            double top, double height_quantum = 1e-6);
 
   ParticleStore& particles() { return store_; }
   DeviceTerrain& terrain() { return terrain_; }
+  float terrain_cell() const { return terrain_.cell(); }
   SpatialHash& hash() { return hash_; }
   const SphSettings& settings() const { return settings_; }
 
   // Appends particles (ids assigned); their rates are computed at the next step.
   void add(HostParticles particles);
 
-  // One adaptive time step. Throws runnel::Error naming the step and the cause on NaN/inf,
-  // a density outside the sane range, or a time step below dt_min.
+  // One adaptive time step: drift() then complete_step(). Throws runnel::Error naming the step and
+  // the cause on NaN/inf, a density outside the sane range, or a time step below dt_min.
   void step();
+  // The two halves of a step, for callers that act between them (erosion, terrain changes):
+  // drift() kicks, drifts and resolves terrain contact; complete_step() rebuilds the hash, computes
+  // the rates, kicks again, advances the clock and chooses the next dt.
+  void drift();
+  void complete_step();
   // Computes the rates and the next time step for the current state without advancing.
   void prepare();
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/terrain/terrain_normals.hpp"
 
+#include "runnel/compute/launch.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -35,8 +37,8 @@ void TerrainNormals::enqueue(const cl::Buffer& height, const cl::Buffer& normal,
   kernel_.setArg(2, nx);
   kernel_.setArg(3, ny);
   kernel_.setArg(4, cell);
-  compute_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange,
-                                        cl::NDRange(static_cast<std::size_t>(nx) * ny));
+  compute_.profiler().launch(kernel_, round_up_work(static_cast<std::size_t>(nx) * ny),
+                             "terrain_normals");
 }
 
 std::vector<float> TerrainNormals::compute(const Heightmap& terrain) {

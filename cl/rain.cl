@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// Rain emitter (physics.md §4): `count` new particles written at the end of the particle arrays,
+// at uniformly random (x, z) in the rain region, `spawn_height` above the terrain, falling at
+// `speed`. Slot k draws from the counter first_counter + k of the run's seed: the same particles
+// whatever the thread count, and a resumed run draws what an uninterrupted one would.
+// Regions: 0 the whole terrain, 1 a rectangle [a, b] × [c, d] (x, z), 2 a disc at (a, c) of radius b.
+
+#define RAIN_STREAM 0x7261696eUL  // "rain"
+
+__kernel void rain_emit(__global float* x, __global float* y, __global float* z, __global float* vx,
+                        __global float* vy, __global float* vz, __global float* rho, __global int* sediment,
+                        __global float* age, __global float* lifespan, __global uint* contacts, __global uint* id,
+                        const uint first_index, const uint count, const ulong seed, const ulong first_counter,
+                        const uint first_id, const int region, const float a, const float b, const float c,
+                        const float d, const float spawn_height, const float speed, const float rho0,
+                        const float lifespan_mean, const float lifespan_jitter,
+                        const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
+                        const int tny, const float tcell) {
+  const uint k = get_global_id(0);
+  if (k >= count) return;
+  const ulong counter = 4UL * (first_counter + k);
+  const float u1 = rng_uniform(seed, RAIN_STREAM, counter);
+  const float u2 = rng_uniform(seed, RAIN_STREAM, counter + 1);
+  const float u3 = rng_uniform(seed, RAIN_STREAM, counter + 2);
+  const float extent_x = (float)(tnx - 1) * tcell, extent_z = (float)(tny - 1) * tcell;
+  float px, pz;
+  if (region == 2) {  // uniform in the disc: radius ∝ sqrt(u)
+    const float r = b * sqrt(u1), theta = 2.0f * M_PI_F * u2;
+    px = a + r * cos(theta);
+    pz = c + r * sin(theta);
+  } else if (region == 1) {
+    px = a + (b - a) * u1;
+    pz = c + (d - c) * u2;
+  } else {
+    px = extent_x * u1;
+    pz = extent_z * u2;
+  }
+  px = clamp(px, 0.0f, extent_x);
+  pz = clamp(pz, 0.0f, extent_z);
+  const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, px, pz);
+  const uint i = first_index + k;
+  x[i] = px;
+  y[i] = s.height + spawn_height;
+  z[i] = pz;
+  vx[i] = 0.0f;
+  vy[i] = -speed;
+  vz[i] = 0.0f;
+  rho[i] = rho0;
+  sediment[i] = 0;
+  age[i] = 0.0f;
+  lifespan[i] = lifespan_mean * (1.0f + lifespan_jitter * (2.0f * u3 - 1.0f));
+  contacts[i] = 0;
+  id[i] = first_id + k;
+}

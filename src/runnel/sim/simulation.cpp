@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sim/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "runnel/core/error.hpp"
+
+namespace runnel {
+namespace {
+
+// Heights rounded to the quantum, as the device keeps them.
+std::vector<std::int64_t> to_fixed(const Heightmap& t, double quantum) {
+  std::vector<std::int64_t> f(t.size());
+  for (std::size_t k = 0; k < f.size(); ++k) f[k] = std::llround(t.h[k] / quantum);
+  return f;
+}
+
+}  // namespace
+
+JsonObject MassBalance::json() const {
+  return JsonObject()
+      .add("terrain_change", terrain_change)
+      .add("suspended", suspended)
+      .add("outflow", outflow)
+      .add("lost", lost)
+      .add("residual", residual)
+      .add("residual_quanta", residual_quanta)
+      .add("eroded", eroded)
+      .add("deposited", deposited)
+      .add("relative", relative);
+}
+
+Simulation::Simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
+    : compute_(compute), params_(params), initial_(terrain) {
+  const double spacing = params.real("sph.spacing") > 0 ? params.real("sph.spacing") : terrain.cell;
+  const double relief = std::max(0.0, static_cast<double>(terrain.max_height() - terrain.min_height()));
+  const double spawn = params.real("rain.spawn_height") > 0 ? params.real("rain.spawn_height") : 4.0 * spacing;
+  const double gravity = params.real("sph.gravity");
+  // The fastest water we expect: a fall from the spawn height, or a slide down half the relief.
+  reference_speed_ = std::sqrt(2.0 * std::max(gravity, 1e-3) * std::max(0.5 * relief, spawn));
+  const SphSettings sph = SphSettings::from(params, spacing, reference_speed_);
+  const ErosionSettings erosion = ErosionSettings::from(params, spacing);
+
+  const double top = terrain.max_height() + spawn + 4.0 * spacing;
+  solver_ = std::make_unique<SphSolver>(compute, sph, terrain, top, erosion.height_quantum);
+  initial_fixed_ = to_fixed(terrain, erosion.height_quantum);
+  // The initial terrain as the run sees it: rounded to the quantum.
+  for (std::size_t k = 0; k < initial_.size(); ++k) {
+    initial_.h[k] = static_cast<float>(static_cast<double>(initial_fixed_[k]) * erosion.height_quantum);
+  }
+  const RainSettings rain = RainSettings::from(params, solver_->terrain(), spacing, reference_speed_);
+  rain_ = std::make_unique<RainEmitter>(compute, rain, static_cast<std::uint64_t>(params.integer("run.seed")),
+                                        static_cast<float>(sph.rho0));
+  erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_);
+  thermal_every_ = params.integer("thermal.every");
+  if (thermal_every_ > 0) {
+    ThermalSettings thermal;
+    thermal.talus_angle_deg = params.real("thermal.talus_angle");
+    thermal.rate = params.real("thermal.rate");
+    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal);
+  }
+}
+
+void Simulation::step() {
+  SphSolver& s = *solver_;
+  rain_->emit(s, s.dt());                 // rain.emit: this step's drops at the spawn height
+  s.drift();                              // integrate.kick_drift, collide.terrain, outflow
+  erosion_->exchange(s, s.dt());          // erode.exchange and evaporation → fixed-point deltas
+  s.terrain().apply();                    // terrain.apply: deltas → heights, normals
+  if (thermal_ && (s.steps() + 1) % thermal_every_ == 0) thermal_->relax();  // thermal.relax
+  s.complete_step();                      // hash, sph_forces, kick, next dt
+}
+
+MassBalance Simulation::mass_balance() {
+  const auto fixed = solver_->terrain().download_fixed();
+  long long change = 0, eroded = 0, deposited = 0;
+  for (std::size_t k = 0; k < fixed.size(); ++k) {
+    const long long d = fixed[k] - initial_fixed_[k];
+    change += d;
+    if (d < 0) eroded -= d;
+    else deposited += d;
+  }
+  long long suspended = 0;
+  ParticleStore& store = solver_->particles();
+  if (store.size() > 0) {
+    std::vector<std::int32_t> sediment(store.size());
+    compute_.queue().enqueueReadBuffer(store.buffer(kSediment), CL_TRUE, 0, sediment.size() * 4, sediment.data());
+    for (auto s : sediment) suspended += s;
+  }
+  const SphCounters c = solver_->counters();
+  const double q = solver_->terrain().volume_quantum();
+  MassBalance m;
+  m.residual_quanta = change + suspended + c.outflow_sediment + c.lost_sediment;
+  m.terrain_change = change * q;
+  m.suspended = suspended * q;
+  m.outflow = c.outflow_sediment * q;
+  m.lost = c.lost_sediment * q;
+  m.residual = m.residual_quanta * q;
+  m.eroded = eroded * q;
+  m.deposited = deposited * q;
+  m.relative = eroded > 0 ? std::fabs(static_cast<double>(m.residual_quanta)) / eroded : 0.0;
+  return m;
+}
+
+Heightmap Simulation::terrain() {
+  Heightmap t = solver_->terrain().download();
+  t.origin_x = initial_.origin_x;
+  t.origin_z = initial_.origin_z;
+  return t;
+}
+
+JsonObject Simulation::effective_settings() const {
+  const SphSettings& s = solver_->settings();
+  return JsonObject()
+      .add("spacing_m", s.spacing)
+      .add("smoothing_length_m", s.h)
+      .add("c0_m_per_s", s.c0)
+      .add("reference_speed_m_per_s", reference_speed_)
+      .add("particle_volume_m3", s.spacing * s.spacing * s.spacing)
+      .add("rain", rain_->settings().json())
+      .add("erosion", erosion_->settings().json());
+}
+
+}  // namespace runnel

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "runnel/compute/context.hpp"
+#include "runnel/core/heightmap.hpp"
+#include "runnel/io/json.hpp"
+#include "runnel/sim/parameters.hpp"
+#include "runnel/sph/erosion.hpp"
+#include "runnel/sph/rain_emitter.hpp"
+#include "runnel/sph/sph_solver.hpp"
+#include "runnel/terrain/thermal.hpp"
+
+namespace runnel {
+
+// The terms of the mass balance (physics.md §4), in m³:
+//   residual = ΔV_terrain + V_suspended + V_outflow + V_lost, which must be 0.
+// All terms are exact integer counts of the volume quantum, so the residual is exactly 0 unless
+// something leaks; `lost` is non-zero only with erosion.deposit_fraction < 1.
+struct MassBalance {
+  double terrain_change = 0, suspended = 0, outflow = 0, lost = 0, residual = 0;
+  double eroded = 0, deposited = 0;  // cell²·Σmax(0, h0 − h), cell²·Σmax(0, h − h0)
+  double relative = 0;               // |residual| / eroded (0 when nothing eroded)
+  long long residual_quanta = 0;
+  JsonObject json() const;
+};
+
+// One SPH rain-erosion run: the terrain, the fluid, the rain, erosion and talus, advanced together.
+// Defaults that depend on the terrain (particle spacing, rain, spawn height, c0) are derived here
+// from its cell size and relief (docs/erosion.md).
+class Simulation {
+ public:
+  Simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
+
+  // One step: rain.emit → kick_drift + collide → erode.exchange → terrain.apply → (thermal) →
+  // hash → sph_forces → kick.
+  void step();
+
+  MassBalance mass_balance();
+  Heightmap terrain();
+  const Heightmap& initial_terrain() const { return initial_; }
+  double time() const { return solver_->time(); }
+  double dt() const { return solver_->dt(); }
+  std::uint64_t steps() const { return solver_->steps(); }
+  std::size_t particles() const { return solver_->particles().size(); }
+  SphCounters counters() { return solver_->counters(); }
+  const Parameters& parameters() const { return params_; }
+  // The values the run actually uses, automatic ones resolved.
+  JsonObject effective_settings() const;
+
+  SphSolver& solver() { return *solver_; }
+  RainEmitter& rain() { return *rain_; }
+  const std::vector<std::int64_t>& initial_fixed() const { return initial_fixed_; }
+
+ private:
+  ComputeContext& compute_;
+  Parameters params_;
+  Heightmap initial_;
+  std::vector<std::int64_t> initial_fixed_;
+  double reference_speed_ = 0;
+  std::unique_ptr<SphSolver> solver_;
+  std::unique_ptr<RainEmitter> rain_;
+  std::unique_ptr<Erosion> erosion_;
+  std::unique_ptr<ThermalRelaxation> thermal_;
+  long long thermal_every_ = 0;
+};
+
+}  // namespace runnel
