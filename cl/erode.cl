@@ -5,8 +5,11 @@
 //   footprint: the amount is split over the tile's 4 vertices with bilinear weights w_k (Σ = 1),
 //              floor(amount·w_k) each, the remainder to the vertex of largest weight;
 //   capacity model (EROSION_MODEL 0), for a particle within contact distance of the terrain:
-//     C = K_c V |v_t| max(sin α, sin α_min);  s < C: erode min(K_s (C − s) dt_e, limit)
-//                                             s ≥ C: deposit K_d (s − C) dt_e
+//     C = K_c V |v_t| max(sin α, sin α_min) · (d/dx)^β;  s < C: erode min(K_s (C − s) dt_e, limit)
+//                                                        s ≥ C: deposit K_d (s − C) dt_e
+//     d/dx, the local flow depth in particle layers, from the SPH neighbour count; β =
+//     erosion.depth_exponent (0 gives physics.md's C; 1 makes capacity follow unit discharge d·|v|,
+//     as stream power does, so concentrated flow incises channels)
 //   acidity model (EROSION_MODEL 1, Fritz 2016): each contact erodes `acidity`·cell² until the
 //     particle has eroded `capacity_contacts` times;
 //   evaporation: at the end of its lifespan a particle deposits its sediment (deposit_fraction of
@@ -39,7 +42,8 @@ inline void spread_quanta(volatile __global long* delta, int k00, int nx, float 
 __kernel void erode_exchange(const __global float* x, const __global float* y, const __global float* z,
                              const __global float* vx, const __global float* vy, const __global float* vz,
                              __global int* sediment, __global uint* contacts, const __global float* age,
-                             const __global float* lifespan, __global uint* id, const uint n, const float dt_e,
+                             const __global float* lifespan, __global uint* id, const __global float* neighbours,
+                             const uint n, const float dt_e,
                              const __global float* terrain_height, const __global float* terrain_normal,
                              const int tnx, const int tny, const float tcell, volatile __global long* delta,
                              volatile __global long* counters) {
@@ -77,7 +81,11 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   const float3 vel = (float3)(vx[i], vy[i], vz[i]);
   const float3 vt = vel - dot(vel, s.normal) * s.normal;
   const float sin_slope = sqrt(fmax(0.0f, 1.0f - s.normal.y * s.normal.y));
-  const float capacity = EROSION_CAPACITY * EROSION_PARTICLE_VOLUME * length(vt) * fmax(sin_slope, EROSION_SIN_MIN_SLOPE);
+  // Flow depth in particle layers: the neighbours of a particle in one flat layer number about
+  // π(2h)²/dx² − 1 = EROSION_LAYER_NEIGHBOURS; more means deeper, concentrated flow.
+  const float layers = fmax(1.0f, (neighbours[i] + 1.0f) / (EROSION_LAYER_NEIGHBOURS + 1.0f));
+  const float capacity = EROSION_CAPACITY * EROSION_PARTICLE_VOLUME * length(vt) *
+                         fmax(sin_slope, EROSION_SIN_MIN_SLOPE) * pow(layers, EROSION_DEPTH_EXPONENT);
   const float carried_m3 = (float)carried * quantum;
   if (carried_m3 < capacity) {
     const float amount = fmin(EROSION_ERODE_RATE * (capacity - carried_m3) * dt_e, limit);

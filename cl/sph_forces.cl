@@ -50,7 +50,7 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
                          const __global float* terrain_height, const __global float* terrain_normal,
                          const int tnx, const int tny, const float tcell, const float domain_x,
                          const float domain_z, __global float* ax, __global float* ay, __global float* az,
-                         __global float* drho) {
+                         __global float* drho, __global float* neighbours) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
@@ -66,12 +66,14 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
 
   float3 acc = (float3)(0.0f, 0.0f, 0.0f);
   float drho_i = 0.0f;
+  int count = 0;
   NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end)
   const float3 xij = pi - (float3)(x[j], y[j], z[j]);
   const float r2 = dot(xij, xij);
   if (r2 < support2 && j != i) {
     const float r = sqrt(r2);
     const float f = wendland_grad_factor(r);
+    ++count;
     const float3 vij = vi - (float3)(vx[j], vy[j], vz[j]);
     const float rhoj = rho[j];
     const float vdotx = dot(vij, xij);
@@ -103,4 +105,5 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
   ay[i] = acc.y - SPH_GRAVITY;
   az[i] = acc.z;
   drho[i] = drho_i;
+  neighbours[i] = (float)count;
 }

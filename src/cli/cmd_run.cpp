@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// runnel run: rain on a terrain, SPH flow, erosion and deposition; pictures, terrain and metrics out.
+// runnel run: rain on a terrain, SPH flow, erosion and deposition; pictures, terrain and metrics
+// out.
 #include <iostream>
 
 #include "cli/commands.hpp"
@@ -19,12 +20,17 @@ void add_run_command(CLI::App& app) {
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand(
-      "run", "Run the SPH rain-erosion model: rain falls on the terrain, flows, erodes and deposits. Writes "
-             "height_initial.png, height_final.png, erosion.png, final.asc, final.npy and metrics.json into --out");
-  cmd->add_option("scenario", opt->scenario, "scenario file (TOML; see 'runnel params'); default: built-in defaults");
-  auto* terrain = cmd->add_option("--terrain", opt->terrain, "terrain file (.asc, .png, .npy) instead of the scenario's");
-  cmd->add_option("--generate", opt->generate, "generate the terrain with this generator instead")->excludes(terrain);
+  auto* cmd = app.add_subcommand("run",
+                                 "Run the SPH rain-erosion model: rain falls on the terrain, "
+                                 "flows, erodes and deposits. Writes "
+                                 "height_initial.png, height_final.png, erosion.png, final.asc, "
+                                 "final.npy and metrics.json into --out");
+  cmd->add_option("scenario", opt->scenario,
+                  "scenario file (TOML; see 'runnel params'); default: built-in defaults");
+  auto* terrain = cmd->add_option("--terrain", opt->terrain,
+                                  "terrain file (.asc, .png, .npy) instead of the scenario's");
+  cmd->add_option("--generate", opt->generate, "generate the terrain with this generator instead")
+      ->excludes(terrain);
   auto* steps = cmd->add_option("--steps", opt->steps, "number of steps (run.steps)");
   cmd->add_option("--sim-time", opt->sim_time, "simulated seconds (run.sim_time)")->excludes(steps);
   cmd->add_option("--seed", opt->seed, "random seed of the rain (run.seed)");
@@ -55,8 +61,8 @@ void add_run_command(CLI::App& app) {
     options.out_dir = opt->out;
     options.quiet = opt->quiet;
     const RunSummary s = run_simulation(compute, params, terrain, options);
-    std::cout << opt->out << "/metrics.json: " << s.steps << " steps, mass balance " << s.balance.residual
-              << " m^3 (relative " << s.balance.relative << ")\n";
+    std::cout << opt->out << "/metrics.json: " << s.steps << " steps, mass balance "
+              << s.balance.residual << " m^3 (relative " << s.balance.relative << ")\n";
   });
 }
 

@@ -2,6 +2,8 @@
 // Scenario files and --set: every key validated, errors name the key; docs agree with the table.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "runnel/core/error.hpp"
 #include "runnel/sim/parameters.hpp"
 #include "runnel/sim/scenario.hpp"
@@ -76,6 +78,12 @@ TEST(Parameters, BadScenariosNameTheKey) {
             std::string::npos);
   EXPECT_NE(error_of([&] { apply_overrides(p, {"terrain.size=1.5"}); }).find("integer"),
             std::string::npos);
+}
+
+TEST(Parameters, EveryKeyIsDeclaredOnce) {
+  std::set<std::string> keys;
+  for (auto& spec : parameter_table())
+    EXPECT_TRUE(keys.insert(spec.key).second) << spec.key << " declared twice";
 }
 
 TEST(Parameters, DefaultScenarioLoads) {

@@ -20,7 +20,9 @@ struct Rgb {
   float r, g, b;
 };
 
-Rgb mix(Rgb a, Rgb b, float t) { return {a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t}; }
+Rgb mix(Rgb a, Rgb b, float t) {
+  return {a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t};
+}
 
 // Piecewise-linear colour ramp over stops at positions in [0, 1].
 Rgb ramp(const std::vector<std::pair<float, Rgb>>& stops, float t) {
@@ -28,23 +30,30 @@ Rgb ramp(const std::vector<std::pair<float, Rgb>>& stops, float t) {
   for (std::size_t k = 1; k < stops.size(); ++k) {
     if (t <= stops[k].first) {
       const float span = stops[k].first - stops[k - 1].first;
-      return mix(stops[k - 1].second, stops[k].second, span > 0 ? (t - stops[k - 1].first) / span : 0.0f);
+      return mix(stops[k - 1].second, stops[k].second,
+                 span > 0 ? (t - stops[k - 1].first) / span : 0.0f);
     }
   }
   return stops.back().second;
 }
 
 // Terrain by height, after the usual hypsometric tints.
-const std::vector<std::pair<float, Rgb>> kTerrainRamp = {
-    {0.00f, {0.33f, 0.52f, 0.30f}}, {0.30f, {0.55f, 0.68f, 0.38f}}, {0.55f, {0.72f, 0.64f, 0.45f}},
-    {0.80f, {0.55f, 0.50f, 0.47f}}, {1.00f, {0.96f, 0.96f, 0.97f}}};
+const std::vector<std::pair<float, Rgb>> kTerrainRamp = {{0.00f, {0.33f, 0.52f, 0.30f}},
+                                                         {0.30f, {0.55f, 0.68f, 0.38f}},
+                                                         {0.55f, {0.72f, 0.64f, 0.45f}},
+                                                         {0.80f, {0.55f, 0.50f, 0.47f}},
+                                                         {1.00f, {0.96f, 0.96f, 0.97f}}};
 
 // Diverging: red (eroded) – white – blue (deposited), after ColorBrewer's RdBu.
-const std::vector<std::pair<float, Rgb>> kDivergingRamp = {
-    {0.00f, {0.70f, 0.09f, 0.17f}}, {0.25f, {0.94f, 0.54f, 0.38f}}, {0.50f, {0.97f, 0.97f, 0.97f}},
-    {0.75f, {0.40f, 0.66f, 0.81f}}, {1.00f, {0.13f, 0.40f, 0.67f}}};
+const std::vector<std::pair<float, Rgb>> kDivergingRamp = {{0.00f, {0.70f, 0.09f, 0.17f}},
+                                                           {0.25f, {0.94f, 0.54f, 0.38f}},
+                                                           {0.50f, {0.97f, 0.97f, 0.97f}},
+                                                           {0.75f, {0.40f, 0.66f, 0.81f}},
+                                                           {1.00f, {0.13f, 0.40f, 0.67f}}};
 
-std::uint8_t to_byte(float v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+std::uint8_t to_byte(float v) {
+  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
 
 const Glyph* find_glyph(char c) {
   c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -57,8 +66,10 @@ const Glyph* find_glyph(char c) {
 std::string format_metres(double v) {
   char buf[64];
   const double a = std::fabs(v);
-  if (a != 0 && (a < 0.01 || a >= 10000)) std::snprintf(buf, sizeof buf, "%+.2e m", v);
-  else std::snprintf(buf, sizeof buf, "%+.3g m", v);
+  if (a != 0 && (a < 0.01 || a >= 10000))
+    std::snprintf(buf, sizeof buf, "%+.2e m", v);
+  else
+    std::snprintf(buf, sizeof buf, "%+.3g m", v);
   return buf;
 }
 
@@ -84,7 +95,8 @@ void RgbImage::paste(const RgbImage& o, int x0, int y0) {
 std::vector<float> hillshade(const Heightmap& t, double azimuth_deg, double altitude_deg) {
   // Light direction in world axes (x east, y up, z south); azimuth clockwise from north (−z).
   const double az = azimuth_deg * M_PI / 180.0, alt = altitude_deg * M_PI / 180.0;
-  const double lx = std::sin(az) * std::cos(alt), lz = -std::cos(az) * std::cos(alt), ly = std::sin(alt);
+  const double lx = std::sin(az) * std::cos(alt), lz = -std::cos(az) * std::cos(alt),
+               ly = std::sin(alt);
   std::vector<float> shade(t.size());
   for (int j = 0; j < t.ny; ++j) {
     for (int i = 0; i < t.nx; ++i) {
@@ -145,10 +157,12 @@ RgbImage erosion_picture(const Heightmap& before, const Heightmap& after, double
   const int bar_x = 10, bar_w = w - 20, bar_y = after.ny + 6, bar_thick = 12;
   for (int x = 0; x < bar_w; ++x) {
     const Rgb c = ramp(kDivergingRamp, static_cast<float>(x) / (bar_w - 1));
-    for (int y = 0; y < bar_thick; ++y) img.set(bar_x + x, bar_y + y, to_byte(c.r), to_byte(c.g), to_byte(c.b));
+    for (int y = 0; y < bar_thick; ++y)
+      img.set(bar_x + x, bar_y + y, to_byte(c.r), to_byte(c.g), to_byte(c.b));
   }
   const int ty = bar_y + bar_thick + 4;
-  const std::string left = format_metres(-scale) + " eroded", right = "deposited " + format_metres(scale);
+  const std::string left = format_metres(-scale) + " eroded",
+                    right = "deposited " + format_metres(scale);
   draw_text(img, bar_x, ty, left, 1);
   draw_text(img, bar_x + bar_w / 2 - text_width("0", 1) / 2, ty, "0", 1);
   draw_text(img, bar_x + bar_w - text_width(right, 1), ty, right, 1);
@@ -164,10 +178,12 @@ RgbImage with_title(const RgbImage& image, const std::string& title) {
   return out;
 }
 
-int text_width(const std::string& text, int scale) { return static_cast<int>(text.size()) * 6 * scale; }
+int text_width(const std::string& text, int scale) {
+  return static_cast<int>(text.size()) * 6 * scale;
+}
 
-void draw_text(RgbImage& image, int x, int y, const std::string& text, int scale, std::uint8_t r, std::uint8_t g,
-               std::uint8_t b) {
+void draw_text(RgbImage& image, int x, int y, const std::string& text, int scale, std::uint8_t r,
+               std::uint8_t g, std::uint8_t b) {
   for (std::size_t n = 0; n < text.size(); ++n) {
     const Glyph* glyph = find_glyph(text[n]);
     if (!glyph) continue;
@@ -176,7 +192,8 @@ void draw_text(RgbImage& image, int x, int y, const std::string& text, int scale
         if (!(glyph->rows[row] & (0x10 >> col))) continue;
         for (int sy = 0; sy < scale; ++sy) {
           for (int sx = 0; sx < scale; ++sx) {
-            image.set(x + static_cast<int>(n) * 6 * scale + col * scale + sx, y + row * scale + sy, r, g, b);
+            image.set(x + static_cast<int>(n) * 6 * scale + col * scale + sx, y + row * scale + sy,
+                      r, g, b);
           }
         }
       }

@@ -2,8 +2,8 @@
 #include "runnel/sim/run.hpp"
 
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "runnel/core/error.hpp"
@@ -19,17 +19,22 @@ namespace {
 std::string status_line(Simulation& sim, double steps_per_second) {
   char buf[200];
   std::snprintf(buf, sizeof buf, "step %llu | %zu particles | t = %.3g s | %.0f steps/s",
-                static_cast<unsigned long long>(sim.steps()), sim.particles(), sim.time(), steps_per_second);
+                static_cast<unsigned long long>(sim.steps()), sim.particles(), sim.time(),
+                steps_per_second);
   return buf;
 }
 
 JsonObject parameters_json(const Parameters& params) {
   JsonObject o;
   for (auto& [key, value] : params.values()) {
-    if (auto* d = std::get_if<double>(&value)) o.add(key, *d);
-    else if (auto* i = std::get_if<std::int64_t>(&value)) o.add(key, static_cast<long long>(*i));
-    else if (auto* b = std::get_if<bool>(&value)) o.add(key, *b);
-    else o.add(key, std::get<std::string>(value));
+    if (auto* d = std::get_if<double>(&value))
+      o.add(key, *d);
+    else if (auto* i = std::get_if<std::int64_t>(&value))
+      o.add(key, static_cast<long long>(*i));
+    else if (auto* b = std::get_if<bool>(&value))
+      o.add(key, *b);
+    else
+      o.add(key, std::get<std::string>(value));
   }
   for (auto& [key, value] : params.generator_values()) o.add("terrain.set." + key, value);
   return o;
@@ -37,8 +42,8 @@ JsonObject parameters_json(const Parameters& params) {
 
 }  // namespace
 
-RunSummary run_simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain,
-                          const RunOptions& options) {
+RunSummary run_simulation(ComputeContext& compute, const Parameters& params,
+                          const Heightmap& terrain, const RunOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
@@ -48,7 +53,8 @@ RunSummary run_simulation(ComputeContext& compute, const Parameters& params, con
   const auto start = std::chrono::steady_clock::now();
   Simulation sim(compute, params, terrain);
   compute.profiler().reset();
-  compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") == nullptr);  // per-kernel times go into metrics.json
+  compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") ==
+                            nullptr);  // per-kernel times go into metrics.json
   const long long target_steps = params.integer("run.steps");
   const double target_time = params.real("run.sim_time");
   const long long report_every = params.integer("run.report_every");
@@ -59,26 +65,34 @@ RunSummary run_simulation(ComputeContext& compute, const Parameters& params, con
   (void)spawned_before;
 
   auto done = [&] {
-    return target_steps > 0 ? static_cast<long long>(sim.steps()) >= target_steps : sim.time() >= target_time;
+    return target_steps > 0 ? static_cast<long long>(sim.steps()) >= target_steps
+                            : sim.time() >= target_time;
   };
   while (!done()) {
     sim.step();
     particle_steps += static_cast<double>(sim.particles());
     const bool report = sim.steps() % report_every == 0;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double fraction = target_steps > 0 ? static_cast<double>(sim.steps()) / target_steps : sim.time() / target_time;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double fraction = target_steps > 0 ? static_cast<double>(sim.steps()) / target_steps
+                                             : sim.time() / target_time;
     std::string status = status_line(sim, sim.steps() / std::max(elapsed, 1e-9));
     if (report) {
       const MassBalance m = sim.mass_balance();
       char buf[160];
-      std::snprintf(buf, sizeof buf, " | eroded %.4g m3 | balance %.2e m3 (rel %.1e)", m.eroded, m.residual, m.relative);
+      std::snprintf(buf, sizeof buf, " | eroded %.4g m3 | balance %.2e m3 (rel %.1e)", m.eroded,
+                    m.residual, m.relative);
       status += buf;
-      reports.push_back(JsonObject().add("step", static_cast<long long>(sim.steps())).add("sim_time", sim.time()).add("balance", m.json()));
+      reports.push_back(JsonObject()
+                            .add("step", static_cast<long long>(sim.steps()))
+                            .add("sim_time", sim.time())
+                            .add("balance", m.json()));
     }
     progress.update(fraction, status, report);
   }
   compute.queue().finish();
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   JsonObject kernel_seconds;
   for (auto& [name, seconds] : compute.profiler().collect()) kernel_seconds.add(name, seconds);
   compute.profiler().enable(false);
@@ -91,11 +105,15 @@ RunSummary run_simulation(ComputeContext& compute, const Parameters& params, con
   const fs::path out(options.out_dir);
   const float lo = std::min(initial.min_height(), final_terrain.min_height());
   const float hi = std::max(initial.max_height(), final_terrain.max_height());
-  write_png_rgb((out / "height_initial.png").string(), with_title(terrain_picture(initial, lo, hi), "initial terrain"));
+  write_png_rgb((out / "height_initial.png").string(),
+                with_title(terrain_picture(initial, lo, hi), "initial terrain"));
   write_png_rgb((out / "height_final.png").string(),
-                with_title(terrain_picture(final_terrain, lo, hi), "after " + std::to_string(sim.steps()) + " steps"));
-  write_png_rgb((out / "erosion.png").string(),
-                with_title(erosion_picture(initial, final_terrain, erosion_scale(initial, final_terrain)), "erosion and deposition"));
+                with_title(terrain_picture(final_terrain, lo, hi),
+                           "after " + std::to_string(sim.steps()) + " steps"));
+  write_png_rgb(
+      (out / "erosion.png").string(),
+      with_title(erosion_picture(initial, final_terrain, erosion_scale(initial, final_terrain)),
+                 "erosion and deposition"));
   write_terrain((out / "final.asc").string(), final_terrain);
   write_terrain((out / "final.npy").string(), final_terrain);
 
@@ -142,8 +160,11 @@ RunSummary run_simulation(ComputeContext& compute, const Parameters& params, con
     std::fwrite(text.data(), 1, text.size(), f);
   });
   char buf[200];
-  std::snprintf(buf, sizeof buf, "%llu steps, t = %.3g s, eroded %.4g m3, deposited %.4g m3, mass balance %.2e m3 (rel %.1e)",
-                static_cast<unsigned long long>(s.steps), s.sim_time, m.eroded, m.deposited, m.residual, m.relative);
+  std::snprintf(
+      buf, sizeof buf,
+      "%llu steps, t = %.3g s, eroded %.4g m3, deposited %.4g m3, mass balance %.2e m3 (rel %.1e)",
+      static_cast<unsigned long long>(s.steps), s.sim_time, m.eroded, m.deposited, m.residual,
+      m.relative);
   progress.finish(buf);
   return s;
 }

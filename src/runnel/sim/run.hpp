@@ -10,8 +10,8 @@
 namespace runnel {
 
 struct RunOptions {
-  std::string out_dir;   // outputs; created if missing
-  bool quiet = false;    // no progress on stderr
+  std::string out_dir;  // outputs; created if missing
+  bool quiet = false;   // no progress on stderr
 };
 
 struct RunSummary {
@@ -25,7 +25,7 @@ struct RunSummary {
 // `runnel run`: advances a simulation for run.steps steps (or run.sim_time seconds), reporting the
 // mass balance every run.report_every steps, and writes height_initial.png, height_final.png,
 // erosion.png, final.asc, final.npy and metrics.json into the output folder.
-RunSummary run_simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain,
-                          const RunOptions& options);
+RunSummary run_simulation(ComputeContext& compute, const Parameters& params,
+                          const Heightmap& terrain, const RunOptions& options);
 
 }  // namespace runnel

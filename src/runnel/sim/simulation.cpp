@@ -34,11 +34,14 @@ JsonObject MassBalance::json() const {
 Simulation::Simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
     : compute_(compute), params_(params), initial_(terrain) {
   const double spacing = params.real("sph.spacing") > 0 ? params.real("sph.spacing") : terrain.cell;
-  const double relief = std::max(0.0, static_cast<double>(terrain.max_height() - terrain.min_height()));
-  const double spawn = params.real("rain.spawn_height") > 0 ? params.real("rain.spawn_height") : 4.0 * spacing;
+  const double relief =
+      std::max(0.0, static_cast<double>(terrain.max_height() - terrain.min_height()));
+  const double spawn =
+      params.real("rain.spawn_height") > 0 ? params.real("rain.spawn_height") : 4.0 * spacing;
   const double gravity = params.real("sph.gravity");
-  // The fastest water we expect: a fall from the spawn height, or a slide down half the relief.
-  reference_speed_ = std::sqrt(2.0 * std::max(gravity, 1e-3) * std::max(0.5 * relief, spawn));
+  // The speed the water typically reaches: a fall from the spawn height, or a slide down a quarter
+  // of the relief (faster water is rarer and tolerates the larger density error).
+  reference_speed_ = std::sqrt(2.0 * std::max(gravity, 1e-3) * std::max(0.25 * relief, spawn));
   const SphSettings sph = SphSettings::from(params, spacing, reference_speed_);
   const ErosionSettings erosion = ErosionSettings::from(params, spacing);
 
@@ -47,10 +50,13 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   initial_fixed_ = to_fixed(terrain, erosion.height_quantum);
   // The initial terrain as the run sees it: rounded to the quantum.
   for (std::size_t k = 0; k < initial_.size(); ++k) {
-    initial_.h[k] = static_cast<float>(static_cast<double>(initial_fixed_[k]) * erosion.height_quantum);
+    initial_.h[k] =
+        static_cast<float>(static_cast<double>(initial_fixed_[k]) * erosion.height_quantum);
   }
-  const RainSettings rain = RainSettings::from(params, solver_->terrain(), spacing, reference_speed_);
-  rain_ = std::make_unique<RainEmitter>(compute, rain, static_cast<std::uint64_t>(params.integer("run.seed")),
+  const RainSettings rain =
+      RainSettings::from(params, solver_->terrain(), spacing, reference_speed_);
+  rain_ = std::make_unique<RainEmitter>(compute, rain,
+                                        static_cast<std::uint64_t>(params.integer("run.seed")),
                                         static_cast<float>(sph.rho0));
   erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_);
   thermal_every_ = params.integer("thermal.every");
@@ -64,12 +70,12 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
 
 void Simulation::step() {
   SphSolver& s = *solver_;
-  rain_->emit(s, s.dt());                 // rain.emit: this step's drops at the spawn height
-  s.drift();                              // integrate.kick_drift, collide.terrain, outflow
-  erosion_->exchange(s, s.dt());          // erode.exchange and evaporation → fixed-point deltas
-  s.terrain().apply();                    // terrain.apply: deltas → heights, normals
+  rain_->emit(s, s.dt());         // rain.emit: this step's drops at the spawn height
+  s.drift();                      // integrate.kick_drift, collide.terrain, outflow
+  erosion_->exchange(s, s.dt());  // erode.exchange and evaporation → fixed-point deltas
+  s.terrain().apply();            // terrain.apply: deltas → heights, normals
   if (thermal_ && (s.steps() + 1) % thermal_every_ == 0) thermal_->relax();  // thermal.relax
-  s.complete_step();                      // hash, sph_forces, kick, next dt
+  s.complete_step();  // hash, sph_forces, kick, next dt
 }
 
 MassBalance Simulation::mass_balance() {
@@ -78,14 +84,17 @@ MassBalance Simulation::mass_balance() {
   for (std::size_t k = 0; k < fixed.size(); ++k) {
     const long long d = fixed[k] - initial_fixed_[k];
     change += d;
-    if (d < 0) eroded -= d;
-    else deposited += d;
+    if (d < 0)
+      eroded -= d;
+    else
+      deposited += d;
   }
   long long suspended = 0;
   ParticleStore& store = solver_->particles();
   if (store.size() > 0) {
     std::vector<std::int32_t> sediment(store.size());
-    compute_.queue().enqueueReadBuffer(store.buffer(kSediment), CL_TRUE, 0, sediment.size() * 4, sediment.data());
+    compute_.queue().enqueueReadBuffer(store.buffer(kSediment), CL_TRUE, 0, sediment.size() * 4,
+                                       sediment.data());
     for (auto s : sediment) suspended += s;
   }
   const SphCounters c = solver_->counters();

@@ -25,12 +25,16 @@ ErosionSettings ErosionSettings::from(const Parameters& p, double spacing) {
   e.deposit_rate = p.real("erosion.deposit_rate");
   e.min_slope_deg = p.real("erosion.min_slope");
   e.time_scale = p.real("erosion.time_scale");
-  e.contact_distance = p.real("erosion.contact_distance") * spacing;
+  // Measured from the particle's surface: a particle is a sphere of radius dx/2 around its centre.
+  e.contact_distance = (0.5 + p.real("erosion.contact_distance")) * spacing;
   e.limit_fraction = p.real("erosion.limit_fraction");
   e.acidity = p.real("erosion.acidity");
   e.capacity_contacts = p.integer("erosion.capacity_contacts");
   e.deposit_fraction = p.real("erosion.deposit_fraction");
   e.height_quantum = p.real("erosion.height_quantum");
+  e.depth_exponent = p.real("erosion.depth_exponent");
+  const double support = 2.0 * p.real("sph.h_factor");  // 2h in units of dx
+  e.layer_neighbours = M_PI * support * support - 1.0;
   return e;
 }
 
@@ -47,6 +51,8 @@ std::string ErosionSettings::build_options(double particle_volume, double volume
   o += define("EROSION_DEPOSIT_FRACTION", deposit_fraction);
   o += define("EROSION_PARTICLE_VOLUME", particle_volume);
   o += define("EROSION_VOLUME_QUANTUM", volume_quantum);
+  o += define("EROSION_DEPTH_EXPONENT", depth_exponent);
+  o += define("EROSION_LAYER_NEIGHBOURS", layer_neighbours);
   return o;
 }
 
@@ -61,17 +67,21 @@ JsonObject ErosionSettings::json() const {
       .add("contact_distance_m", contact_distance)
       .add("limit_fraction", limit_fraction)
       .add("deposit_fraction", deposit_fraction)
-      .add("height_quantum_m", height_quantum);
+      .add("height_quantum_m", height_quantum)
+      .add("depth_exponent", depth_exponent)
+      .add("layer_neighbours", layer_neighbours);
 }
 
 Erosion::Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver)
     : compute_(compute), settings_(settings) {
-  const double volume = solver.settings().spacing * solver.settings().spacing * solver.settings().spacing;
-  const std::string options =
-      settings.build_options(volume, settings.height_quantum * solver.terrain_cell() * solver.terrain_cell());
-  kernel_ = cl::Kernel(
-      compute.program({"cl/common.cl", "cl/counters.cl", "cl/grid.cl", "cl/terrain_sample.cl", "cl/erode.cl"}, options),
-      "erode_exchange");
+  const double volume =
+      solver.settings().spacing * solver.settings().spacing * solver.settings().spacing;
+  const std::string options = settings.build_options(
+      volume, settings.height_quantum * solver.terrain_cell() * solver.terrain_cell());
+  kernel_ = cl::Kernel(compute.program({"cl/common.cl", "cl/counters.cl", "cl/grid.cl",
+                                        "cl/terrain_sample.cl", "cl/erode.cl"},
+                                       options),
+                       "erode_exchange");
 }
 
 void Erosion::exchange(SphSolver& solver, double dt) {
@@ -80,7 +90,8 @@ void Erosion::exchange(SphSolver& solver, double dt) {
   if (n == 0) return;
   cl::Kernel& k = kernel_;
   cl_uint a = 0;
-  for (ParticleField f : {kX, kY, kZ, kVx, kVy, kVz, kSediment, kContacts, kAge, kLifespan, kId}) {
+  for (ParticleField f :
+       {kX, kY, kZ, kVx, kVy, kVz, kSediment, kContacts, kAge, kLifespan, kId, kNeighbours}) {
     k.setArg(a++, store.buffer(f));
   }
   k.setArg(a++, n);

@@ -17,12 +17,14 @@ struct ErosionSettings {
   double deposit_rate = 0.5;       // K_d, 1/s
   double min_slope_deg = 2;
   double time_scale = 100;
-  double contact_distance = 0.5;   // m (resolved from dx)
+  double contact_distance = 0.5;  // m (resolved from dx)
   double limit_fraction = 0.5;
-  double acidity = 0.001;          // m
+  double acidity = 0.001;  // m
   long long capacity_contacts = 10;
   double deposit_fraction = 1.0;
   double height_quantum = 1e-6;    // m
+  double depth_exponent = 1.0;     // β: capacity × (flow depth in layers)^β
+  double layer_neighbours = 17.1;  // neighbours of a particle in one flat layer
 
   static ErosionSettings from(const Parameters& p, double spacing);
   // OpenCL build options (-DEROSION_...) for cl/erode.cl.

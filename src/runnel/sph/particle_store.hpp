@@ -23,6 +23,7 @@ enum ParticleField : int {
   kPersistentFieldCount,
   kAx = kPersistentFieldCount, kAy, kAz,  // acceleration, m/s²
   kDrho,                                  // dρ/dt, kg/m³/s
+  kNeighbours,                            // neighbours within 2h (float count), for the flow depth
   kFieldCount
   // clang-format on
 };

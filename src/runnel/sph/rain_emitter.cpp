@@ -20,10 +20,11 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
     r.b = p.real("rain.rect_x1");
     r.c = p.real("rain.rect_z0");
     r.d = p.real("rain.rect_z1");
-    if (!(r.b > r.a) || !(r.d > r.c)) throw input_error("rain.rect_x1, rain.rect_z1: the rectangle is empty");
+    if (!(r.b > r.a) || !(r.d > r.c))
+      throw input_error("rain.rect_x1, rain.rect_z1: the rectangle is empty");
     if (r.a < 0 || r.c < 0 || r.b > lx || r.d > lz) {
-      throw input_error("rain.rect_*: the rectangle leaves the terrain [0, " + std::to_string(lx) + "] x [0, " +
-                        std::to_string(lz) + "] m");
+      throw input_error("rain.rect_*: the rectangle leaves the terrain [0, " + std::to_string(lx) +
+                        "] x [0, " + std::to_string(lz) + "] m");
     }
     r.area = (r.b - r.a) * (r.d - r.c);
   } else if (region == "disc") {
@@ -31,7 +32,8 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
     r.a = p.real("rain.disc_x");
     r.c = p.real("rain.disc_z");
     r.b = p.real("rain.disc_radius");
-    if (!(r.b > 0)) throw input_error("rain.disc_radius: must be positive for rain.region = \"disc\"");
+    if (!(r.b > 0))
+      throw input_error("rain.disc_radius: must be positive for rain.region = \"disc\"");
     r.area = M_PI * r.b * r.b;
   } else {
     r.area = lx * lz;
@@ -40,7 +42,8 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
   r.max_particles = p.integer("rain.max_particles");
   r.spawn_height = p.real("rain.spawn_height") > 0 ? p.real("rain.spawn_height") : 4.0 * spacing;
   r.speed = p.real("rain.speed");
-  r.lifespan = p.real("rain.lifespan") > 0 ? p.real("rain.lifespan") : std::max(lx, lz) / reference_speed;
+  r.lifespan =
+      p.real("rain.lifespan") > 0 ? p.real("rain.lifespan") : std::max(lx, lz) / reference_speed;
   r.lifespan_jitter = p.real("rain.lifespan_jitter");
   const double volume = spacing * spacing * spacing;
   if (p.real("rain.rate") > 0) {
@@ -75,7 +78,8 @@ RainEmitter::RainEmitter(ComputeContext& compute, const RainSettings& settings, 
       settings_(settings),
       seed_(seed),
       rest_density_(rest_density),
-      kernel_(compute.program({"cl/common.cl", "cl/grid.cl", "cl/terrain_sample.cl", "cl/rain.cl"}), "rain_emit") {}
+      kernel_(compute.program({"cl/common.cl", "cl/grid.cl", "cl/terrain_sample.cl", "cl/rain.cl"}),
+              "rain_emit") {}
 
 std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
   if (!settings_.enabled || settings_.rate <= 0) return 0;
@@ -83,14 +87,17 @@ std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
   const double whole = std::floor(carry_);
   carry_ -= whole;
   ParticleStore& store = solver.particles();
-  const long long room = std::max(0LL, settings_.max_particles - static_cast<long long>(store.size()));
-  const std::size_t count = static_cast<std::size_t>(std::min<double>(whole, static_cast<double>(room)));
+  const long long room =
+      std::max(0LL, settings_.max_particles - static_cast<long long>(store.size()));
+  const std::size_t count =
+      static_cast<std::size_t>(std::min<double>(whole, static_cast<double>(room)));
   if (count == 0) return 0;
   const cl_uint first_id = store.next_id();
   const std::size_t first = store.extend(count);
   cl::Kernel& k = kernel_;
   cl_uint a = 0;
-  for (ParticleField f : {kX, kY, kZ, kVx, kVy, kVz, kRho, kSediment, kAge, kLifespan, kContacts, kId}) {
+  for (ParticleField f :
+       {kX, kY, kZ, kVx, kVy, kVz, kRho, kSediment, kAge, kLifespan, kContacts, kId}) {
     k.setArg(a++, store.buffer(f));
   }
   k.setArg(a++, static_cast<cl_uint>(first));
@@ -99,7 +106,8 @@ std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
   k.setArg(a++, static_cast<cl_ulong>(spawned_));
   k.setArg(a++, first_id);
   k.setArg(a++, static_cast<cl_int>(settings_.region));
-  for (double v : {settings_.a, settings_.b, settings_.c, settings_.d, settings_.spawn_height, settings_.speed}) {
+  for (double v : {settings_.a, settings_.b, settings_.c, settings_.d, settings_.spawn_height,
+                   settings_.speed}) {
     k.setArg(a++, static_cast<float>(v));
   }
   k.setArg(a++, rest_density_);

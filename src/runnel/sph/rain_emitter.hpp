@@ -21,21 +21,24 @@ struct RainSettings {
   double spawn_height = 0;            // m
   double speed = 0;                   // m/s
   long long max_particles = 0;
-  double lifespan = 0;                // s
+  double lifespan = 0;  // s
   double lifespan_jitter = 0;
   bool enabled = true;
 
   // `reference_speed` (m/s) and the particle spacing fill the automatic values.
-  static RainSettings from(const Parameters& p, const DeviceTerrain& terrain, double spacing, double reference_speed);
+  static RainSettings from(const Parameters& p, const DeviceTerrain& terrain, double spacing,
+                           double reference_speed);
   JsonObject json() const;
 };
 
 // Host side of cl/rain.cl: spawns the particles of each step on the device. The count per step
 // carries its fraction over (deterministic double arithmetic) and respects the particle budget;
-// particle k of the run draws from counter k, so a resumed run spawns what an uninterrupted one would.
+// particle k of the run draws from counter k, so a resumed run spawns what an uninterrupted one
+// would.
 class RainEmitter {
  public:
-  RainEmitter(ComputeContext& compute, const RainSettings& settings, std::uint64_t seed, float rest_density);
+  RainEmitter(ComputeContext& compute, const RainSettings& settings, std::uint64_t seed,
+              float rest_density);
   // Spawns this step's rain into the solver. Returns the number spawned.
   std::size_t emit(SphSolver& solver, double dt);
 

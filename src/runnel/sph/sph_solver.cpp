@@ -116,7 +116,7 @@ void SphSolver::compute_rates() {
   a += 5;
   k.setArg(a++, static_cast<float>(terrain_.extent_x()));
   k.setArg(a++, static_cast<float>(terrain_.extent_z()));
-  for (ParticleField f : {kAx, kAy, kAz, kDrho}) k.setArg(a++, store_.buffer(f));
+  for (ParticleField f : {kAx, kAy, kAz, kDrho, kNeighbours}) k.setArg(a++, store_.buffer(f));
   compute_.profiler().launch(k, round_up_work(n), "sph_forces");
 }
 

@@ -8,7 +8,8 @@
 
 namespace runnel {
 
-ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain, const ThermalSettings& settings)
+ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,
+                                     const ThermalSettings& settings)
     : compute_(compute),
       terrain_(terrain),
       settings_(settings),
@@ -30,11 +31,14 @@ void ThermalRelaxation::relax() {
     h_min = *lo;
     h_range = *hi - *lo;
   }
-  set_args(outflow_kernel_, terrain_.height_fixed(), outflow_, nx, ny, talus, static_cast<float>(settings_.rate),
-           static_cast<cl_int>(settings_.height_aware), static_cast<float>(settings_.hardness), h_min, h_range);
-  compute_.profiler().launch(outflow_kernel_, round_up_work(static_cast<std::size_t>(nx) * ny), "thermal_outflow");
+  set_args(outflow_kernel_, terrain_.height_fixed(), outflow_, nx, ny, talus,
+           static_cast<float>(settings_.rate), static_cast<cl_int>(settings_.height_aware),
+           static_cast<float>(settings_.hardness), h_min, h_range);
+  compute_.profiler().launch(outflow_kernel_, round_up_work(static_cast<std::size_t>(nx) * ny),
+                             "thermal_outflow");
   set_args(gather_kernel_, terrain_.height_fixed(), outflow_, nx, ny);
-  compute_.profiler().launch(gather_kernel_, round_up_work(static_cast<std::size_t>(nx) * ny), "thermal_gather");
+  compute_.profiler().launch(gather_kernel_, round_up_work(static_cast<std::size_t>(nx) * ny),
+                             "thermal_gather");
   terrain_.apply();
 }
 

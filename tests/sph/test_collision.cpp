@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+// Terrain collision: droplets slide down the steepest descent and never end below the surface,
+// however fast they move (up to 50 m/s) and at the largest time step; same on a rough terrain.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "runnel/sph/sph_solver.hpp"
+#include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/surface.hpp"
+
+namespace runnel {
+namespace {
+
+ComputeContext& compute() {
+  static ComputeContext c("cpu");
+  return c;
+}
+
+SphSettings droplet_settings(double cfl) {
+  Parameters p;
+  p.set("sph.cfl", cfl);
+  p.set("sph.dt_max", 1.0);
+  p.set("sph.density_max", 100.0);  // droplets slam into the ground at up to Mach 1 here
+  p.set("sph.density_min", 0.01);
+  return SphSettings::from(p, 0.5, 5.0);  // dx = 0.5 m, c0 = 50 m/s
+}
+
+// Möller–Trumbore in double over every triangle: the earliest downward crossing, or −1.
+double brute_force_hit(const Heightmap& t, const double o[3], const double d[3]) {
+  double best = -1;
+  auto vertex = [&](int i, int j, double v[3]) {
+    v[0] = i * t.cell;
+    v[1] = t.at(i, j);
+    v[2] = j * t.cell;
+  };
+  auto test = [&](const double a[3], const double b[3], const double c[3]) {
+    double e1[3], e2[3], p[3], s[3], q[3];
+    for (int k = 0; k < 3; ++k) e1[k] = b[k] - a[k], e2[k] = c[k] - a[k], s[k] = o[k] - a[k];
+    p[0] = d[1] * e2[2] - d[2] * e2[1], p[1] = d[2] * e2[0] - d[0] * e2[2], p[2] = d[0] * e2[1] - d[1] * e2[0];
+    const double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+    if (!(det < 0)) return;
+    const double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+    if (u < 0 || u > 1) return;
+    q[0] = s[1] * e1[2] - s[2] * e1[1], q[1] = s[2] * e1[0] - s[0] * e1[2], q[2] = s[0] * e1[1] - s[1] * e1[0];
+    const double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
+    if (v < 0 || u + v > 1) return;
+    const double tt = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+    if (tt >= 0 && tt <= 1 && (best < 0 || tt < best)) best = tt;
+  };
+  for (int j = 0; j + 1 < t.ny; ++j) {
+    for (int i = 0; i + 1 < t.nx; ++i) {
+      double a[3], b[3], c[3], e[3];
+      vertex(i, j, a), vertex(i + 1, j, b), vertex(i + 1, j + 1, c), vertex(i, j + 1, e);
+      test(a, b, c);
+      test(a, c, e);
+    }
+  }
+  return best;
+}
+
+TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
+  // Segments up to 50 m long (50 m/s for a whole second) across a rough terrain: the tile walk
+  // must find the same first crossing as testing every triangle.
+  const Heightmap rough = generate_terrain("diamond-square", 49, 41, 0.5, 9, {{"relief", 0.4}});
+  SphSolver solver(compute(), droplet_settings(0.25), rough, 40.0);
+  cl::Kernel probe(compute().program({"cl/common.cl", "cl/collide.cl", "cl/collide_probe.cl"},
+                                     droplet_settings(0.25).build_options()),
+                   "collide_probe");
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> pos(-2.0f, 26.0f), dir(-1.0f, 1.0f), len(0.1f, 50.0f);
+  const int n = 2000;
+  std::vector<float> segments(6 * n);
+  for (int k = 0; k < n; ++k) {
+    const float x = pos(rng), z = pos(rng), y = static_cast<float>(surface_height(rough, x, z)) + 3.0f * std::fabs(dir(rng));
+    float d[3] = {dir(rng), -std::fabs(dir(rng)), dir(rng)};
+    const float l = len(rng) / std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const float seg[6] = {x, y, z, d[0] * l, d[1] * l, d[2] * l};
+    std::copy(seg, seg + 6, segments.begin() + 6 * k);
+  }
+  auto& ctx = compute().context();
+  cl::Buffer seg_buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, segments.size() * 4, segments.data());
+  cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n * 4);
+  probe.setArg(0, seg_buffer);
+  probe.setArg(1, static_cast<cl_uint>(n));
+  solver.terrain().set_args(probe, 2);
+  probe.setArg(7, result);
+  compute().queue().enqueueNDRangeKernel(probe, cl::NullRange, cl::NDRange(n));
+  std::vector<float> r(4 * n);
+  compute().queue().enqueueReadBuffer(result, CL_TRUE, 0, r.size() * 4, r.data());
+  int hits = 0;
+  for (int k = 0; k < n; ++k) {
+    const double o[3] = {segments[6 * k], segments[6 * k + 1], segments[6 * k + 2]};
+    const double d[3] = {segments[6 * k + 3], segments[6 * k + 4], segments[6 * k + 5]};
+    const double expected = brute_force_hit(rough, o, d);
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (expected < 0) {
+      EXPECT_LT(r[4 * k], 0.0f) << "segment " << k << " hit nothing in the brute-force search";
+    } else {
+      ++hits;
+      ASSERT_GE(r[4 * k], 0.0f) << "segment " << k << " tunnelled (brute force hits at t = " << expected << ")";
+      ASSERT_NEAR(r[4 * k] * length, expected * length, 2e-3) << "segment " << k;  // metres along the segment
+      ASSERT_GT(r[4 * k + 2], 0.0f);  // the normal points up
+    }
+  }
+  EXPECT_GT(hits, n / 2);
+}
+
+// Lowest clearance above the surface over all particles (m).
+double min_clearance(SphSolver& solver, const Heightmap& terrain) {
+  const HostParticles p = solver.particles().download();
+  double lowest = 1e30;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    lowest = std::min(lowest, p.f[kY][i] - surface_height(terrain, p.f[kX][i], p.f[kZ][i]));
+  }
+  return lowest;
+}
+
+TEST(Collision, DropletSlidesDownTheSteepestDescent) {
+  // A plane rising to the south-east (azimuth 30°): steepest descent points to azimuth 210°.
+  const Heightmap plane = generate_terrain("plane", 81, 81, 0.5, 1, {{"slope", 20.0}, {"azimuth", 30.0}});
+  SphSolver solver(compute(), droplet_settings(0.25), plane, 40.0);
+  HostParticles p;
+  const double x0 = 30, z0 = 30;
+  p.push(x0, surface_height(plane, x0, z0) + 0.3, z0, 0, 0, 0, 1000, 1e30f);
+  solver.add(p);
+  for (int k = 0; k < 400; ++k) {
+    solver.step();
+    ASSERT_GE(min_clearance(solver, plane), -1e-4) << "step " << k;
+  }
+  const HostParticles q = solver.particles().download();
+  ASSERT_EQ(q.size(), 1u);
+  const double dx = q.f[kX][0] - x0, dz = q.f[kZ][0] - z0;
+  ASSERT_GT(std::hypot(dx, dz), 1.0) << "the droplet did not slide";
+  const double expected = (210.0) * M_PI / 180.0;
+  EXPECT_NEAR(dx / std::hypot(dx, dz), std::cos(expected), 0.02);
+  EXPECT_NEAR(dz / std::hypot(dx, dz), std::sin(expected), 0.02);
+}
+
+TEST(Collision, FastDropletsNeverTunnelAtTheLargestTimeStep) {
+  // Rough terrain, the largest CFL factor, droplets thrown at up to 50 m/s in random directions.
+  const Heightmap rough = generate_terrain("diamond-square", 65, 65, 0.5, 3, {{"relief", 0.3}});
+  SphSolver solver(compute(), droplet_settings(0.5), rough, 40.0);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> pos(2.0f, 30.0f), dir(-1.0f, 1.0f), speed(5.0f, 50.0f);
+  HostParticles p;
+  for (int k = 0; k < 300; ++k) {
+    const float x = pos(rng), z = pos(rng);
+    float vx = dir(rng), vy = -std::fabs(dir(rng)) - 0.2f, vz = dir(rng);
+    const float s = speed(rng) / std::sqrt(vx * vx + vy * vy + vz * vz);
+    p.push(x, static_cast<float>(surface_height(rough, x, z)) + 0.2f + 2.0f * std::fabs(dir(rng)), z, vx * s,
+           vy * s, vz * s, 1000, 1e30f);
+  }
+  solver.add(p);
+  for (int k = 0; k < 300; ++k) {
+    solver.step();
+    ASSERT_GE(min_clearance(solver, rough), -1e-4) << "step " << k;
+  }
+  const SphCounters c = solver.counters();
+  EXPECT_GT(c.collisions, 0) << "fast droplets must reach the terrain (the floor force slows most first)";
+}
+
+}  // namespace
+}  // namespace runnel
