@@ -38,12 +38,14 @@ double brute_force_hit(const Heightmap& t, const double o[3], const double d[3])
   auto test = [&](const double a[3], const double b[3], const double c[3]) {
     double e1[3], e2[3], p[3], s[3], q[3];
     for (int k = 0; k < 3; ++k) e1[k] = b[k] - a[k], e2[k] = c[k] - a[k], s[k] = o[k] - a[k];
-    p[0] = d[1] * e2[2] - d[2] * e2[1], p[1] = d[2] * e2[0] - d[0] * e2[2], p[2] = d[0] * e2[1] - d[1] * e2[0];
+    p[0] = d[1] * e2[2] - d[2] * e2[1], p[1] = d[2] * e2[0] - d[0] * e2[2],
+    p[2] = d[0] * e2[1] - d[1] * e2[0];
     const double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
     if (!(det < 0)) return;
     const double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
     if (u < 0 || u > 1) return;
-    q[0] = s[1] * e1[2] - s[2] * e1[1], q[1] = s[2] * e1[0] - s[0] * e1[2], q[2] = s[0] * e1[1] - s[1] * e1[0];
+    q[0] = s[1] * e1[2] - s[2] * e1[1], q[1] = s[2] * e1[0] - s[0] * e1[2],
+    q[2] = s[0] * e1[1] - s[1] * e1[0];
     const double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
     if (v < 0 || u + v > 1) return;
     const double tt = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
@@ -73,14 +75,16 @@ TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
   const int n = 2000;
   std::vector<float> segments(6 * n);
   for (int k = 0; k < n; ++k) {
-    const float x = pos(rng), z = pos(rng), y = static_cast<float>(surface_height(rough, x, z)) + 3.0f * std::fabs(dir(rng));
+    const float x = pos(rng), z = pos(rng),
+                y = static_cast<float>(surface_height(rough, x, z)) + 3.0f * std::fabs(dir(rng));
     float d[3] = {dir(rng), -std::fabs(dir(rng)), dir(rng)};
     const float l = len(rng) / std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     const float seg[6] = {x, y, z, d[0] * l, d[1] * l, d[2] * l};
     std::copy(seg, seg + 6, segments.begin() + 6 * k);
   }
   auto& ctx = compute().context();
-  cl::Buffer seg_buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, segments.size() * 4, segments.data());
+  cl::Buffer seg_buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, segments.size() * 4,
+                        segments.data());
   cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n * 4);
   probe.setArg(0, seg_buffer);
   probe.setArg(1, static_cast<cl_uint>(n));
@@ -99,8 +103,10 @@ TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
       EXPECT_LT(r[4 * k], 0.0f) << "segment " << k << " hit nothing in the brute-force search";
     } else {
       ++hits;
-      ASSERT_GE(r[4 * k], 0.0f) << "segment " << k << " tunnelled (brute force hits at t = " << expected << ")";
-      ASSERT_NEAR(r[4 * k] * length, expected * length, 2e-3) << "segment " << k;  // metres along the segment
+      ASSERT_GE(r[4 * k], 0.0f) << "segment " << k
+                                << " tunnelled (brute force hits at t = " << expected << ")";
+      ASSERT_NEAR(r[4 * k] * length, expected * length, 2e-3)
+          << "segment " << k;         // metres along the segment
       ASSERT_GT(r[4 * k + 2], 0.0f);  // the normal points up
     }
   }
@@ -119,7 +125,8 @@ double min_clearance(SphSolver& solver, const Heightmap& terrain) {
 
 TEST(Collision, DropletSlidesDownTheSteepestDescent) {
   // A plane rising to the south-east (azimuth 30°): steepest descent points to azimuth 210°.
-  const Heightmap plane = generate_terrain("plane", 81, 81, 0.5, 1, {{"slope", 20.0}, {"azimuth", 30.0}});
+  const Heightmap plane =
+      generate_terrain("plane", 81, 81, 0.5, 1, {{"slope", 20.0}, {"azimuth", 30.0}});
   SphSolver solver(compute(), droplet_settings(0.25), plane, 40.0);
   HostParticles p;
   const double x0 = 30, z0 = 30;
@@ -149,8 +156,8 @@ TEST(Collision, FastDropletsNeverTunnelAtTheLargestTimeStep) {
     const float x = pos(rng), z = pos(rng);
     float vx = dir(rng), vy = -std::fabs(dir(rng)) - 0.2f, vz = dir(rng);
     const float s = speed(rng) / std::sqrt(vx * vx + vy * vy + vz * vz);
-    p.push(x, static_cast<float>(surface_height(rough, x, z)) + 0.2f + 2.0f * std::fabs(dir(rng)), z, vx * s,
-           vy * s, vz * s, 1000, 1e30f);
+    p.push(x, static_cast<float>(surface_height(rough, x, z)) + 0.2f + 2.0f * std::fabs(dir(rng)),
+           z, vx * s, vy * s, vz * s, 1000, 1e30f);
   }
   solver.add(p);
   for (int k = 0; k < 300; ++k) {
@@ -158,7 +165,8 @@ TEST(Collision, FastDropletsNeverTunnelAtTheLargestTimeStep) {
     ASSERT_GE(min_clearance(solver, rough), -1e-4) << "step " << k;
   }
   const SphCounters c = solver.counters();
-  EXPECT_GT(c.collisions, 0) << "fast droplets must reach the terrain (the floor force slows most first)";
+  EXPECT_GT(c.collisions, 0)
+      << "fast droplets must reach the terrain (the floor force slows most first)";
 }
 
 }  // namespace

@@ -44,14 +44,14 @@ JsonObject parameters_json(const Parameters& params) {
 
 RunSummary run_simulation(ComputeContext& compute, const Parameters& params,
                           const Heightmap& terrain, const RunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  Simulation sim(compute, params, terrain);  // validates every setting before anything is written
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (ec || !fs::is_directory(options.out_dir)) {
     throw input_error("--out " + options.out_dir + ": cannot create the output folder");
   }
-  const auto start = std::chrono::steady_clock::now();
-  Simulation sim(compute, params, terrain);
   compute.profiler().reset();
   compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") ==
                             nullptr);  // per-kernel times go into metrics.json
