@@ -104,3 +104,21 @@ __kernel void step_stats(const __global float* vx, const __global float* vy, con
   row[4] = bad;
   row[5] = drmax;
 }
+
+// After the terrain changed under the particles (deposition, talus), puts back on the surface any
+// particle now below it, so no particle ever ends a step below the terrain.
+__kernel void project_to_surface(__global float* x, __global float* y, __global float* z, __global float* vx,
+                                 __global float* vy, __global float* vz, const uint n,
+                                 const __global float* terrain_height, const __global float* terrain_normal,
+                                 const int tnx, const int tny, const float tcell, volatile __global long* counters) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, x[i], z[i]);
+  if (y[i] >= s.height + SPH_SURFACE_EPS) return;
+  y[i] = s.height + SPH_SURFACE_EPS;
+  const float3 v = contact_response((float3)(vx[i], vy[i], vz[i]), s.normal);
+  vx[i] = v.x;
+  vy[i] = v.y;
+  vz[i] = v.z;
+  atom_inc(&counters[COUNTER_PROJECTIONS]);
+}

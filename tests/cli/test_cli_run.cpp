@@ -15,17 +15,20 @@ using test::ScratchDir;
 
 TEST(CliRun, WritesPicturesTerrainAndMetrics) {
   ScratchDir dir;
-  const auto r = run_cli({"run", "--generate", "fbm", "--set", "terrain.size=65", "--set", "terrain.cell=1",
-                          "--steps", "150", "--seed", "3", "--out", dir.path("out"), "--set", "rain.rate=2000"});
+  const auto r = run_cli({"run", "--generate", "fbm", "--set", "terrain.size=65", "--set",
+                          "terrain.cell=1", "--steps", "150", "--seed", "3", "--out",
+                          dir.path("out"), "--set", "rain.rate=2000"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"height_initial.png", "height_final.png", "erosion.png", "final.asc", "final.npy", "metrics.json"}) {
+  for (const char* f : {"height_initial.png", "height_final.png", "erosion.png", "final.asc",
+                        "final.npy", "metrics.json"}) {
     EXPECT_TRUE(std::filesystem::exists(dir.path(std::string("out/") + f))) << f;
   }
   const std::string metrics = test::read_text(dir.path("out/metrics.json"));
-  for (const char* key : {"steps", "sim_time", "wall_seconds", "particle_steps_per_second", "particles_spawned",
-                          "particles_alive", "eroded_volume", "deposited_volume", "outflow_volume", "suspended_volume",
-                          "mass_balance_abs", "mass_balance_rel", "below_surface_projections", "collisions", "seed",
-                          "model", "parameters", "effective", "kernel_seconds"}) {
+  for (const char* key :
+       {"steps", "sim_time", "wall_seconds", "particle_steps_per_second", "particles_spawned",
+        "particles_alive", "eroded_volume", "deposited_volume", "outflow_volume",
+        "suspended_volume", "mass_balance_abs", "mass_balance_rel", "below_surface_projections",
+        "collisions", "seed", "model", "parameters", "effective", "kernel_seconds"}) {
     EXPECT_NE(metrics.find(std::string("\"") + key + "\""), std::string::npos) << key;
   }
   EXPECT_NE(metrics.find("\"steps\": 150"), std::string::npos);
@@ -39,8 +42,9 @@ TEST(CliRun, WritesPicturesTerrainAndMetrics) {
 TEST(CliRun, SameSeedGivesIdenticalTerrainBytes) {
   ScratchDir dir;
   for (const char* out : {"a", "b"}) {
-    const auto r = run_cli({"run", "--generate", "cone", "--set", "terrain.size=49", "--steps", "200", "--seed", "9",
-                            "--out", dir.path(out), "--quiet", "--set", "rain.rate=3000"});
+    const auto r =
+        run_cli({"run", "--generate", "cone", "--set", "terrain.size=49", "--steps", "200",
+                 "--seed", "9", "--out", dir.path(out), "--quiet", "--set", "rain.rate=3000"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   EXPECT_EQ(test::read_text(dir.path("a/final.npy")), test::read_text(dir.path("b/final.npy")));
@@ -77,11 +81,13 @@ TEST(CliRun, BadValuesExitWithTwoNamingTheKey) {
 
 TEST(CliRun, RealDemWithItsOwnCellSizeRunsUnchanged) {
   ScratchDir dir;
-  const auto r = run_cli({"run", "--terrain", test::source_dir() + "/data/terrains/jacksboro_fault_dem.asc", "--steps",
-                          "40", "--out", dir.path("dem"), "--quiet"});
+  const auto r =
+      run_cli({"run", "--terrain", test::source_dir() + "/data/terrains/jacksboro_fault_dem.asc",
+               "--steps", "40", "--out", dir.path("dem"), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string metrics = test::read_text(dir.path("dem/metrics.json"));
-  EXPECT_NE(metrics.find("\"spacing_m\": 83"), std::string::npos) << "the particle spacing follows the DEM's 83 m cells";
+  EXPECT_NE(metrics.find("\"spacing_m\": 83"), std::string::npos)
+      << "the particle spacing follows the DEM's 83 m cells";
   EXPECT_NE(metrics.find("\"mass_balance_abs\": 0"), std::string::npos);
 }
 

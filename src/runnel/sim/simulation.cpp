@@ -37,7 +37,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   const double relief =
       std::max(0.0, static_cast<double>(terrain.max_height() - terrain.min_height()));
   const double spawn =
-      params.real("rain.spawn_height") > 0 ? params.real("rain.spawn_height") : 4.0 * spacing;
+      params.real("rain.spawn_height") > 0 ? params.real("rain.spawn_height") : spacing;
   const double gravity = params.real("sph.gravity");
   // The speed the water typically reaches: a fall from the spawn height, or a slide down a quarter
   // of the relief (faster water is rarer and tolerates the larger density error).
@@ -75,7 +75,8 @@ void Simulation::step() {
   erosion_->exchange(s, s.dt());  // erode.exchange and evaporation → fixed-point deltas
   s.terrain().apply();            // terrain.apply: deltas → heights, normals
   if (thermal_ && (s.steps() + 1) % thermal_every_ == 0) thermal_->relax();  // thermal.relax
-  s.complete_step();  // hash, sph_forces, kick, next dt
+  s.project_to_surface();  // no particle stays below a terrain that rose
+  s.complete_step();       // hash, sph_forces, kick, next dt
 }
 
 MassBalance Simulation::mass_balance() {

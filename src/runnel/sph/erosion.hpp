@@ -12,11 +12,11 @@ namespace runnel {
 // The erosion of one run, resolved from the erosion.* parameters.
 struct ErosionSettings {
   std::string model = "capacity";  // or "acidity"
-  double capacity = 0.05;          // K_c, s/m
-  double erode_rate = 0.5;         // K_s, 1/s
-  double deposit_rate = 0.5;       // K_d, 1/s
+  double capacity = 0.2;           // K_c, s/m
+  double erode_rate = 0.005;       // K_s, 1/s
+  double deposit_rate = 0.005;     // K_d, 1/s
   double min_slope_deg = 2;
-  double time_scale = 100;
+  double time_scale = 5000;
   double contact_distance = 0.5;  // m (resolved from dx)
   double limit_fraction = 0.5;
   double acidity = 0.001;  // m

@@ -40,7 +40,7 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
   }
   r.enabled = p.boolean("rain.enabled");
   r.max_particles = p.integer("rain.max_particles");
-  r.spawn_height = p.real("rain.spawn_height") > 0 ? p.real("rain.spawn_height") : 4.0 * spacing;
+  r.spawn_height = p.real("rain.spawn_height") > 0 ? p.real("rain.spawn_height") : spacing;
   r.speed = p.real("rain.speed");
   r.lifespan =
       p.real("rain.lifespan") > 0 ? p.real("rain.lifespan") : std::max(lx, lz) / reference_speed;

@@ -40,6 +40,7 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   kick_drift_ = cl::Kernel(program, "kick_drift");
   kick_ = cl::Kernel(program, "kick");
   stats_ = cl::Kernel(program, "step_stats");
+  project_ = cl::Kernel(program, "project_to_surface");
   stats_buffer_ =
       cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
   counters_buffer_ =
@@ -100,6 +101,16 @@ void SphSolver::kick_drift() {
 
 void SphSolver::build_hash() {
   hash_.build(store_);
+}
+
+void SphSolver::project_to_surface() {
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  cl_uint a = 0;
+  for (ParticleField f : {kX, kY, kZ, kVx, kVy, kVz}) project_.setArg(a++, store_.buffer(f));
+  project_.setArg(a++, n);
+  terrain_.set_args(project_, a);
+  project_.setArg(a + 5, counters_buffer_);
+  compute_.profiler().launch(project_, round_up_work(n), "project_to_surface");
 }
 
 void SphSolver::compute_rates() {

@@ -59,6 +59,8 @@ class SphSolver {
   // the rates, kicks again, advances the clock and chooses the next dt.
   void drift();
   void complete_step();
+  // Puts particles the terrain rose under back on its surface (after erosion and talus).
+  void project_to_surface();
   // Computes the rates and the next time step for the current state without advancing.
   void prepare();
 
@@ -83,7 +85,7 @@ class SphSolver {
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  cl::Kernel forces_, kick_drift_, kick_, stats_;
+  cl::Kernel forces_, kick_drift_, kick_, stats_, project_;
   cl::Buffer stats_buffer_, counters_buffer_;
   bool rates_ready_ = false;
   double time_ = 0.0;

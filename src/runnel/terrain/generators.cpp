@@ -28,6 +28,15 @@ void normalise(Heightmap& t, double relief_m) {
   for (float& v : t.h) v = static_cast<float>((v - lo) * scale);
 }
 
+// Tilts a terrain so it falls towards the east (+x) at `degrees`: water then drains off that edge.
+void add_tilt(Heightmap& t, double degrees) {
+  if (degrees == 0.0) return;
+  const double slope = std::tan(degrees * kDeg), width = (t.nx - 1) * t.cell;
+  for (int j = 0; j < t.ny; ++j) {
+    for (int i = 0; i < t.nx; ++i) t.at(i, j) += static_cast<float>(slope * (width - i * t.cell));
+  }
+}
+
 // Fills every vertex from f(x, z) with x, z in metres.
 template <typename F>
 Heightmap from_function(const GeneratorRequest& r, F f) {
@@ -157,6 +166,7 @@ Heightmap fbm(const GeneratorRequest& r) {
     return sum;
   });
   normalise(t, r.values.at("relief") * extent(r));
+  add_tilt(t, r.values.at("tilt"));
   return t;
 }
 
@@ -266,7 +276,13 @@ const std::vector<GeneratorSpec>& generators() {
        fault},
       {"fbm",
        "fractional Brownian motion from gradient noise",
-       {kRelief, kHurst, kLacunarity, kOctaves, kFrequency},
+       {kRelief,
+        kHurst,
+        kLacunarity,
+        kOctaves,
+        kFrequency,
+        {"tilt", 0.0, "deg", "overall slope falling east (+x), so water drains off the east edge",
+         -60.0, 60.0}},
        fbm},
       {"ridged",
        "ridged multifractal (Musgrave 1994)",
