@@ -12,6 +12,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/font5x7.hpp"
+#include "runnel/terrain/terrain_normals.hpp"
 
 namespace runnel {
 namespace {
@@ -97,17 +98,11 @@ std::vector<float> hillshade(const Heightmap& t, double azimuth_deg, double alti
   const double az = azimuth_deg * M_PI / 180.0, alt = altitude_deg * M_PI / 180.0;
   const double lx = std::sin(az) * std::cos(alt), lz = -std::cos(az) * std::cos(alt),
                ly = std::sin(alt);
+  const std::vector<float> normal = terrain_normals_reference(t);
   std::vector<float> shade(t.size());
-  for (int j = 0; j < t.ny; ++j) {
-    for (int i = 0; i < t.nx; ++i) {
-      const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, t.nx - 1);
-      const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, t.ny - 1);
-      const double dhdx = (double(t.at(i1, j)) - t.at(i0, j)) / ((i1 - i0) * t.cell);
-      const double dhdz = (double(t.at(i, j1)) - t.at(i, j0)) / ((j1 - j0) * t.cell);
-      const double norm = std::sqrt(dhdx * dhdx + 1.0 + dhdz * dhdz);
-      const double lambert = (-dhdx * lx + ly - dhdz * lz) / norm;
-      shade[static_cast<std::size_t>(j) * t.nx + i] = static_cast<float>(std::max(0.0, lambert));
-    }
+  for (std::size_t k = 0; k < shade.size(); ++k) {
+    const double lambert = normal[3 * k] * lx + normal[3 * k + 1] * ly + normal[3 * k + 2] * lz;
+    shade[k] = static_cast<float>(std::max(0.0, lambert));
   }
   return shade;
 }

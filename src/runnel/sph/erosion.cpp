@@ -4,19 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 
 namespace runnel {
-namespace {
-
-std::string define(const char* name, double value) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, " -D%s=((float)(%.17g))", name, value);
-  return buf;
-}
-
-}  // namespace
-
 ErosionSettings ErosionSettings::from(const Parameters& p, double spacing) {
   ErosionSettings e;
   e.model = p.text("erosion.model");
@@ -40,19 +31,19 @@ ErosionSettings ErosionSettings::from(const Parameters& p, double spacing) {
 
 std::string ErosionSettings::build_options(double particle_volume, double volume_quantum) const {
   std::string o = std::string(" -DEROSION_MODEL=") + (model == "acidity" ? "1" : "0");
-  o += define("EROSION_CAPACITY", capacity);
-  o += define("EROSION_ERODE_RATE", erode_rate);
-  o += define("EROSION_DEPOSIT_RATE", deposit_rate);
-  o += define("EROSION_SIN_MIN_SLOPE", std::sin(min_slope_deg * M_PI / 180.0));
-  o += define("EROSION_CONTACT_DISTANCE", contact_distance);
-  o += define("EROSION_LIMIT_FRACTION", limit_fraction);
-  o += define("EROSION_ACIDITY", acidity);
+  o += float_define("EROSION_CAPACITY", capacity);
+  o += float_define("EROSION_ERODE_RATE", erode_rate);
+  o += float_define("EROSION_DEPOSIT_RATE", deposit_rate);
+  o += float_define("EROSION_SIN_MIN_SLOPE", std::sin(min_slope_deg * M_PI / 180.0));
+  o += float_define("EROSION_CONTACT_DISTANCE", contact_distance);
+  o += float_define("EROSION_LIMIT_FRACTION", limit_fraction);
+  o += float_define("EROSION_ACIDITY", acidity);
   o += " -DEROSION_CAPACITY_CONTACTS=" + std::to_string(capacity_contacts) + "u";
-  o += define("EROSION_DEPOSIT_FRACTION", deposit_fraction);
-  o += define("EROSION_PARTICLE_VOLUME", particle_volume);
-  o += define("EROSION_VOLUME_QUANTUM", volume_quantum);
-  o += define("EROSION_DEPTH_EXPONENT", depth_exponent);
-  o += define("EROSION_LAYER_NEIGHBOURS", layer_neighbours);
+  o += float_define("EROSION_DEPOSIT_FRACTION", deposit_fraction);
+  o += float_define("EROSION_PARTICLE_VOLUME", particle_volume);
+  o += float_define("EROSION_VOLUME_QUANTUM", volume_quantum);
+  o += float_define("EROSION_DEPTH_EXPONENT", depth_exponent);
+  o += float_define("EROSION_LAYER_NEIGHBOURS", layer_neighbours);
   return o;
 }
 

@@ -3,19 +3,10 @@
 
 #include <cstdio>
 
+#include "runnel/compute/build_options.hpp"
 #include "runnel/core/error.hpp"
 
 namespace runnel {
-namespace {
-
-// A float constant for the kernel compiler: the double cast to float there, as on the host.
-std::string define(const char* name, double value) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, " -D%s=((float)(%.17g))", name, value);
-  return buf;
-}
-
-}  // namespace
 
 SphSettings SphSettings::from(const Parameters& p, double default_spacing, double reference_speed) {
   SphSettings s;
@@ -45,17 +36,17 @@ SphSettings SphSettings::from(const Parameters& p, double default_spacing, doubl
 
 std::string SphSettings::build_options() const {
   std::string o;
-  o += define("SPH_H", h);
-  o += define("SPH_MASS", mass());
-  o += define("SPH_RHO0", rho0);
-  o += define("SPH_C0", c0);
-  o += define("SPH_B", tait_b());
-  o += define("SPH_ALPHA_VISC", alpha_visc);
-  o += define("SPH_DELTA", delta);
-  o += define("SPH_GRAVITY", gravity);
-  o += define("SPH_RESTITUTION", restitution);
-  o += define("SPH_FRICTION", friction);
-  o += define("SPH_SURFACE_EPS", surface_eps);
+  o += float_define("SPH_H", h);
+  o += float_define("SPH_MASS", mass());
+  o += float_define("SPH_RHO0", rho0);
+  o += float_define("SPH_C0", c0);
+  o += float_define("SPH_B", tait_b());
+  o += float_define("SPH_ALPHA_VISC", alpha_visc);
+  o += float_define("SPH_DELTA", delta);
+  o += float_define("SPH_GRAVITY", gravity);
+  o += float_define("SPH_RESTITUTION", restitution);
+  o += float_define("SPH_FRICTION", friction);
+  o += float_define("SPH_SURFACE_EPS", surface_eps);
   o += std::string(" -DSPH_CLAMP_NEGATIVE_PRESSURE=") + (clamp_negative_pressure ? "1" : "0");
   o += std::string(" -DSPH_WALLS=") + (walls ? "1" : "0");
   return o;
