@@ -1,12 +1,63 @@
 // SPDX-License-Identifier: MIT
 // runnel info: a summary of a terrain file.
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "runnel/io/checkpoint.hpp"
 #include "runnel/io/json.hpp"
 
 namespace runnel::cli {
+namespace {
+
+void print_checkpoint_info(const std::string& file, bool json) {
+  const CheckpointData d = read_checkpoint(file);
+  double suspended = 0;
+  for (auto s : d.particles.sediment) suspended += s;
+  suspended *= d.height_quantum * d.terrain.cell * d.terrain.cell;
+  double eroded = 0, deposited = 0;
+  for (std::size_t k = 0; k < d.height_fixed.size(); ++k) {
+    const double change = static_cast<double>(d.height_fixed[k] - d.initial_fixed[k]);
+    (change < 0 ? eroded : deposited) += std::fabs(change);
+  }
+  const double q = d.height_quantum * d.terrain.cell * d.terrain.cell;
+  if (json) {
+    std::cout << JsonObject()
+                     .add("file", file)
+                     .add("schema_version", static_cast<long long>(kCheckpointSchemaVersion))
+                     .add("model", d.model)
+                     .add("runnel_version", d.runnel_version)
+                     .add("source_revision", d.source_revision)
+                     .add("nx", d.terrain.nx)
+                     .add("ny", d.terrain.ny)
+                     .add("cell", d.terrain.cell)
+                     .add("steps", static_cast<long long>(d.steps))
+                     .add("sim_time", d.time)
+                     .add("dt", d.dt)
+                     .add("particles", static_cast<long long>(d.particles.size()))
+                     .add("seed", static_cast<long long>(d.seed))
+                     .add("eroded_volume", eroded * q)
+                     .add("deposited_volume", deposited * q)
+                     .add("suspended_volume", suspended)
+                     .str()
+              << "\n";
+    return;
+  }
+  std::printf("%s: runnel checkpoint (schema %lld, %s model, runnel %s, revision %s)\n",
+              file.c_str(), static_cast<long long>(kCheckpointSchemaVersion), d.model.c_str(),
+              d.runnel_version.c_str(), d.source_revision.c_str());
+  std::printf("  terrain %d x %d vertices, cell %g m, heights %.3f .. %.3f m\n", d.terrain.nx,
+              d.terrain.ny, d.terrain.cell, d.terrain.min_height(), d.terrain.max_height());
+  std::printf("  step %llu, t = %.6g s, dt = %.3g s, %zu particles, seed %lld\n",
+              static_cast<unsigned long long>(d.steps), d.time, d.dt, d.particles.size(),
+              static_cast<long long>(d.seed));
+  std::printf("  eroded %.6g m^3, deposited %.6g m^3, suspended %.6g m^3\n", eroded * q,
+              deposited * q, suspended);
+}
+
+}  // namespace
 
 void add_info_command(CLI::App& app) {
   struct Options {
@@ -14,10 +65,15 @@ void add_info_command(CLI::App& app) {
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("info", "Summarise a terrain file (.asc, .png, .npy)");
+  auto* cmd = app.add_subcommand(
+      "info", "Summarise a terrain file (.asc, .png, .npy) or a checkpoint (.h5)");
   cmd->add_option("file", opt->file, "file to describe")->required();
   cmd->add_flag("--json", opt->json, "print JSON");
   cmd->callback([opt] {
+    if (std::filesystem::path(opt->file).extension() == ".h5") {
+      print_checkpoint_info(opt->file, opt->json);
+      return;
+    }
     const Heightmap t = read_terrain(opt->file);
     if (opt->json) {
       std::cout << JsonObject()

@@ -18,6 +18,7 @@ void add_run_command(CLI::App& app) {
     long long seed = -1;
     std::vector<std::string> sets;
     bool quiet = false;
+    OutputFlags output;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("run",
@@ -38,6 +39,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
+  add_output_flags(*cmd, opt->output);
   cmd->callback([opt] {
     Parameters params = opt->scenario.empty() ? Parameters() : load_scenario(opt->scenario);
     if (!opt->terrain.empty()) params.set("terrain.file", opt->terrain, "--terrain");
@@ -57,10 +59,12 @@ void add_run_command(CLI::App& app) {
     }
     const Heightmap terrain = load_terrain(params);
     ComputeContext compute(opt->device);
-    RunOptions options;
+    RunOptions options = run_options_from(params);
     options.out_dir = opt->out;
     options.quiet = opt->quiet;
-    const RunSummary s = run_simulation(compute, params, terrain, options);
+    opt->output.apply(options);
+    Simulation sim(compute, params, terrain);  // validates every setting before anything is written
+    const RunSummary s = run_simulation(compute, sim, options);
     std::cout << opt->out << "/metrics.json: " << s.steps << " steps, mass balance "
               << s.balance.residual << " m^3 (relative " << s.balance.relative << ")\n";
   });

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "runnel/sim/run.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel::cli {
@@ -17,6 +18,17 @@ void add_params_command(CLI::App& app);
 void add_validate_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_run_command(CLI::App& app);
+void add_resume_command(CLI::App& app);
+void add_export_command(CLI::App& app);
+
+// Flags shared by `run` and `resume`: checkpoints and the heightmap series.
+struct OutputFlags {
+  long long checkpoint_every = 0;
+  int keep_checkpoints = 3;
+  long long series_every = 0;
+  void apply(RunOptions& options) const;
+};
+void add_output_flags(CLI::App& cmd, OutputFlags& flags);
 
 // "MIN:MAX" → a height range; throws an input error naming `flag`.
 HeightRange parse_range(const std::string& text, const std::string& flag);

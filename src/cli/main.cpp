@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
                        std::string("runnel ") + runnel::kVersion + " (" + runnel::kRevision + ")");
   app.require_subcommand(1);
   runnel::cli::add_run_command(app);
+  runnel::cli::add_resume_command(app);
+  runnel::cli::add_export_command(app);
   runnel::cli::add_devices_command(app);
   runnel::cli::add_generate_command(app);
   runnel::cli::add_convert_command(app);

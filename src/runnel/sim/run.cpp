@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/sim/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/io/checkpoint.hpp"
+#include "runnel/io/hdf5_file.hpp"
 #include "runnel/io/images.hpp"
 #include "runnel/io/progress.hpp"
 #include "runnel/terrain/terrain_io.hpp"
@@ -42,41 +46,73 @@ JsonObject parameters_json(const Parameters& params) {
 
 }  // namespace
 
-RunSummary run_simulation(ComputeContext& compute, const Parameters& params,
-                          const Heightmap& terrain, const RunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  Simulation sim(compute, params, terrain);  // validates every setting before anything is written
+RunOptions run_options_from(const Parameters& params) {
+  RunOptions o;
+  o.until_step = static_cast<std::uint64_t>(params.integer("run.steps"));
+  o.until_time = params.real("run.sim_time");
+  o.report_every = params.integer("run.report_every");
+  return o;
+}
+
+namespace {
+
+// Writes DIR/checkpoints/step_XXXXXXXX.h5 and removes all but the newest `keep`.
+void write_rolling_checkpoint(Simulation& sim, const std::filesystem::path& out, int keep) {
+  namespace fs = std::filesystem;
+  const fs::path dir = out / "checkpoints";
+  fs::create_directories(dir);
+  char name[64];
+  std::snprintf(name, sizeof name, "step_%08llu.h5", static_cast<unsigned long long>(sim.steps()));
+  write_checkpoint((dir / name).string(), sim.checkpoint());
+  std::vector<fs::path> existing;
+  for (auto& e : fs::directory_iterator(dir)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind("step_", 0) == 0 && e.path().extension() == ".h5") existing.push_back(e.path());
+  }
+  std::sort(existing.begin(), existing.end());
+  for (std::size_t k = 0; k + static_cast<std::size_t>(keep) < existing.size(); ++k)
+    fs::remove(existing[k]);
+}
+
+}  // namespace
+
+RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (ec || !fs::is_directory(options.out_dir)) {
     throw input_error("--out " + options.out_dir + ": cannot create the output folder");
   }
+  const fs::path out(options.out_dir);
+  const auto start = std::chrono::steady_clock::now();
   compute.profiler().reset();
   compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") ==
-                            nullptr);  // per-kernel times go into metrics.json
-  const long long target_steps = params.integer("run.steps");
-  const double target_time = params.real("run.sim_time");
-  const long long report_every = params.integer("run.report_every");
+                            nullptr);  // per-kernel times in metrics.json
   Progress progress(Progress::mode_for_stderr(options.quiet));
   std::vector<JsonObject> reports;
   double particle_steps = 0;
-  long long spawned_before = 0;
-  (void)spawned_before;
-
+  const std::uint64_t first_step = sim.steps();
+  const double first_time = sim.time();
+  std::unique_ptr<H5File> series;
+  if (options.series_every > 0) {
+    series = std::make_unique<H5File>(H5File::create((out / "series.h5").string()));
+    series->attribute("/", "series_every_steps", static_cast<std::int64_t>(options.series_every));
+  }
   auto done = [&] {
-    return target_steps > 0 ? static_cast<long long>(sim.steps()) >= target_steps
-                            : sim.time() >= target_time;
+    return options.until_step > 0 ? sim.steps() >= options.until_step
+                                  : sim.time() >= options.until_time;
   };
   while (!done()) {
     sim.step();
     particle_steps += static_cast<double>(sim.particles());
-    const bool report = sim.steps() % report_every == 0;
+    const bool report = sim.steps() % options.report_every == 0;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double fraction = target_steps > 0 ? static_cast<double>(sim.steps()) / target_steps
-                                             : sim.time() / target_time;
-    std::string status = status_line(sim, sim.steps() / std::max(elapsed, 1e-9));
+    const double fraction =
+        options.until_step > 0
+            ? static_cast<double>(sim.steps() - first_step) / (options.until_step - first_step)
+            : (sim.time() - first_time) / (options.until_time - first_time);
+    std::string status = status_line(sim, (sim.steps() - first_step) / std::max(elapsed, 1e-9));
     if (report) {
       const MassBalance m = sim.mass_balance();
       char buf[160];
@@ -88,21 +124,30 @@ RunSummary run_simulation(ComputeContext& compute, const Parameters& params,
                             .add("sim_time", sim.time())
                             .add("balance", m.json()));
     }
+    if (options.checkpoint_every > 0 && sim.steps() % options.checkpoint_every == 0) {
+      write_rolling_checkpoint(sim, out, options.keep_checkpoints);
+    }
+    if (series && sim.steps() % options.series_every == 0) {
+      const Heightmap t = sim.terrain();
+      series->append_frame("/height", t.h, t.ny, t.nx);
+    }
     progress.update(fraction, status, report);
   }
+  series.reset();
   compute.queue().finish();
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   JsonObject kernel_seconds;
   for (auto& [name, seconds] : compute.profiler().collect()) kernel_seconds.add(name, seconds);
   compute.profiler().enable(false);
+  const Parameters& params = sim.parameters();
+  write_checkpoint((out / "final.h5").string(), sim.checkpoint());
 
   // Outputs.
   const Heightmap& initial = sim.initial_terrain();
   const Heightmap final_terrain = sim.terrain();
   const MassBalance m = sim.mass_balance();
   const SphCounters c = sim.counters();
-  const fs::path out(options.out_dir);
   const float lo = std::min(initial.min_height(), final_terrain.min_height());
   const float hi = std::max(initial.max_height(), final_terrain.max_height());
   write_png_rgb((out / "height_initial.png").string(),
@@ -131,6 +176,7 @@ RunSummary run_simulation(ComputeContext& compute, const Parameters& params,
       .add("sim_time", sim.time())
       .add("wall_seconds", wall)
       .add("particle_steps_per_second", particle_steps / std::max(wall, 1e-9))
+      .add("resumed_from_step", static_cast<long long>(first_step))
       .add("particles_spawned", static_cast<long long>(sim.rain().spawned()))
       .add("particles_alive", static_cast<long long>(sim.particles()))
       .add("particles_evaporated", c.evaporated_particles)

@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/version.hpp"
+#include "runnel/sim/scenario.hpp"
 
 namespace runnel {
 namespace {
@@ -111,6 +113,67 @@ MassBalance Simulation::mass_balance() {
   m.deposited = deposited * q;
   m.relative = eroded > 0 ? std::fabs(static_cast<double>(m.residual_quanta)) / eroded : 0.0;
   return m;
+}
+
+CheckpointData Simulation::checkpoint() {
+  CheckpointData d;
+  d.runnel_version = kVersion;
+  d.source_revision = kRevision;
+  d.parameters_toml = parameters_toml(params_);
+  d.terrain = terrain();
+  d.height_quantum = solver_->terrain().quantum();
+  d.height_fixed = solver_->terrain().download_fixed();
+  d.initial_fixed = initial_fixed_;
+  ParticleStore& store = solver_->particles();
+  d.particles = store.download();
+  d.ax = store.read_field(kAx);
+  d.ay = store.read_field(kAy);
+  d.az = store.read_field(kAz);
+  d.drho = store.read_field(kDrho);
+  d.neighbours = store.read_field(kNeighbours);
+  d.next_id = store.next_id();
+  d.time = solver_->time();
+  d.dt = solver_->dt();
+  d.steps = solver_->steps();
+  d.rain_spawned = rain_->spawned();
+  d.rain_carry = rain_->carry();
+  d.seed = params_.integer("run.seed");
+  d.counters = solver_->counters();
+  return d;
+}
+
+void Simulation::restore(const CheckpointData& d) {
+  if (d.terrain.nx != initial_.nx || d.terrain.ny != initial_.ny) {
+    throw input_error("checkpoint: terrain size does not match the simulation");
+  }
+  initial_fixed_ = d.initial_fixed;
+  for (std::size_t k = 0; k < initial_.size(); ++k) {
+    initial_.h[k] = static_cast<float>(static_cast<double>(initial_fixed_[k]) * d.height_quantum);
+  }
+  solver_->terrain().upload_fixed(d.height_fixed);
+  ParticleStore& store = solver_->particles();
+  store.upload(d.particles);
+  store.upload_field(kAx, d.ax);
+  store.upload_field(kAy, d.ay);
+  store.upload_field(kAz, d.az);
+  store.upload_field(kDrho, d.drho);
+  store.upload_field(kNeighbours, d.neighbours);
+  store.set_next_id(d.next_id);
+  solver_->restore_clock(d.time, d.dt, d.steps);
+  solver_->restore_counters(d.counters);
+  rain_->restore(d.rain_spawned, d.rain_carry);
+}
+
+std::unique_ptr<Simulation> Simulation::from_checkpoint(ComputeContext& compute,
+                                                        const CheckpointData& d) {
+  const Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
+  Heightmap initial = d.terrain;
+  for (std::size_t k = 0; k < initial.size(); ++k) {
+    initial.h[k] = static_cast<float>(static_cast<double>(d.initial_fixed[k]) * d.height_quantum);
+  }
+  auto sim = std::make_unique<Simulation>(compute, params, initial);
+  sim->restore(d);
+  return sim;
 }
 
 Heightmap Simulation::terrain() {

@@ -6,6 +6,7 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
+#include "runnel/io/checkpoint.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sim/parameters.hpp"
 #include "runnel/sph/erosion.hpp"
@@ -49,6 +50,13 @@ class Simulation {
   const Parameters& parameters() const { return params_; }
   // The values the run actually uses, automatic ones resolved.
   JsonObject effective_settings() const;
+
+  // The whole state for an exact restart, and back. restore() expects a Simulation built from the
+  // checkpoint's parameters and terrain (Simulation::from_checkpoint does both).
+  CheckpointData checkpoint();
+  void restore(const CheckpointData& data);
+  static std::unique_ptr<Simulation> from_checkpoint(ComputeContext& compute,
+                                                     const CheckpointData& data);
 
   SphSolver& solver() { return *solver_; }
   RainEmitter& rain() { return *rain_; }

@@ -61,11 +61,13 @@ const void* HostParticles::data(ParticleField field) const {
 
 void HostParticles::push(float x, float y, float z, float vx, float vy, float vz, float rho,
                          float lifespan) {
-  const float values[kPersistentFieldCount] = {x,   y,    z,    vx,       vy,  vz,
-                                               rho, 0.0f, 0.0f, lifespan, 0.0f};
+  const float values[kPersistentFieldCount] = {x,   y,    z,    vx,       vy,   vz,
+                                               rho, 0.0f, 0.0f, lifespan, 0.0f, 0.0f};
   for (int k = 0; k < kPersistentFieldCount; ++k) {
-    if (k != kId) f[k].push_back(values[k]);
+    if (is_float_field(k)) f[k].push_back(values[k]);
   }
+  sediment.push_back(0);
+  contacts.push_back(0);
   id.push_back(0);
 }
 
@@ -114,9 +116,8 @@ std::uint32_t ParticleStore::append(HostParticles p) {
   grow_to(size_ + k);
   auto& q = compute_.queue();
   for (int f = 0; f < kPersistentFieldCount; ++f) {
-    const void* src =
-        f == kId ? static_cast<const void*>(p.id.data()) : static_cast<const void*>(p.f[f].data());
-    q.enqueueWriteBuffer(current_[f], CL_TRUE, size_ * 4, k * 4, src);
+    q.enqueueWriteBuffer(current_[f], CL_TRUE, size_ * 4, k * 4,
+                         p.data(static_cast<ParticleField>(f)));
   }
   // Rates start at zero until the first force evaluation.
   const float zero = 0.0f;
@@ -158,14 +159,19 @@ std::vector<float> ParticleStore::read_field(ParticleField f) {
   return out;
 }
 
+void ParticleStore::upload_field(ParticleField f, const std::vector<float>& values) {
+  if (values.size() != size_) throw runtime_error("upload_field: size mismatch");
+  if (size_ > 0)
+    compute_.queue().enqueueWriteBuffer(current_[f], CL_TRUE, 0, size_ * 4, values.data());
+}
+
 void ParticleStore::upload(const HostParticles& p) {
   size_ = 0;
   grow_to(p.size());
   auto& q = compute_.queue();
   for (int f = 0; f < kPersistentFieldCount && p.size() > 0; ++f) {
-    const void* src =
-        f == kId ? static_cast<const void*>(p.id.data()) : static_cast<const void*>(p.f[f].data());
-    q.enqueueWriteBuffer(current_[f], CL_TRUE, 0, p.size() * 4, src);
+    q.enqueueWriteBuffer(current_[f], CL_TRUE, 0, p.size() * 4,
+                         p.data(static_cast<ParticleField>(f)));
   }
   size_ = p.size();
 }

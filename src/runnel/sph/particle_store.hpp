@@ -83,6 +83,8 @@ class ParticleStore {
   // Downloads one field of the live particles as floats (ids as their float value is not useful:
   // use download()).
   std::vector<float> read_field(ParticleField f);
+  // Writes one float field of the live particles (checkpoint restore of the rates).
+  void upload_field(ParticleField f, const std::vector<float>& values);
   // Replaces the whole state (checkpoint restore); ids are kept as given.
   void upload(const HostParticles& particles);
 

@@ -194,6 +194,7 @@ void SphSolver::restore_clock(double time, double dt, std::uint64_t steps) {
   time_ = time;
   dt_ = dt;
   steps_ = steps;
+  rates_ready_ = true;  // the restored rates belong to the restored state
 }
 
 SphCounters SphSolver::counters() {

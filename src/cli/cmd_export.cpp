@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+// runnel export: the terrain of a checkpoint as ASC, PNG, NPY or an OBJ triangle mesh.
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/commands.hpp"
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/io/checkpoint.hpp"
+#include "runnel/terrain/terrain_normals.hpp"
+
+namespace runnel::cli {
+namespace {
+
+// Wavefront OBJ: one vertex per grid point (x east, y up, z south, metres), vertex normals, and
+// two triangles per tile split along (i, j)–(i+1, j+1), wound counter-clockwise seen from above.
+void write_obj(const std::string& path, const Heightmap& t) {
+  const std::vector<float> n = terrain_normals_reference(t);
+  write_file_atomically(path, [&](std::FILE* f) {
+    std::fprintf(f, "# runnel terrain, %d x %d vertices, cell %.9g m\n", t.nx, t.ny, t.cell);
+    for (int j = 0; j < t.ny; ++j) {
+      for (int i = 0; i < t.nx; ++i) std::fprintf(f, "v %.9g %.9g %.9g\n", i * t.cell, t.at(i, j), j * t.cell);
+    }
+    for (std::size_t k = 0; k < t.size(); ++k) std::fprintf(f, "vn %.6f %.6f %.6f\n", n[3 * k], n[3 * k + 1], n[3 * k + 2]);
+    for (int j = 0; j + 1 < t.ny; ++j) {
+      for (int i = 0; i + 1 < t.nx; ++i) {
+        const long a = static_cast<long>(j) * t.nx + i + 1, b = a + 1, c = a + t.nx + 1, d = a + t.nx;
+        std::fprintf(f, "f %ld//%ld %ld//%ld %ld//%ld\n", a, a, c, c, b, b);
+        std::fprintf(f, "f %ld//%ld %ld//%ld %ld//%ld\n", a, a, d, d, c, c);
+      }
+    }
+    if (std::ferror(f)) throw runtime_error(path + ": write failed");
+  });
+}
+
+}  // namespace
+
+void add_export_command(CLI::App& app) {
+  struct Options {
+    std::string file, format, output, range;
+  };
+  auto opt = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("export", "Export the terrain of a checkpoint (.h5) as asc, png, npy or obj");
+  cmd->add_option("checkpoint", opt->file, "checkpoint file (.h5)")->required();
+  cmd->add_option("--format", opt->format, "asc, png, npy or obj (a triangle mesh)")
+      ->required()
+      ->check(CLI::IsMember({"asc", "png", "npy", "obj"}));
+  cmd->add_option("-o,--output", opt->output, "file to write")->required();
+  cmd->add_option("--range", opt->range, "png: heights MIN:MAX in metres mapped to 0..65535");
+  cmd->callback([opt] {
+    const CheckpointData data = read_checkpoint(opt->file);
+    if (opt->format == "obj") {
+      write_obj(opt->output, data.terrain);
+    } else {
+      // The extension must agree with the format, so the file reads back as what it is.
+      if (terrain_format_from_path(opt->output) !=
+          terrain_format_from_path("x." + opt->format)) {
+        throw input_error("-o " + opt->output + ": the extension does not match --format " + opt->format);
+      }
+      WriteOptions write;
+      if (!opt->range.empty()) write.png_range = parse_range(opt->range, "--range");
+      write_terrain(opt->output, data.terrain, write);
+    }
+    std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, step %llu)\n", opt->output.c_str(), data.terrain.nx,
+                 data.terrain.ny, static_cast<unsigned long long>(data.steps));
+  });
+}
+
+}  // namespace runnel::cli

@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: MIT
+// HDF5 checkpoints (docs/hdf5-schema.md).
+#include "runnel/io/checkpoint.hpp"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/io/hdf5_file.hpp"
+
+namespace runnel {
+namespace {
+
+// Float particle fields stored under /particles, in ParticleField order.
+const ParticleField kFloatFields[] = {kX, kY, kZ, kVx, kVy, kVz, kRho, kAge, kLifespan};
+
+std::string dataset_path(const char* group, const char* name) { return std::string("/") + group + "/" + name; }
+
+void require_finite(const std::string& path, const std::string& name, const std::vector<float>& values) {
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (!std::isfinite(values[k])) {
+      throw input_error(path + ": " + name + "[" + std::to_string(k) + "] is not a finite number");
+    }
+  }
+}
+
+}  // namespace
+
+std::string parameters_toml(const Parameters& params) {
+  // Group keys by their table: "a.b" → [a] b, "terrain.set.x" → [terrain.set] x.
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> tables;
+  for (auto& [key, value] : params.values()) {
+    const auto dot = key.rfind('.');
+    std::string text = Parameters::to_text(value);
+    if (std::holds_alternative<std::string>(value)) {
+      std::string quoted = "\"";
+      for (char c : text) {
+        if (c == '"' || c == '\\') quoted += '\\';
+        quoted += c;
+      }
+      text = quoted + "\"";
+    } else if (std::holds_alternative<double>(value) && text.find_first_of(".eEn") == std::string::npos) {
+      text += ".0";  // keep reals real in TOML
+    }
+    tables[key.substr(0, dot)].emplace_back(key.substr(dot + 1), text);
+  }
+  for (auto& [key, value] : params.generator_values()) {
+    std::ostringstream s;
+    s.precision(17);
+    s << value;
+    tables["terrain.set"].emplace_back(key, s.str());
+  }
+  std::string out;
+  for (auto& [table, entries] : tables) {
+    out += "[" + table + "]\n";
+    for (auto& [k, v] : entries) out += k + " = " + v + "\n";
+  }
+  return out;
+}
+
+void write_checkpoint(const std::string& path, const CheckpointData& d) {
+  write_path_atomically(path, [&](const std::string& temporary) {
+    H5File f = H5File::create(temporary);
+    f.attribute("/", "schema_version", kCheckpointSchemaVersion);
+    f.attribute("/", "runnel_version", d.runnel_version);
+    f.attribute("/", "source_revision", d.source_revision);
+    f.attribute("/", "model", d.model);
+    f.attribute("/", "parameters_toml", d.parameters_toml);
+
+    const Heightmap& t = d.terrain;
+    const std::vector<hsize_t> grid = {static_cast<hsize_t>(t.ny), static_cast<hsize_t>(t.nx)};
+    f.create_group("/terrain");
+    f.write("/terrain/height", t.h, grid);
+    f.write("/terrain/height_fixed", d.height_fixed, grid);
+    f.write("/terrain/initial_fixed", d.initial_fixed, grid);
+    std::vector<float> eroded(t.size()), deposited(t.size());
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      const double change = static_cast<double>(d.height_fixed[k] - d.initial_fixed[k]) * d.height_quantum;
+      eroded[k] = static_cast<float>(std::max(0.0, -change));
+      deposited[k] = static_cast<float>(std::max(0.0, change));
+    }
+    f.write("/terrain/eroded", eroded, grid);
+    f.write("/terrain/deposited", deposited, grid);
+    f.attribute("/terrain", "cell", t.cell);
+    f.attribute("/terrain", "origin_x", t.origin_x);
+    f.attribute("/terrain", "origin_z", t.origin_z);
+    f.attribute("/terrain", "height_quantum", d.height_quantum);
+
+    const hsize_t n = d.particles.size();
+    f.create_group("/particles");
+    for (ParticleField field : kFloatFields) {
+      f.write(dataset_path("particles", particle_field_info(field).name), d.particles.f[field], {n});
+    }
+    f.write("/particles/sediment", d.particles.sediment, {n});
+    f.write("/particles/contacts", d.particles.contacts, {n});
+    f.write("/particles/id", d.particles.id, {n});
+    f.write("/particles/ax", d.ax, {n});
+    f.write("/particles/ay", d.ay, {n});
+    f.write("/particles/az", d.az, {n});
+    f.write("/particles/drho", d.drho, {n});
+    f.write("/particles/neighbours", d.neighbours, {n});
+    f.attribute("/particles", "count", static_cast<std::int64_t>(n));
+    f.attribute("/particles", "next_id", static_cast<std::int64_t>(d.next_id));
+    f.attribute("/particles", "sediment_quantum_m3", d.height_quantum * t.cell * t.cell);
+
+    f.create_group("/state");
+    f.attribute("/state", "time", d.time);
+    f.attribute("/state", "dt", d.dt);
+    f.attribute("/state", "steps", static_cast<std::int64_t>(d.steps));
+    f.attribute("/state", "rain_spawned", static_cast<std::int64_t>(d.rain_spawned));
+    f.attribute("/state", "rain_carry", d.rain_carry);
+    f.attribute("/state", "seed", d.seed);
+    const SphCounters& c = d.counters;
+    f.write("/state/counters",
+            std::vector<std::int64_t>{c.surface_projections, c.outflow_particles, c.collisions, c.outflow_sediment,
+                                      c.evaporated_particles, c.lost_sediment},
+            {6});
+    f.flush();
+  });
+}
+
+CheckpointData read_checkpoint(const std::string& path) {
+  const H5File f = H5File::open_read(path);
+  if (!f.exists("/terrain") && !f.exists("/particles")) {
+    throw input_error(path + ": not a runnel checkpoint (no /terrain or /particles)");
+  }
+  const std::int64_t version = f.read_int_attribute("/", "schema_version");
+  if (version != kCheckpointSchemaVersion) {
+    throw input_error(path + ": checkpoint schema version " + std::to_string(version) + ", this runnel reads version " +
+                      std::to_string(kCheckpointSchemaVersion));
+  }
+  CheckpointData d;
+  d.model = f.read_string_attribute("/", "model");
+  d.runnel_version = f.read_string_attribute("/", "runnel_version");
+  d.source_revision = f.read_string_attribute("/", "source_revision");
+  d.parameters_toml = f.read_string_attribute("/", "parameters_toml");
+
+  const std::vector<hsize_t> grid = f.dims("/terrain/height");
+  if (grid.size() != 2 || grid[0] < 2 || grid[1] < 2) throw input_error(path + ": /terrain/height is not a 2-D grid");
+  d.terrain = Heightmap(static_cast<int>(grid[1]), static_cast<int>(grid[0]), f.read_double_attribute("/terrain", "cell"));
+  if (!(d.terrain.cell > 0)) throw input_error(path + ": /terrain@cell is not positive");
+  d.terrain.h = f.read_float("/terrain/height", grid);
+  require_finite(path, "/terrain/height", d.terrain.h);
+  d.terrain.origin_x = f.read_double_attribute("/terrain", "origin_x");
+  d.terrain.origin_z = f.read_double_attribute("/terrain", "origin_z");
+  d.height_quantum = f.read_double_attribute("/terrain", "height_quantum");
+  if (!(d.height_quantum > 0)) throw input_error(path + ": /terrain@height_quantum is not positive");
+  d.height_fixed = f.read_int64("/terrain/height_fixed", grid);
+  d.initial_fixed = f.read_int64("/terrain/initial_fixed", grid);
+
+  const std::int64_t count = f.read_int_attribute("/particles", "count");
+  if (count < 0) throw input_error(path + ": /particles@count is negative");
+  const std::vector<hsize_t> n = {static_cast<hsize_t>(count)};
+  d.particles.resize(static_cast<std::size_t>(count));
+  for (ParticleField field : kFloatFields) {
+    const std::string name = dataset_path("particles", particle_field_info(field).name);
+    d.particles.f[field] = f.read_float(name, n);
+    require_finite(path, name, d.particles.f[field]);
+  }
+  d.particles.sediment = f.read_int32("/particles/sediment", n);
+  d.particles.contacts = f.read_uint32("/particles/contacts", n);
+  d.particles.id = f.read_uint32("/particles/id", n);
+  d.ax = f.read_float("/particles/ax", n);
+  d.ay = f.read_float("/particles/ay", n);
+  d.az = f.read_float("/particles/az", n);
+  d.drho = f.read_float("/particles/drho", n);
+  d.neighbours = f.read_float("/particles/neighbours", n);
+  for (auto* rates : {&d.ax, &d.ay, &d.az, &d.drho}) require_finite(path, "/particles rates", *rates);
+  d.next_id = static_cast<std::uint32_t>(f.read_int_attribute("/particles", "next_id"));
+
+  d.time = f.read_double_attribute("/state", "time");
+  d.dt = f.read_double_attribute("/state", "dt");
+  if (!std::isfinite(d.time) || !(d.dt > 0) || !std::isfinite(d.dt)) throw input_error(path + ": /state time or dt is invalid");
+  d.steps = static_cast<std::uint64_t>(f.read_int_attribute("/state", "steps"));
+  d.rain_spawned = static_cast<std::uint64_t>(f.read_int_attribute("/state", "rain_spawned"));
+  d.rain_carry = f.read_double_attribute("/state", "rain_carry");
+  d.seed = f.read_int_attribute("/state", "seed");
+  const auto c = f.read_int64("/state/counters", {6});
+  d.counters = {c[0], c[1], c[2], c[3], c[4], c[5]};
+  return d;
+}
+
+}  // namespace runnel

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "runnel/core/heightmap.hpp"
+#include "runnel/sim/parameters.hpp"
+#include "runnel/sph/particle_store.hpp"
+#include "runnel/sph/sph_solver.hpp"
+
+namespace runnel {
+
+// docs/hdf5-schema.md. Bump on any incompatible change; readers refuse other versions.
+inline constexpr std::int64_t kCheckpointSchemaVersion = 1;
+
+// Everything an exact restart needs, and what Python users read.
+struct CheckpointData {
+  std::string model = "sph";
+  std::string runnel_version, source_revision;
+  std::string parameters_toml;  // the full parameter set
+  // Terrain: float view (m), exact fixed-point state and the initial state (counts of the quantum).
+  Heightmap terrain;
+  double height_quantum = 1e-6;
+  std::vector<std::int64_t> height_fixed, initial_fixed;
+  // Particles in their current (sorted) order, with the rates of the last force pass.
+  HostParticles particles;
+  std::vector<float> ax, ay, az, drho, neighbours;
+  std::uint32_t next_id = 0;
+  // Clocks and counters.
+  double time = 0, dt = 0;
+  std::uint64_t steps = 0;
+  std::uint64_t rain_spawned = 0;
+  double rain_carry = 0;
+  std::int64_t seed = 0;
+  SphCounters counters;
+};
+
+// Writes atomically (temporary file, sync, rename): an interrupted write leaves the old file intact.
+void write_checkpoint(const std::string& path, const CheckpointData& data);
+// Reads and validates: schema version, every dataset present with consistent sizes, finite values.
+// Throws an input error (exit code 2) naming the file and the problem.
+CheckpointData read_checkpoint(const std::string& path);
+
+// The parameter set as TOML text that load_scenario reads back to the same values.
+std::string parameters_toml(const Parameters& params);
+
+}  // namespace runnel
