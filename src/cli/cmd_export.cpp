@@ -19,12 +19,15 @@ void write_obj(const std::string& path, const Heightmap& t) {
   write_file_atomically(path, [&](std::FILE* f) {
     std::fprintf(f, "# runnel terrain, %d x %d vertices, cell %.9g m\n", t.nx, t.ny, t.cell);
     for (int j = 0; j < t.ny; ++j) {
-      for (int i = 0; i < t.nx; ++i) std::fprintf(f, "v %.9g %.9g %.9g\n", i * t.cell, t.at(i, j), j * t.cell);
+      for (int i = 0; i < t.nx; ++i)
+        std::fprintf(f, "v %.9g %.9g %.9g\n", i * t.cell, t.at(i, j), j * t.cell);
     }
-    for (std::size_t k = 0; k < t.size(); ++k) std::fprintf(f, "vn %.6f %.6f %.6f\n", n[3 * k], n[3 * k + 1], n[3 * k + 2]);
+    for (std::size_t k = 0; k < t.size(); ++k)
+      std::fprintf(f, "vn %.6f %.6f %.6f\n", n[3 * k], n[3 * k + 1], n[3 * k + 2]);
     for (int j = 0; j + 1 < t.ny; ++j) {
       for (int i = 0; i + 1 < t.nx; ++i) {
-        const long a = static_cast<long>(j) * t.nx + i + 1, b = a + 1, c = a + t.nx + 1, d = a + t.nx;
+        const long a = static_cast<long>(j) * t.nx + i + 1, b = a + 1, c = a + t.nx + 1,
+                   d = a + t.nx;
         std::fprintf(f, "f %ld//%ld %ld//%ld %ld//%ld\n", a, a, c, c, b, b);
         std::fprintf(f, "f %ld//%ld %ld//%ld %ld//%ld\n", a, a, d, d, c, c);
       }
@@ -40,7 +43,8 @@ void add_export_command(CLI::App& app) {
     std::string file, format, output, range;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("export", "Export the terrain of a checkpoint (.h5) as asc, png, npy or obj");
+  auto* cmd = app.add_subcommand(
+      "export", "Export the terrain of a checkpoint (.h5) as asc, png, npy or obj");
   cmd->add_option("checkpoint", opt->file, "checkpoint file (.h5)")->required();
   cmd->add_option("--format", opt->format, "asc, png, npy or obj (a triangle mesh)")
       ->required()
@@ -53,16 +57,16 @@ void add_export_command(CLI::App& app) {
       write_obj(opt->output, data.terrain);
     } else {
       // The extension must agree with the format, so the file reads back as what it is.
-      if (terrain_format_from_path(opt->output) !=
-          terrain_format_from_path("x." + opt->format)) {
-        throw input_error("-o " + opt->output + ": the extension does not match --format " + opt->format);
+      if (terrain_format_from_path(opt->output) != terrain_format_from_path("x." + opt->format)) {
+        throw input_error("-o " + opt->output + ": the extension does not match --format " +
+                          opt->format);
       }
       WriteOptions write;
       if (!opt->range.empty()) write.png_range = parse_range(opt->range, "--range");
       write_terrain(opt->output, data.terrain, write);
     }
-    std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, step %llu)\n", opt->output.c_str(), data.terrain.nx,
-                 data.terrain.ny, static_cast<unsigned long long>(data.steps));
+    std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, step %llu)\n", opt->output.c_str(),
+                 data.terrain.nx, data.terrain.ny, static_cast<unsigned long long>(data.steps));
   });
 }
 

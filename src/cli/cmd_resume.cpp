@@ -17,13 +17,17 @@ void add_resume_command(CLI::App& app) {
     OutputFlags output;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("resume", "Continue a run from a checkpoint (.h5) for --steps more steps; the "
-                                           "result equals an uninterrupted run bit for bit");
-  cmd->add_option("checkpoint", opt->file, "checkpoint file (final.h5 or checkpoints/step_*.h5)")->required();
+  auto* cmd =
+      app.add_subcommand("resume",
+                         "Continue a run from a checkpoint (.h5) for --steps more steps; the "
+                         "result equals an uninterrupted run bit for bit");
+  cmd->add_option("checkpoint", opt->file, "checkpoint file (final.h5 or checkpoints/step_*.h5)")
+      ->required();
   cmd->add_option("--steps", opt->steps, "steps to add")->required()->check(CLI::PositiveNumber);
   cmd->add_option("--out", opt->out, "output folder (created)")->capture_default_str();
-  cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices'); the same device as the "
-                                           "original run for a bitwise-identical continuation");
+  cmd->add_option("--device", opt->device,
+                  "OpenCL device (see 'runnel devices'); the same device as the "
+                  "original run for a bitwise-identical continuation");
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
   add_output_flags(*cmd, opt->output);
   cmd->callback([opt] {

@@ -16,9 +16,12 @@ namespace {
 // Float particle fields stored under /particles, in ParticleField order.
 const ParticleField kFloatFields[] = {kX, kY, kZ, kVx, kVy, kVz, kRho, kAge, kLifespan};
 
-std::string dataset_path(const char* group, const char* name) { return std::string("/") + group + "/" + name; }
+std::string dataset_path(const char* group, const char* name) {
+  return std::string("/") + group + "/" + name;
+}
 
-void require_finite(const std::string& path, const std::string& name, const std::vector<float>& values) {
+void require_finite(const std::string& path, const std::string& name,
+                    const std::vector<float>& values) {
   for (std::size_t k = 0; k < values.size(); ++k) {
     if (!std::isfinite(values[k])) {
       throw input_error(path + ": " + name + "[" + std::to_string(k) + "] is not a finite number");
@@ -41,7 +44,8 @@ std::string parameters_toml(const Parameters& params) {
         quoted += c;
       }
       text = quoted + "\"";
-    } else if (std::holds_alternative<double>(value) && text.find_first_of(".eEn") == std::string::npos) {
+    } else if (std::holds_alternative<double>(value) &&
+               text.find_first_of(".eEn") == std::string::npos) {
       text += ".0";  // keep reals real in TOML
     }
     tables[key.substr(0, dot)].emplace_back(key.substr(dot + 1), text);
@@ -77,7 +81,8 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.write("/terrain/initial_fixed", d.initial_fixed, grid);
     std::vector<float> eroded(t.size()), deposited(t.size());
     for (std::size_t k = 0; k < t.size(); ++k) {
-      const double change = static_cast<double>(d.height_fixed[k] - d.initial_fixed[k]) * d.height_quantum;
+      const double change =
+          static_cast<double>(d.height_fixed[k] - d.initial_fixed[k]) * d.height_quantum;
       eroded[k] = static_cast<float>(std::max(0.0, -change));
       deposited[k] = static_cast<float>(std::max(0.0, change));
     }
@@ -91,7 +96,8 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     const hsize_t n = d.particles.size();
     f.create_group("/particles");
     for (ParticleField field : kFloatFields) {
-      f.write(dataset_path("particles", particle_field_info(field).name), d.particles.f[field], {n});
+      f.write(dataset_path("particles", particle_field_info(field).name), d.particles.f[field],
+              {n});
     }
     f.write("/particles/sediment", d.particles.sediment, {n});
     f.write("/particles/contacts", d.particles.contacts, {n});
@@ -114,8 +120,8 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.attribute("/state", "seed", d.seed);
     const SphCounters& c = d.counters;
     f.write("/state/counters",
-            std::vector<std::int64_t>{c.surface_projections, c.outflow_particles, c.collisions, c.outflow_sediment,
-                                      c.evaporated_particles, c.lost_sediment},
+            std::vector<std::int64_t>{c.surface_projections, c.outflow_particles, c.collisions,
+                                      c.outflow_sediment, c.evaporated_particles, c.lost_sediment},
             {6});
     f.flush();
   });
@@ -128,8 +134,8 @@ CheckpointData read_checkpoint(const std::string& path) {
   }
   const std::int64_t version = f.read_int_attribute("/", "schema_version");
   if (version != kCheckpointSchemaVersion) {
-    throw input_error(path + ": checkpoint schema version " + std::to_string(version) + ", this runnel reads version " +
-                      std::to_string(kCheckpointSchemaVersion));
+    throw input_error(path + ": checkpoint schema version " + std::to_string(version) +
+                      ", this runnel reads version " + std::to_string(kCheckpointSchemaVersion));
   }
   CheckpointData d;
   d.model = f.read_string_attribute("/", "model");
@@ -138,15 +144,18 @@ CheckpointData read_checkpoint(const std::string& path) {
   d.parameters_toml = f.read_string_attribute("/", "parameters_toml");
 
   const std::vector<hsize_t> grid = f.dims("/terrain/height");
-  if (grid.size() != 2 || grid[0] < 2 || grid[1] < 2) throw input_error(path + ": /terrain/height is not a 2-D grid");
-  d.terrain = Heightmap(static_cast<int>(grid[1]), static_cast<int>(grid[0]), f.read_double_attribute("/terrain", "cell"));
+  if (grid.size() != 2 || grid[0] < 2 || grid[1] < 2)
+    throw input_error(path + ": /terrain/height is not a 2-D grid");
+  d.terrain = Heightmap(static_cast<int>(grid[1]), static_cast<int>(grid[0]),
+                        f.read_double_attribute("/terrain", "cell"));
   if (!(d.terrain.cell > 0)) throw input_error(path + ": /terrain@cell is not positive");
   d.terrain.h = f.read_float("/terrain/height", grid);
   require_finite(path, "/terrain/height", d.terrain.h);
   d.terrain.origin_x = f.read_double_attribute("/terrain", "origin_x");
   d.terrain.origin_z = f.read_double_attribute("/terrain", "origin_z");
   d.height_quantum = f.read_double_attribute("/terrain", "height_quantum");
-  if (!(d.height_quantum > 0)) throw input_error(path + ": /terrain@height_quantum is not positive");
+  if (!(d.height_quantum > 0))
+    throw input_error(path + ": /terrain@height_quantum is not positive");
   d.height_fixed = f.read_int64("/terrain/height_fixed", grid);
   d.initial_fixed = f.read_int64("/terrain/initial_fixed", grid);
 
@@ -167,12 +176,14 @@ CheckpointData read_checkpoint(const std::string& path) {
   d.az = f.read_float("/particles/az", n);
   d.drho = f.read_float("/particles/drho", n);
   d.neighbours = f.read_float("/particles/neighbours", n);
-  for (auto* rates : {&d.ax, &d.ay, &d.az, &d.drho}) require_finite(path, "/particles rates", *rates);
+  for (auto* rates : {&d.ax, &d.ay, &d.az, &d.drho})
+    require_finite(path, "/particles rates", *rates);
   d.next_id = static_cast<std::uint32_t>(f.read_int_attribute("/particles", "next_id"));
 
   d.time = f.read_double_attribute("/state", "time");
   d.dt = f.read_double_attribute("/state", "dt");
-  if (!std::isfinite(d.time) || !(d.dt > 0) || !std::isfinite(d.dt)) throw input_error(path + ": /state time or dt is invalid");
+  if (!std::isfinite(d.time) || !(d.dt > 0) || !std::isfinite(d.dt))
+    throw input_error(path + ": /state time or dt is invalid");
   d.steps = static_cast<std::uint64_t>(f.read_int_attribute("/state", "steps"));
   d.rain_spawned = static_cast<std::uint64_t>(f.read_int_attribute("/state", "rain_spawned"));
   d.rain_carry = f.read_double_attribute("/state", "rain_carry");

@@ -36,7 +36,8 @@ struct CheckpointData {
   SphCounters counters;
 };
 
-// Writes atomically (temporary file, sync, rename): an interrupted write leaves the old file intact.
+// Writes atomically (temporary file, sync, rename): an interrupted write leaves the old file
+// intact.
 void write_checkpoint(const std::string& path, const CheckpointData& data);
 // Reads and validates: schema version, every dataset present with consistent sizes, finite values.
 // Throws an input error (exit code 2) naming the file and the problem.

@@ -62,31 +62,40 @@ H5File H5File::create(const std::string& path) {
 }
 
 void H5File::flush() {
-  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) throw runtime_error(path_ + ": HDF5 flush failed");
+  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0)
+    throw runtime_error(path_ + ": HDF5 flush failed");
 }
 
 void H5File::create_group(const std::string& name) {
-  H5Handle g(H5Gcreate2(file_.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  H5Handle g(H5Gcreate2(file_.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             H5Gclose);
   if (!g.valid()) throw runtime_error(path_ + ": cannot create group " + name);
 }
 
 template <typename T>
-void H5File::write_typed(const std::string& name, const std::vector<T>& data, const std::vector<hsize_t>& dims,
-                         hid_t type) {
+void H5File::write_typed(const std::string& name, const std::vector<T>& data,
+                         const std::vector<hsize_t>& dims, hid_t type) {
   H5Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
   H5Handle props(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   hsize_t total = 1;
   for (auto d : dims) total *= d;
+  if (total != data.size()) {
+    throw runtime_error(path_ + ": dataset " + name + " has " + std::to_string(data.size()) +
+                        " values for " + dims_text(dims));
+  }
   // Chunk and compress what is large enough to pay for it.
   if (total >= 4096) {
     std::vector<hsize_t> chunk(dims);
-    if (dims.size() == 1) chunk[0] = std::min<hsize_t>(dims[0], 65536);
-    else for (auto& c : chunk) c = std::min<hsize_t>(c, 256);
+    if (dims.size() == 1)
+      chunk[0] = std::min<hsize_t>(dims[0], 65536);
+    else
+      for (auto& c : chunk) c = std::min<hsize_t>(c, 256);
     H5Pset_chunk(props.get(), static_cast<int>(chunk.size()), chunk.data());
     H5Pset_shuffle(props.get());
     H5Pset_deflate(props.get(), 4);
   }
-  H5Handle set(H5Dcreate2(file_.get(), name.c_str(), type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
+  H5Handle set(H5Dcreate2(file_.get(), name.c_str(), type, space.get(), H5P_DEFAULT, props.get(),
+                          H5P_DEFAULT),
                H5Dclose);
   if (!set.valid()) throw runtime_error(path_ + ": cannot create dataset " + name);
   if (total > 0 && H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0) {
@@ -94,16 +103,20 @@ void H5File::write_typed(const std::string& name, const std::vector<T>& data, co
   }
 }
 
-void H5File::write(const std::string& n, const std::vector<float>& d, const std::vector<hsize_t>& dims) {
+void H5File::write(const std::string& n, const std::vector<float>& d,
+                   const std::vector<hsize_t>& dims) {
   write_typed(n, d, dims, H5T_NATIVE_FLOAT);
 }
-void H5File::write(const std::string& n, const std::vector<std::int64_t>& d, const std::vector<hsize_t>& dims) {
+void H5File::write(const std::string& n, const std::vector<std::int64_t>& d,
+                   const std::vector<hsize_t>& dims) {
   write_typed(n, d, dims, H5T_NATIVE_INT64);
 }
-void H5File::write(const std::string& n, const std::vector<std::int32_t>& d, const std::vector<hsize_t>& dims) {
+void H5File::write(const std::string& n, const std::vector<std::int32_t>& d,
+                   const std::vector<hsize_t>& dims) {
   write_typed(n, d, dims, H5T_NATIVE_INT32);
 }
-void H5File::write(const std::string& n, const std::vector<std::uint32_t>& d, const std::vector<hsize_t>& dims) {
+void H5File::write(const std::string& n, const std::vector<std::uint32_t>& d,
+                   const std::vector<hsize_t>& dims) {
   write_typed(n, d, dims, H5T_NATIVE_UINT32);
 }
 
@@ -123,7 +136,9 @@ H5Handle open_object(const H5File& f, const std::string& object, bool reading) {
 void H5File::attribute(const std::string& object, const std::string& name, double value) {
   H5Handle o = open_object(*this, object, false);
   H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  H5Handle a(H5Acreate2(o.get(), name.c_str(), H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  H5Handle a(
+      H5Acreate2(o.get(), name.c_str(), H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose);
   if (!a.valid() || H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value) < 0) {
     throw runtime_error(path_ + ": cannot write attribute " + object + "@" + name);
   }
@@ -132,20 +147,24 @@ void H5File::attribute(const std::string& object, const std::string& name, doubl
 void H5File::attribute(const std::string& object, const std::string& name, std::int64_t value) {
   H5Handle o = open_object(*this, object, false);
   H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  H5Handle a(H5Acreate2(o.get(), name.c_str(), H5T_NATIVE_INT64, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  H5Handle a(
+      H5Acreate2(o.get(), name.c_str(), H5T_NATIVE_INT64, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose);
   if (!a.valid() || H5Awrite(a.get(), H5T_NATIVE_INT64, &value) < 0) {
     throw runtime_error(path_ + ": cannot write attribute " + object + "@" + name);
   }
 }
 
-void H5File::attribute(const std::string& object, const std::string& name, const std::string& value) {
+void H5File::attribute(const std::string& object, const std::string& name,
+                       const std::string& value) {
   H5Handle o = open_object(*this, object, false);
   H5Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
   H5Tset_size(type.get(), std::max<std::size_t>(1, value.size()));
   H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
   H5Tset_cset(type.get(), H5T_CSET_UTF8);
   H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  H5Handle a(H5Acreate2(o.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  H5Handle a(H5Acreate2(o.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+             H5Aclose);
   const std::string padded = value.empty() ? std::string(1, '\0') : value;
   if (!a.valid() || H5Awrite(a.get(), type.get(), padded.data()) < 0) {
     throw runtime_error(path_ + ": cannot write attribute " + object + "@" + name);
@@ -168,10 +187,12 @@ std::vector<hsize_t> H5File::dims(const std::string& name) const {
 }
 
 template <typename T>
-std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsize_t>& expected, hid_t type) const {
+std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsize_t>& expected,
+                                  hid_t type) const {
   const std::vector<hsize_t> d = dims(name);
   if (!expected.empty() && d != expected) {
-    throw input_error(path_ + ": dataset " + name + " is " + dims_text(d) + ", expected " + dims_text(expected));
+    throw input_error(path_ + ": dataset " + name + " is " + dims_text(d) + ", expected " +
+                      dims_text(expected));
   }
   hsize_t total = 1;
   for (auto v : d) total *= v;
@@ -186,13 +207,16 @@ std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsi
 std::vector<float> H5File::read_float(const std::string& n, const std::vector<hsize_t>& e) const {
   return read_typed<float>(n, e, H5T_NATIVE_FLOAT);
 }
-std::vector<std::int64_t> H5File::read_int64(const std::string& n, const std::vector<hsize_t>& e) const {
+std::vector<std::int64_t> H5File::read_int64(const std::string& n,
+                                             const std::vector<hsize_t>& e) const {
   return read_typed<std::int64_t>(n, e, H5T_NATIVE_INT64);
 }
-std::vector<std::int32_t> H5File::read_int32(const std::string& n, const std::vector<hsize_t>& e) const {
+std::vector<std::int32_t> H5File::read_int32(const std::string& n,
+                                             const std::vector<hsize_t>& e) const {
   return read_typed<std::int32_t>(n, e, H5T_NATIVE_INT32);
 }
-std::vector<std::uint32_t> H5File::read_uint32(const std::string& n, const std::vector<hsize_t>& e) const {
+std::vector<std::uint32_t> H5File::read_uint32(const std::string& n,
+                                               const std::vector<hsize_t>& e) const {
   return read_typed<std::uint32_t>(n, e, H5T_NATIVE_UINT32);
 }
 
@@ -200,7 +224,8 @@ namespace {
 
 H5Handle open_attribute(const H5File& f, const std::string& object, const std::string& name) {
   H5Handle o = open_object(f, object, true);
-  if (H5Aexists(o.get(), name.c_str()) <= 0) throw input_error(f.path() + ": missing attribute " + object + "@" + name);
+  if (H5Aexists(o.get(), name.c_str()) <= 0)
+    throw input_error(f.path() + ": missing attribute " + object + "@" + name);
   H5Handle a(H5Aopen(o.get(), name.c_str(), H5P_DEFAULT), H5Aclose);
   if (!a.valid()) throw input_error(f.path() + ": unreadable attribute " + object + "@" + name);
   return a;
@@ -211,30 +236,36 @@ H5Handle open_attribute(const H5File& f, const std::string& object, const std::s
 double H5File::read_double_attribute(const std::string& object, const std::string& name) const {
   H5Handle a = open_attribute(*this, object, name);
   double v = 0;
-  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0) throw input_error(path_ + ": unreadable attribute " + name);
+  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0)
+    throw input_error(path_ + ": unreadable attribute " + name);
   return v;
 }
 
 std::int64_t H5File::read_int_attribute(const std::string& object, const std::string& name) const {
   H5Handle a = open_attribute(*this, object, name);
   std::int64_t v = 0;
-  if (H5Aread(a.get(), H5T_NATIVE_INT64, &v) < 0) throw input_error(path_ + ": unreadable attribute " + name);
+  if (H5Aread(a.get(), H5T_NATIVE_INT64, &v) < 0)
+    throw input_error(path_ + ": unreadable attribute " + name);
   return v;
 }
 
-std::string H5File::read_string_attribute(const std::string& object, const std::string& name) const {
+std::string H5File::read_string_attribute(const std::string& object,
+                                          const std::string& name) const {
   H5Handle a = open_attribute(*this, object, name);
   H5Handle type(H5Aget_type(a.get()), H5Tclose);
   if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) {
-    throw input_error(path_ + ": attribute " + object + "@" + name + " is not a fixed-length string");
+    throw input_error(path_ + ": attribute " + object + "@" + name +
+                      " is not a fixed-length string");
   }
   std::string out(H5Tget_size(type.get()), '\0');
-  if (H5Aread(a.get(), type.get(), out.data()) < 0) throw input_error(path_ + ": unreadable attribute " + name);
+  if (H5Aread(a.get(), type.get(), out.data()) < 0)
+    throw input_error(path_ + ": unreadable attribute " + name);
   while (!out.empty() && out.back() == '\0') out.pop_back();
   return out;
 }
 
-void H5File::append_frame(const std::string& name, const std::vector<float>& frame, hsize_t rows, hsize_t cols) {
+void H5File::append_frame(const std::string& name, const std::vector<float>& frame, hsize_t rows,
+                          hsize_t cols) {
   if (!exists(name)) {
     const hsize_t dims[3] = {0, rows, cols}, max[3] = {H5S_UNLIMITED, rows, cols};
     H5Handle space(H5Screate_simple(3, dims, max), H5Sclose);
@@ -243,8 +274,8 @@ void H5File::append_frame(const std::string& name, const std::vector<float>& fra
     H5Pset_chunk(props.get(), 3, chunk);
     H5Pset_shuffle(props.get());
     H5Pset_deflate(props.get(), 4);
-    H5Handle set(H5Dcreate2(file_.get(), name.c_str(), H5T_NATIVE_FLOAT, space.get(), H5P_DEFAULT, props.get(),
-                            H5P_DEFAULT),
+    H5Handle set(H5Dcreate2(file_.get(), name.c_str(), H5T_NATIVE_FLOAT, space.get(), H5P_DEFAULT,
+                            props.get(), H5P_DEFAULT),
                  H5Dclose);
     if (!set.valid()) throw runtime_error(path_ + ": cannot create dataset " + name);
   }
@@ -252,14 +283,16 @@ void H5File::append_frame(const std::string& name, const std::vector<float>& fra
   H5Handle space(H5Dget_space(set.get()), H5Sclose);
   hsize_t dims[3];
   H5Sget_simple_extent_dims(space.get(), dims, nullptr);
-  if (dims[1] != rows || dims[2] != cols) throw runtime_error(path_ + ": " + name + " has another frame size");
+  if (dims[1] != rows || dims[2] != cols)
+    throw runtime_error(path_ + ": " + name + " has another frame size");
   const hsize_t grown[3] = {dims[0] + 1, rows, cols};
   if (H5Dset_extent(set.get(), grown) < 0) throw runtime_error(path_ + ": cannot extend " + name);
   H5Handle file_space(H5Dget_space(set.get()), H5Sclose);
   const hsize_t start[3] = {dims[0], 0, 0}, count[3] = {1, rows, cols};
   H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
   H5Handle memory(H5Screate_simple(3, count, nullptr), H5Sclose);
-  if (H5Dwrite(set.get(), H5T_NATIVE_FLOAT, memory.get(), file_space.get(), H5P_DEFAULT, frame.data()) < 0) {
+  if (H5Dwrite(set.get(), H5T_NATIVE_FLOAT, memory.get(), file_space.get(), H5P_DEFAULT,
+               frame.data()) < 0) {
     throw runtime_error(path_ + ": cannot append to " + name);
   }
 }

@@ -40,10 +40,14 @@ class H5File {
 
   // Writing. `dims` is {n} or {rows, cols}.
   void create_group(const std::string& name);
-  void write(const std::string& name, const std::vector<float>& data, const std::vector<hsize_t>& dims);
-  void write(const std::string& name, const std::vector<std::int64_t>& data, const std::vector<hsize_t>& dims);
-  void write(const std::string& name, const std::vector<std::int32_t>& data, const std::vector<hsize_t>& dims);
-  void write(const std::string& name, const std::vector<std::uint32_t>& data, const std::vector<hsize_t>& dims);
+  void write(const std::string& name, const std::vector<float>& data,
+             const std::vector<hsize_t>& dims);
+  void write(const std::string& name, const std::vector<std::int64_t>& data,
+             const std::vector<hsize_t>& dims);
+  void write(const std::string& name, const std::vector<std::int32_t>& data,
+             const std::vector<hsize_t>& dims);
+  void write(const std::string& name, const std::vector<std::uint32_t>& data,
+             const std::vector<hsize_t>& dims);
   void attribute(const std::string& object, const std::string& name, double value);
   void attribute(const std::string& object, const std::string& name, std::int64_t value);
   void attribute(const std::string& object, const std::string& name, const std::string& value);
@@ -51,22 +55,29 @@ class H5File {
   // Reading; `expected` (if not empty) must equal the dataset's dimensions.
   std::vector<hsize_t> dims(const std::string& name) const;
   bool exists(const std::string& name) const;
-  std::vector<float> read_float(const std::string& name, const std::vector<hsize_t>& expected = {}) const;
-  std::vector<std::int64_t> read_int64(const std::string& name, const std::vector<hsize_t>& expected = {}) const;
-  std::vector<std::int32_t> read_int32(const std::string& name, const std::vector<hsize_t>& expected = {}) const;
-  std::vector<std::uint32_t> read_uint32(const std::string& name, const std::vector<hsize_t>& expected = {}) const;
+  std::vector<float> read_float(const std::string& name,
+                                const std::vector<hsize_t>& expected = {}) const;
+  std::vector<std::int64_t> read_int64(const std::string& name,
+                                       const std::vector<hsize_t>& expected = {}) const;
+  std::vector<std::int32_t> read_int32(const std::string& name,
+                                       const std::vector<hsize_t>& expected = {}) const;
+  std::vector<std::uint32_t> read_uint32(const std::string& name,
+                                         const std::vector<hsize_t>& expected = {}) const;
   double read_double_attribute(const std::string& object, const std::string& name) const;
   std::int64_t read_int_attribute(const std::string& object, const std::string& name) const;
   std::string read_string_attribute(const std::string& object, const std::string& name) const;
 
   // An extendable 3-D float dataset (frames × rows × cols) that frames are appended to.
-  void append_frame(const std::string& name, const std::vector<float>& frame, hsize_t rows, hsize_t cols);
+  void append_frame(const std::string& name, const std::vector<float>& frame, hsize_t rows,
+                    hsize_t cols);
 
  private:
   template <typename T>
-  void write_typed(const std::string& name, const std::vector<T>& data, const std::vector<hsize_t>& dims, hid_t type);
+  void write_typed(const std::string& name, const std::vector<T>& data,
+                   const std::vector<hsize_t>& dims, hid_t type);
   template <typename T>
-  std::vector<T> read_typed(const std::string& name, const std::vector<hsize_t>& expected, hid_t type) const;
+  std::vector<T> read_typed(const std::string& name, const std::vector<hsize_t>& expected,
+                            hid_t type) const;
   std::string path_;
   H5Handle file_;
   bool reading_ = false;

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// Checkpoints end to end: rolling checkpoints, the series, resume, info, export, Python (h5py).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+#include "runnel/io/hdf5_file.hpp"
+#include "runnel/terrain/terrain_io.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::run_cli;
+using test::ScratchDir;
+
+const std::vector<std::string> kSmallRun = {"--generate", "fbm", "--set", "terrain.size=49", "--set",
+                                            "rain.rate=3000", "--seed", "4", "--quiet"};
+
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST(CliCheckpoint, RollingCheckpointsSeriesAndExactResume) {
+  ScratchDir dir;
+  auto r = run_cli(with({"run", "--steps", "200", "--out", dir.path("full")}, kSmallRun));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli(with({"run", "--steps", "100", "--out", dir.path("half"), "--checkpoint-every", "20",
+                    "--keep-checkpoints", "2", "--series-every", "25"},
+                   kSmallRun));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The newest two checkpoints are kept.
+  std::vector<std::string> kept;
+  for (auto& e : std::filesystem::directory_iterator(dir.path("half/checkpoints"))) kept.push_back(e.path().filename());
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(kept, (std::vector<std::string>{"step_00000080.h5", "step_00000100.h5"}));
+  // Four frames in the series.
+  const H5File series = H5File::open_read(dir.path("half/series.h5"));
+  EXPECT_EQ(series.dims("/height"), (std::vector<hsize_t>{4, 49, 49}));
+  // Resuming the checkpoint of step 100 for 100 steps ends where the uninterrupted run ended.
+  r = run_cli({"resume", dir.path("half/checkpoints/step_00000100.h5"), "--steps", "100", "--out",
+               dir.path("resumed"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::read_text(dir.path("full/final.npy")), test::read_text(dir.path("resumed/final.npy")));
+  const std::string metrics = test::read_text(dir.path("resumed/metrics.json"));
+  EXPECT_NE(metrics.find("\"resumed_from_step\": 100"), std::string::npos);
+}
+
+TEST(CliCheckpoint, InfoAndExportEveryFormat) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(with({"run", "--steps", "50", "--out", dir.path("run")}, kSmallRun)).exit_code, 0);
+  const std::string h5 = dir.path("run/final.h5");
+  auto r = run_cli({"info", h5, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"steps\": 50"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"schema_version\": 1"), std::string::npos);
+  r = run_cli({"info", h5});
+  EXPECT_NE(r.out.find("runnel checkpoint"), std::string::npos);
+  const Heightmap reference = read_terrain(dir.path("run/final.npy"));
+  for (const char* format : {"asc", "png", "npy"}) {
+    const std::string out = dir.path(std::string("t.") + format);
+    r = run_cli({"export", h5, "--format", format, "-o", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Heightmap t = read_terrain(out);
+    EXPECT_EQ(t.nx, 49);
+    EXPECT_NEAR(t.max_height(), reference.max_height(), 1e-3) << format;
+  }
+  r = run_cli({"export", h5, "--format", "obj", "-o", dir.path("t.obj")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string obj = test::read_text(dir.path("t.obj"));
+  EXPECT_EQ(std::count(obj.begin(), obj.end(), 'v') > 0, true);
+  std::size_t vertices = 0, faces = 0;
+  std::istringstream lines(obj);
+  for (std::string line; std::getline(lines, line);) {
+    vertices += line.rfind("v ", 0) == 0;
+    faces += line.rfind("f ", 0) == 0;
+  }
+  EXPECT_EQ(vertices, 49u * 49u);
+  EXPECT_EQ(faces, 2u * 48u * 48u);
+  r = run_cli({"export", h5, "--format", "png", "-o", dir.path("wrong.asc")});
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST(CliCheckpoint, BadCheckpointsExitWithTwoAndOneLine) {
+  ScratchDir dir;
+  test::write_text(dir.path("junk.h5"), "not hdf5 at all");
+  for (std::vector<std::string> args : std::vector<std::vector<std::string>>{
+           {"resume", dir.path("junk.h5"), "--steps", "5", "--out", dir.path("o")},
+           {"resume", dir.path("none.h5"), "--steps", "5", "--out", dir.path("o")},
+           {"info", dir.path("junk.h5")},
+           {"export", dir.path("junk.h5"), "--format", "asc", "-o", dir.path("x.asc")}}) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args[0] << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path("o")));
+  EXPECT_FALSE(std::filesystem::exists(dir.path("x.asc")));
+}
+
+TEST(CliCheckpoint, PythonReadsTheCheckpointWithH5py) {
+  if (std::system("/usr/bin/python3 -c 'import h5py, numpy' >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "python3-h5py is not installed (scripts/setup.sh installs it)";
+  }
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(with({"run", "--steps", "40", "--out", dir.path("run")}, kSmallRun)).exit_code, 0);
+  const std::string cmd = "/usr/bin/python3 " + test::source_dir() + "/docs/python/read_checkpoint.py " +
+                          dir.path("run/final.h5") + " > " + dir.path("py.txt") + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << test::read_text(dir.path("py.txt"));
+  const std::string out = test::read_text(dir.path("py.txt"));
+  EXPECT_NE(out.find("terrain 49 x 49"), std::string::npos) << out;
+  EXPECT_NE(out.find("step 40"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace runnel
