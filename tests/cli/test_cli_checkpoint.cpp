@@ -16,8 +16,9 @@ namespace {
 using test::run_cli;
 using test::ScratchDir;
 
-const std::vector<std::string> kSmallRun = {"--generate", "fbm", "--set", "terrain.size=49", "--set",
-                                            "rain.rate=3000", "--seed", "4", "--quiet"};
+const std::vector<std::string> kSmallRun = {"--generate",      "fbm",   "--set",
+                                            "terrain.size=49", "--set", "rain.rate=3000",
+                                            "--seed",          "4",     "--quiet"};
 
 std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -34,7 +35,8 @@ TEST(CliCheckpoint, RollingCheckpointsSeriesAndExactResume) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The newest two checkpoints are kept.
   std::vector<std::string> kept;
-  for (auto& e : std::filesystem::directory_iterator(dir.path("half/checkpoints"))) kept.push_back(e.path().filename());
+  for (auto& e : std::filesystem::directory_iterator(dir.path("half/checkpoints")))
+    kept.push_back(e.path().filename());
   std::sort(kept.begin(), kept.end());
   EXPECT_EQ(kept, (std::vector<std::string>{"step_00000080.h5", "step_00000100.h5"}));
   // Four frames in the series.
@@ -44,14 +46,16 @@ TEST(CliCheckpoint, RollingCheckpointsSeriesAndExactResume) {
   r = run_cli({"resume", dir.path("half/checkpoints/step_00000100.h5"), "--steps", "100", "--out",
                dir.path("resumed"), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(test::read_text(dir.path("full/final.npy")), test::read_text(dir.path("resumed/final.npy")));
+  EXPECT_EQ(test::read_text(dir.path("full/final.npy")),
+            test::read_text(dir.path("resumed/final.npy")));
   const std::string metrics = test::read_text(dir.path("resumed/metrics.json"));
   EXPECT_NE(metrics.find("\"resumed_from_step\": 100"), std::string::npos);
 }
 
 TEST(CliCheckpoint, InfoAndExportEveryFormat) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(with({"run", "--steps", "50", "--out", dir.path("run")}, kSmallRun)).exit_code, 0);
+  ASSERT_EQ(run_cli(with({"run", "--steps", "50", "--out", dir.path("run")}, kSmallRun)).exit_code,
+            0);
   const std::string h5 = dir.path("run/final.h5");
   auto r = run_cli({"info", h5, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -105,9 +109,11 @@ TEST(CliCheckpoint, PythonReadsTheCheckpointWithH5py) {
     GTEST_SKIP() << "python3-h5py is not installed (scripts/setup.sh installs it)";
   }
   ScratchDir dir;
-  ASSERT_EQ(run_cli(with({"run", "--steps", "40", "--out", dir.path("run")}, kSmallRun)).exit_code, 0);
-  const std::string cmd = "/usr/bin/python3 " + test::source_dir() + "/docs/python/read_checkpoint.py " +
-                          dir.path("run/final.h5") + " > " + dir.path("py.txt") + " 2>&1";
+  ASSERT_EQ(run_cli(with({"run", "--steps", "40", "--out", dir.path("run")}, kSmallRun)).exit_code,
+            0);
+  const std::string cmd = "/usr/bin/python3 " + test::source_dir() +
+                          "/docs/python/read_checkpoint.py " + dir.path("run/final.h5") + " > " +
+                          dir.path("py.txt") + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << test::read_text(dir.path("py.txt"));
   const std::string out = test::read_text(dir.path("py.txt"));
   EXPECT_NE(out.find("terrain 49 x 49"), std::string::npos) << out;

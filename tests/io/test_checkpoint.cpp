@@ -33,7 +33,8 @@ Parameters rainy() {
 }
 
 std::unique_ptr<Simulation> fresh() {
-  return std::make_unique<Simulation>(compute(), rainy(), generate_terrain("fbm", 41, 33, 1.0, 5, {{"relief", 0.3}}));
+  return std::make_unique<Simulation>(compute(), rainy(),
+                                      generate_terrain("fbm", 41, 33, 1.0, 5, {{"relief", 0.3}}));
 }
 
 void expect_same_state(Simulation& a, Simulation& b) {
@@ -45,7 +46,8 @@ void expect_same_state(Simulation& a, Simulation& b) {
   ASSERT_EQ(p.size(), q.size());
   for (int f = 0; f < kPersistentFieldCount; ++f) {
     const auto field = static_cast<ParticleField>(f);
-    EXPECT_EQ(0, std::memcmp(p.data(field), q.data(field), p.size() * 4)) << particle_field_info(field).name;
+    EXPECT_EQ(0, std::memcmp(p.data(field), q.data(field), p.size() * 4))
+        << particle_field_info(field).name;
   }
   const SphCounters c = a.counters(), d = b.counters();
   EXPECT_EQ(c.outflow_sediment, d.outflow_sediment);
@@ -69,7 +71,8 @@ TEST(Checkpoint, EveryDatasetRoundTrips) {
   EXPECT_EQ(r.height_quantum, d.height_quantum);
   for (int f = 0; f < kPersistentFieldCount; ++f) {
     const auto field = static_cast<ParticleField>(f);
-    EXPECT_EQ(0, std::memcmp(r.particles.data(field), d.particles.data(field), d.particles.size() * 4))
+    EXPECT_EQ(0,
+              std::memcmp(r.particles.data(field), d.particles.data(field), d.particles.size() * 4))
         << particle_field_info(field).name;
   }
   EXPECT_EQ(r.ax, d.ax);
@@ -147,7 +150,8 @@ TEST(Checkpoint, CorruptTruncatedAndForeignFilesAreRefused) {
     H5Ldelete(f, "/particles/ax", H5P_DEFAULT);
     const hsize_t n = good.particles.size() - 1;
     const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t set = H5Dcreate2(f, "/particles/ax", H5T_NATIVE_FLOAT, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t set = H5Dcreate2(f, "/particles/ax", H5T_NATIVE_FLOAT, space, H5P_DEFAULT,
+                                 H5P_DEFAULT, H5P_DEFAULT);
     H5Dwrite(set, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, good.ax.data());
     H5Dclose(set);
     H5Sclose(space);

@@ -167,3 +167,55 @@ TEST(Simulation, PerParticleCapacityFillsTheValleyAxis) {
 
 }  // namespace
 }  // namespace runnel
+
+namespace runnel {
+namespace {
+
+TEST(Rain, DiscRegionBudgetAndIntensity) {
+  Parameters p;
+  p.set("rain.region", std::string("disc"));
+  p.set("rain.disc_x", 20.0);
+  p.set("rain.disc_z", 15.0);
+  p.set("rain.disc_radius", 6.0);
+  p.set("rain.intensity", 3.6e7);  // 10 m/s of rain depth over the disc
+  p.set("rain.max_particles", static_cast<std::int64_t>(300));
+  p.set("rain.lifespan", 1000.0);
+  p.set("rain.spawn_height", 5.0);
+  p.set("thermal.every", static_cast<std::int64_t>(0));
+  const Heightmap flat = generate_terrain("plane", 41, 41, 1.0, 1, {{"slope", 0.0}});
+  Simulation sim(compute(), p, flat);
+  // intensity → rate: 10 m/s × π·6² m² / dx³ (dx = cell = 1 m).
+  EXPECT_NEAR(sim.rain().settings().rate, 10.0 * M_PI * 36.0, 1e-9);
+  for (int k = 0; k < 100 && sim.particles() < 20; ++k) sim.step();
+  const HostParticles first = sim.solver().particles().download();
+  ASSERT_GT(first.size(), 0u);
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_LE(std::hypot(first.f[kX][i] - 20.0, first.f[kZ][i] - 15.0), 6.0 + 1e-3);
+  }
+  for (int k = 0; k < 400; ++k) sim.step();
+  EXPECT_EQ(sim.particles(), 300u) << "the budget caps the particles alive";
+  EXPECT_EQ(sim.rain().spawned(), 300u);
+}
+
+TEST(Erosion, AcidityModelErodesAFixedAmountPerContactAndConserves) {
+  Parameters p = busy_parameters();
+  p.set("erosion.model", std::string("acidity"));
+  p.set("erosion.capacity_contacts", static_cast<std::int64_t>(3));
+  p.set("erosion.acidity", 0.002);
+  const Heightmap terrain = generate_terrain("crooked", 41, 41, 1.0, 2, {{"slope", 20.0}});
+  Simulation sim(compute(), p, terrain);
+  for (int k = 0; k < 400; ++k) sim.step();
+  const MassBalance m = sim.mass_balance();
+  EXPECT_GT(m.eroded, 0.0);
+  EXPECT_EQ(m.residual_quanta, 0);
+  // No particle erodes more than capacity_contacts events of acidity · cell².
+  const HostParticles q = sim.solver().particles().download();
+  const double quantum = sim.solver().terrain().volume_quantum();
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    EXPECT_LE(q.contacts[i], 3u);
+    EXPECT_LE(q.sediment[i] * quantum, 3 * 0.002 * 1.0 + 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace runnel
