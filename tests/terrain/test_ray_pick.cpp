@@ -20,7 +20,8 @@ TEST(RayPick, HitsLieOnTheSurfaceAlongTheRay) {
     // From a camera above and beside the terrain, aimed at a random point of it.
     const double o[3] = {-40.0 + 200 * u(rng), 80.0 + 40 * u(rng), -40.0 + 170 * u(rng)};
     const double target[3] = {128 * u(rng), 0.0, 96 * u(rng)};
-    const double d[3] = {target[0] - o[0], surface_height(t, target[0], target[2]) - o[1], target[2] - o[2]};
+    const double d[3] = {target[0] - o[0], surface_height(t, target[0], target[2]) - o[1],
+                         target[2] - o[2]};
     const auto hit = pick_terrain(t, o, d);
     if (!hit) continue;
     ++hits;

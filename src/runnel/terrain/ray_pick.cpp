@@ -10,9 +10,15 @@ namespace {
 struct Vec {
   double x, y, z;
 };
-Vec sub(Vec a, Vec b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Vec cross(Vec a, Vec b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double dot(Vec a, Vec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec sub(Vec a, Vec b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+Vec cross(Vec a, Vec b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double dot(Vec a, Vec b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
 // Möller–Trumbore for a ray crossing the triangle from above (det < 0, see collide.cl); t or −1.
 double moller_trumbore(Vec o, Vec d, Vec v0, Vec v1, Vec v2) {
@@ -31,7 +37,8 @@ double moller_trumbore(Vec o, Vec d, Vec v0, Vec v1, Vec v2) {
 
 }  // namespace
 
-std::optional<RayHit> pick_terrain(const Heightmap& t, const double origin[3], const double direction[3]) {
+std::optional<RayHit> pick_terrain(const Heightmap& t, const double origin[3],
+                                   const double direction[3]) {
   const Vec o{origin[0], origin[1], origin[2]}, d{direction[0], direction[1], direction[2]};
   const double c = t.cell, extent_x = (t.nx - 1) * c, extent_z = (t.ny - 1) * c;
   // Clip the ray to the terrain's footprint, so the walk starts and ends on it.
@@ -50,7 +57,8 @@ std::optional<RayHit> pick_terrain(const Heightmap& t, const double origin[3], c
   }
   if (!(t0 <= t1) || !std::isfinite(t1)) return std::nullopt;
   const Vec start{o.x + t0 * d.x, o.y + t0 * d.y, o.z + t0 * d.z};
-  int i = std::min(static_cast<int>(start.x / c), t.nx - 2), j = std::min(static_cast<int>(start.z / c), t.ny - 2);
+  int i = std::min(static_cast<int>(start.x / c), t.nx - 2),
+      j = std::min(static_cast<int>(start.z / c), t.ny - 2);
   const int step_i = d.x > 0 ? 1 : -1, step_j = d.z > 0 ? 1 : -1;
   auto boundary = [&](double p, double v, int cell_index) {
     if (v > 0) return ((cell_index + 1) * c - p) / v;
@@ -62,9 +70,11 @@ std::optional<RayHit> pick_terrain(const Heightmap& t, const double origin[3], c
   const double delta_j = d.z != 0 ? c / std::fabs(d.z) : std::numeric_limits<double>::infinity();
   auto vertex = [&](int a, int b) { return Vec{a * c, static_cast<double>(t.at(a, b)), b * c}; };
   while (i >= 0 && j >= 0 && i < t.nx - 1 && j < t.ny - 1) {
-    const Vec p00 = vertex(i, j), p10 = vertex(i + 1, j), p11 = vertex(i + 1, j + 1), p01 = vertex(i, j + 1);
+    const Vec p00 = vertex(i, j), p10 = vertex(i + 1, j), p11 = vertex(i + 1, j + 1),
+              p01 = vertex(i, j + 1);
     double best = -1;
-    for (double hit : {moller_trumbore(o, d, p00, p10, p11), moller_trumbore(o, d, p00, p11, p01)}) {
+    for (double hit :
+         {moller_trumbore(o, d, p00, p10, p11), moller_trumbore(o, d, p00, p11, p01)}) {
       if (hit >= 0 && (best < 0 || hit < best)) best = hit;
     }
     if (best >= 0) return RayHit{best, o.x + best * d.x, o.y + best * d.y, o.z + best * d.z};

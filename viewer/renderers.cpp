@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: MIT
+#include "renderers.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace runnel::viewer {
+namespace {
+
+const char* kTerrainVertex = R"(#version 330 core
+layout(location = 0) in vec3 grid;     // x, z, initial height
+layout(location = 1) in vec4 dynamic;  // height, normal
+uniform mat4 view_projection;
+out vec3 world;
+out vec3 normal;
+out float dh;
+void main() {
+  world = vec3(grid.x, dynamic.x, grid.y);
+  normal = dynamic.yzw;
+  dh = dynamic.x - grid.z;
+  gl_Position = view_projection * vec4(world, 1.0);
+})";
+
+const char* kTerrainFragment = R"(#version 330 core
+in vec3 world;
+in vec3 normal;
+in float dh;
+uniform float min_height, max_height, overlay_scale;
+uniform int overlay;
+uniform vec3 brush;  // x, z, radius
+uniform int brush_visible;
+out vec4 colour;
+vec3 diverging(float t) {  // red (eroded) – white – blue (deposited)
+  vec3 red = vec3(0.70, 0.09, 0.17), white = vec3(0.97), blue = vec3(0.13, 0.40, 0.67);
+  return t < 0.0 ? mix(white, red, -t) : mix(white, blue, t);
+}
+void main() {
+  vec3 n = normalize(normal);
+  float h = clamp((world.y - min_height) / max(max_height - min_height, 1e-6), 0.0, 1.0);
+  // Texture splatting after Fritz 2016: sand, grass, rock, snow by height; rock on steep slopes.
+  vec3 sand = vec3(0.76, 0.70, 0.50), grass = vec3(0.35, 0.55, 0.25), rock = vec3(0.48, 0.45, 0.42),
+       snow = vec3(0.95, 0.96, 0.98);
+  vec3 base = mix(sand, grass, smoothstep(0.02, 0.15, h));
+  base = mix(base, rock, smoothstep(0.55, 0.75, h));
+  base = mix(base, snow, smoothstep(0.82, 0.95, h));
+  float steep = smoothstep(0.25, 0.45, 1.0 - n.y);
+  base = mix(base, rock, steep);
+  if (overlay == 1) base = mix(base, diverging(clamp(dh / overlay_scale, -1.0, 1.0)), 0.85);
+  vec3 light = normalize(vec3(-0.5, 0.8, -0.3));
+  vec3 lit = base * (0.35 + 0.65 * max(dot(n, light), 0.0));
+  if (brush_visible == 1) {
+    float d = length(world.xz - brush.xy);
+    float ring = 1.0 - smoothstep(0.0, 0.06 * brush.z, abs(d - brush.z));
+    lit = mix(lit, vec3(0.1, 0.5, 1.0), ring);
+  }
+  colour = vec4(lit, 1.0);
+})";
+
+const char* kParticleVertex = R"(#version 330 core
+layout(location = 0) in vec4 particle;  // x, y, z, value
+uniform mat4 view_projection;
+uniform float point_size;  // metres · pixels-per-unit-depth
+out float value;
+void main() {
+  value = particle.w;
+  gl_Position = view_projection * vec4(particle.xyz, 1.0);
+  gl_PointSize = clamp(point_size / gl_Position.w, 1.5, 64.0);
+})";
+
+const char* kParticleFragment = R"(#version 330 core
+in float value;
+uniform int mode;
+out vec4 colour;
+void main() {
+  vec2 p = gl_PointCoord * 2.0 - 1.0;
+  float r2 = dot(p, p);
+  if (r2 > 1.0) discard;
+  vec3 clean = vec3(0.20, 0.50, 0.95), laden = vec3(0.55, 0.36, 0.16);
+  vec3 slow = vec3(0.15, 0.35, 0.85), fast = vec3(0.95, 0.95, 0.30);
+  vec3 c = mode == 0 ? mix(clean, laden, value) : mix(slow, fast, value);
+  colour = vec4(c * (0.75 + 0.25 * sqrt(1.0 - r2)), 0.9);
+})";
+
+}  // namespace
+
+TerrainRenderer::TerrainRenderer(const Heightmap& t)
+    : program_(kTerrainVertex, kTerrainFragment), nx_(t.nx), ny_(t.ny) {
+  std::vector<float> grid;
+  grid.reserve(t.size() * 3);
+  for (int j = 0; j < t.ny; ++j) {
+    for (int i = 0; i < t.nx; ++i) {
+      grid.push_back(static_cast<float>(i * t.cell));
+      grid.push_back(static_cast<float>(j * t.cell));
+      grid.push_back(t.at(i, j));
+    }
+  }
+  std::vector<GLuint> index;
+  for (int j = 0; j + 1 < t.ny; ++j) {
+    for (int i = 0; i + 1 < t.nx; ++i) {  // the diagonal (i, j)–(i+1, j+1), as the simulation's mesh
+      const GLuint a = j * t.nx + i, b = a + 1, c = a + t.nx + 1, d = a + t.nx;
+      index.insert(index.end(), {a, c, b, a, d, c});
+    }
+  }
+  indices_ = static_cast<GLsizei>(index.size());
+  glGenVertexArrays(1, &vao_);
+  glBindVertexArray(vao_);
+  glGenBuffers(1, &grid_vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, grid_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, grid.size() * sizeof(float), grid.data(), GL_STATIC_DRAW);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(0);
+  glGenBuffers(1, &dynamic_vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, dynamic_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, t.size() * 4 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(1);
+  glGenBuffers(1, &ibo_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(), GL_STATIC_DRAW);
+  glBindVertexArray(0);
+}
+
+TerrainRenderer::~TerrainRenderer() {
+  glDeleteBuffers(1, &grid_vbo_);
+  glDeleteBuffers(1, &dynamic_vbo_);
+  glDeleteBuffers(1, &ibo_);
+  glDeleteVertexArrays(1, &vao_);
+}
+
+void TerrainRenderer::update(const std::vector<float>& height, const std::vector<float>& normal) {
+  interleaved_.resize(height.size() * 4);
+  for (std::size_t k = 0; k < height.size(); ++k) {
+    interleaved_[4 * k] = height[k];
+    interleaved_[4 * k + 1] = normal[3 * k];
+    interleaved_[4 * k + 2] = normal[3 * k + 1];
+    interleaved_[4 * k + 3] = normal[3 * k + 2];
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, dynamic_vbo_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, interleaved_.size() * sizeof(float), interleaved_.data());
+}
+
+void TerrainRenderer::draw(const glm::mat4& vp, float lo, float hi, TerrainOverlay overlay, float scale,
+                           const glm::vec3& brush, bool brush_visible) const {
+  program_.use();
+  glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+  glUniform1f(program_.uniform("min_height"), lo);
+  glUniform1f(program_.uniform("max_height"), hi);
+  glUniform1f(program_.uniform("overlay_scale"), scale);
+  glUniform1i(program_.uniform("overlay"), static_cast<int>(overlay));
+  glUniform3f(program_.uniform("brush"), brush.x, brush.y, brush.z);
+  glUniform1i(program_.uniform("brush_visible"), brush_visible ? 1 : 0);
+  glBindVertexArray(vao_);
+  glDrawElements(GL_TRIANGLES, indices_, GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+}
+
+ParticleRenderer::ParticleRenderer() : program_(kParticleVertex, kParticleFragment) {
+  glGenVertexArrays(1, &vao_);
+  glBindVertexArray(vao_);
+  glGenBuffers(1, &vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(0);
+  glBindVertexArray(0);
+}
+
+ParticleRenderer::~ParticleRenderer() {
+  glDeleteBuffers(1, &vbo_);
+  glDeleteVertexArrays(1, &vao_);
+}
+
+void ParticleRenderer::update(const std::vector<float>& xyzv) {
+  count_ = static_cast<GLsizei>(xyzv.size() / 4);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  glBufferData(GL_ARRAY_BUFFER, xyzv.size() * sizeof(float), xyzv.data(), GL_STREAM_DRAW);
+}
+
+void ParticleRenderer::draw(const glm::mat4& vp, float size_metres, float viewport_height, ParticleColour mode) const {
+  if (count_ == 0) return;
+  program_.use();
+  glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+  // Projected size: metres × (viewport height / (2 tan(fov/2))) / depth.
+  glUniform1f(program_.uniform("point_size"), size_metres * viewport_height / (2.0f * 0.41421f));
+  glUniform1i(program_.uniform("mode"), static_cast<int>(mode));
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_POINTS, 0, count_);
+  glBindVertexArray(0);
+  glDisable(GL_BLEND);
+}
+
+}  // namespace runnel::viewer

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <epoxy/gl.h>
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <vector>
+
+#include "gl_program.hpp"
+#include "runnel/core/heightmap.hpp"
+
+namespace runnel::viewer {
+
+enum class TerrainOverlay { kNone = 0, kErosion = 1 };
+enum class ParticleColour { kSediment = 0, kSpeed = 1 };
+
+// The terrain mesh: texture splatting by height and slope (sand, grass, rock, snow; rock on steep
+// slopes), Lambert lighting, an erosion/deposition overlay and the rain brush ring.
+class TerrainRenderer {
+ public:
+  explicit TerrainRenderer(const Heightmap& initial);
+  ~TerrainRenderer();
+  // New heights and vertex normals (3 per vertex) after a simulation step.
+  void update(const std::vector<float>& height, const std::vector<float>& normal);
+  void draw(const glm::mat4& view_projection, float min_height, float max_height, TerrainOverlay overlay,
+            float overlay_scale, const glm::vec3& brush, bool brush_visible) const;
+
+ private:
+  GlProgram program_;
+  GLuint vao_ = 0, grid_vbo_ = 0, dynamic_vbo_ = 0, ibo_ = 0;
+  GLsizei indices_ = 0;
+  int nx_, ny_;
+  std::vector<float> interleaved_;
+};
+
+// Water particles as round point sprites, coloured by sediment load or by speed.
+class ParticleRenderer {
+ public:
+  ParticleRenderer();
+  ~ParticleRenderer();
+  // x, y, z, value (in [0, 1]) per particle.
+  void update(const std::vector<float>& xyzv);
+  void draw(const glm::mat4& view_projection, float point_size_metres, float viewport_height, ParticleColour mode) const;
+
+ private:
+  GlProgram program_;
+  GLuint vao_ = 0, vbo_ = 0;
+  GLsizei count_ = 0;
+};
+
+}  // namespace runnel::viewer
