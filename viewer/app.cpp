@@ -10,11 +10,11 @@
 #include <imgui_impl_opengl3.h>
 
 #include <chrono>
-#include <map>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 
 #include "camera.hpp"
 #include "renderers.hpp"
@@ -33,13 +33,14 @@ using Clock = std::chrono::steady_clock;
 struct Brush {
   bool over_terrain = false;
   double x = 0, z = 0;
-  double radius = 20;         // m
-  double intensity = 0;       // mm/h over the brush disc
+  double radius = 20;    // m
+  double intensity = 0;  // mm/h over the brush disc
 };
 
 class Viewer {
  public:
-  Viewer(const ViewerOptions& options, GLFWwindow* window) : options_(options), window_(window), compute_(options.device) {
+  Viewer(const ViewerOptions& options, GLFWwindow* window)
+      : options_(options), window_(window), compute_(options.device) {
     load();
   }
 
@@ -78,7 +79,8 @@ class Viewer {
   std::unique_ptr<ParticleRenderer> particles_;
   OrbitCamera camera_;
   Brush brush_;
-  bool playing_ = true, step_once_ = false, global_rain_on_ = true, painting_ = false, help_ = false;
+  bool playing_ = true, step_once_ = false, global_rain_on_ = true, painting_ = false,
+       help_ = false;
   TerrainOverlay overlay_ = TerrainOverlay::kNone;
   ParticleColour particle_colour_ = ParticleColour::kSediment;
   float min_height_ = 0, max_height_ = 1;
@@ -109,7 +111,8 @@ void Viewer::reset() {
   min_height_ = t.min_height();
   max_height_ = std::max(t.max_height(), min_height_ + 1e-3f);
   const float extent = static_cast<float>(std::max(t.nx - 1, t.ny - 1) * t.cell);
-  camera_.frame(glm::vec3(0.5f * (t.nx - 1) * t.cell, 0.5f * (min_height_ + max_height_), 0.5f * (t.ny - 1) * t.cell),
+  camera_.frame(glm::vec3(0.5f * (t.nx - 1) * t.cell, 0.5f * (min_height_ + max_height_),
+                          0.5f * (t.ny - 1) * t.cell),
                 extent);
   brush_.radius = 0.05 * extent;
   // A brush intensity that rains about 300 particles per second at the starting radius.
@@ -135,7 +138,8 @@ void Viewer::screenshot(const std::string& path) {
   glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
   RgbImage image(w, h);
   for (int y = 0; y < h; ++y) {  // GL rows start at the bottom
-    std::copy_n(pixels.data() + static_cast<std::size_t>(h - 1 - y) * w * 3, static_cast<std::size_t>(w) * 3,
+    std::copy_n(pixels.data() + static_cast<std::size_t>(h - 1 - y) * w * 3,
+                static_cast<std::size_t>(w) * 3,
                 image.rgb.data() + static_cast<std::size_t>(y) * w * 3);
   }
   write_png_rgb(path, image);
@@ -152,26 +156,31 @@ void Viewer::handle_input() {
   int w = 0, h = 0;
   glfwGetWindowSize(window_, &w, &h);
   if (!io.WantCaptureMouse) {
-    if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) camera_.orbit(static_cast<float>(dx), static_cast<float>(dy));
+    if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
+      camera_.orbit(static_cast<float>(dx), static_cast<float>(dy));
     if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) {
       camera_.pan(static_cast<float>(dx), static_cast<float>(dy), static_cast<float>(h));
     }
     if (io.MouseWheel != 0.0f) {
-      if (io.KeyCtrl || io.KeyShift) brush_.radius = std::max(0.5, brush_.radius * std::pow(1.15, io.MouseWheel));
-      else camera_.zoom(io.MouseWheel);
+      if (io.KeyCtrl || io.KeyShift)
+        brush_.radius = std::max(0.5, brush_.radius * std::pow(1.15, io.MouseWheel));
+      else
+        camera_.zoom(io.MouseWheel);
     }
   }
   // The cursor ray against the terrain: where the brush is.
   glm::dvec3 origin, direction;
   camera_.ray(x, y, std::max(w, 1), std::max(h, 1), origin, direction);
-  const double o[3] = {origin.x, origin.y, origin.z}, d[3] = {direction.x, direction.y, direction.z};
+  const double o[3] = {origin.x, origin.y, origin.z},
+               d[3] = {direction.x, direction.y, direction.z};
   const auto hit = pick_terrain(sim_->initial_terrain(), o, d);
   brush_.over_terrain = hit.has_value() && !io.WantCaptureMouse;
   if (hit) {
     brush_.x = hit->x;
     brush_.z = hit->z;
   }
-  painting_ = brush_.over_terrain && glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  painting_ =
+      brush_.over_terrain && glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
   if (!io.WantCaptureKeyboard) {
     if (pressed(GLFW_KEY_SPACE)) playing_ = !playing_;
     if (pressed(GLFW_KEY_N)) step_once_ = true;
@@ -238,9 +247,12 @@ void Viewer::upload() {
     xyzv[4 * i + 2] = p.f[kZ][i];
     float value = 0;
     if (particle_colour_ == ParticleColour::kSediment) {
-      value = static_cast<float>(std::min(1.0, 20.0 * p.sediment[i] * q / volume));  // 5 % load is full colour
+      value = static_cast<float>(
+          std::min(1.0, 20.0 * p.sediment[i] * q / volume));  // 5 % load is full colour
     } else {
-      value = std::min(1.0f, std::sqrt(p.f[kVx][i] * p.f[kVx][i] + p.f[kVy][i] * p.f[kVy][i] + p.f[kVz][i] * p.f[kVz][i]) / 15.0f);
+      value = std::min(1.0f, std::sqrt(p.f[kVx][i] * p.f[kVx][i] + p.f[kVy][i] * p.f[kVy][i] +
+                                       p.f[kVz][i] * p.f[kVz][i]) /
+                                 15.0f);
     }
     xyzv[4 * i + 3] = value;
   }
@@ -259,12 +271,17 @@ void Viewer::draw_panel() {
   if (ImGui::Button("Reset")) reset();
   if (ImGui::Button("Save checkpoint")) save_checkpoint();
   ImGui::SameLine();
-  if (ImGui::Button("Screenshot")) screenshot("runnel-viewer-" + std::to_string(sim_->steps()) + ".png");
+  if (ImGui::Button("Screenshot"))
+    screenshot("runnel-viewer-" + std::to_string(sim_->steps()) + ".png");
   ImGui::Separator();
   ImGui::Checkbox("global rain", &global_rain_on_);
-  float radius = static_cast<float>(brush_.radius), intensity = static_cast<float>(brush_.intensity);
-  if (ImGui::SliderFloat("brush radius (m)", &radius, 0.5f, 500.0f, "%.1f", ImGuiSliderFlags_Logarithmic)) brush_.radius = radius;
-  if (ImGui::SliderFloat("brush rain (mm/h)", &intensity, 1e3f, 1e9f, "%.3g", ImGuiSliderFlags_Logarithmic)) {
+  float radius = static_cast<float>(brush_.radius),
+        intensity = static_cast<float>(brush_.intensity);
+  if (ImGui::SliderFloat("brush radius (m)", &radius, 0.5f, 500.0f, "%.1f",
+                         ImGuiSliderFlags_Logarithmic))
+    brush_.radius = radius;
+  if (ImGui::SliderFloat("brush rain (mm/h)", &intensity, 1e3f, 1e9f, "%.3g",
+                         ImGuiSliderFlags_Logarithmic)) {
     brush_.intensity = intensity;
   }
   int overlay = static_cast<int>(overlay_), colour = static_cast<int>(particle_colour_);
@@ -274,7 +291,8 @@ void Viewer::draw_panel() {
   particle_colour_ = static_cast<ParticleColour>(colour);
   ImGui::Separator();
   ImGui::Text("particles: %zu", sim_->particles());
-  ImGui::Text("steps/s: %.0f   step %llu", steps_per_second_, static_cast<unsigned long long>(sim_->steps()));
+  ImGui::Text("steps/s: %.0f   step %llu", steps_per_second_,
+              static_cast<unsigned long long>(sim_->steps()));
   ImGui::Text("simulated time: %.2f s", sim_->time());
   ImGui::Text("eroded %.4g m3, deposited %.4g m3", balance_.eroded, balance_.deposited);
   ImGui::Text("mass balance %.2e m3 (rel %.1e)", balance_.residual, balance_.relative);
@@ -328,12 +346,14 @@ int Viewer::loop() {
     glClearColor(0.55f, 0.68f, 0.82f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
-    const glm::mat4 vp = camera_.projection(static_cast<float>(w) / std::max(h, 1)) * camera_.view();
+    const glm::mat4 vp =
+        camera_.projection(static_cast<float>(w) / std::max(h, 1)) * camera_.view();
     const Heightmap& t = sim_->initial_terrain();
     const float scale = static_cast<float>(std::max(1e-3, 0.02 * (max_height_ - min_height_)));
     terrain_->draw(vp, min_height_, max_height_, overlay_, scale,
                    glm::vec3(brush_.x, brush_.z, brush_.radius), brush_.over_terrain);
-    particles_->draw(vp, static_cast<float>(sim_->solver().settings().spacing), static_cast<float>(h), particle_colour_);
+    particles_->draw(vp, static_cast<float>(sim_->solver().settings().spacing),
+                     static_cast<float>(h), particle_colour_);
     (void)t;
     draw_panel();
     ImGui::Render();
@@ -359,12 +379,15 @@ int Viewer::loop() {
 }  // namespace
 
 int run_viewer(const ViewerOptions& options) {
-  if (!glfwInit()) throw runtime_error("cannot initialise GLFW (is there a display? set DISPLAY or run under Xvfb)");
+  if (!glfwInit())
+    throw runtime_error(
+        "cannot initialise GLFW (is there a display? set DISPLAY or run under Xvfb)");
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(options.width, options.height, "runnel-viewer", nullptr, nullptr);
+  GLFWwindow* window =
+      glfwCreateWindow(options.width, options.height, "runnel-viewer", nullptr, nullptr);
   if (!window) {
     glfwTerminate();
     throw runtime_error("cannot open an OpenGL 3.3 core window");

@@ -9,13 +9,13 @@
 namespace runnel::viewer {
 
 struct ViewerOptions {
-  std::string input;             // scenario (.toml) or checkpoint (.h5); empty: built-in defaults
+  std::string input;  // scenario (.toml) or checkpoint (.h5); empty: built-in defaults
   std::string device;
   int width = 1280, height = 800;
-  long long frames = 0;          // 0: until the window closes
-  std::string screenshot;        // PNG of the last frame
-  long long stats_every = 0;     // JSON line on stdout every K frames
-  bool rain = true;              // global rain at start
+  long long frames = 0;       // 0: until the window closes
+  std::string screenshot;     // PNG of the last frame
+  long long stats_every = 0;  // JSON line on stdout every K frames
+  bool rain = true;           // global rain at start
 };
 
 // Runs the viewer; returns the process exit code.

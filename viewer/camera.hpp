@@ -16,7 +16,8 @@ class OrbitCamera {
   glm::mat4 view() const;
   glm::mat4 projection(float aspect) const;
   // The world-space ray through a pixel (origin at the eye, unnormalised direction).
-  void ray(double px, double py, int width, int height, glm::dvec3& origin, glm::dvec3& direction) const;
+  void ray(double px, double py, int width, int height, glm::dvec3& origin,
+           glm::dvec3& direction) const;
 
  private:
   glm::vec3 target_{0.0f};

@@ -23,7 +23,8 @@ GLuint compile(GLenum type, const char* source) {
 }  // namespace
 
 GlProgram::GlProgram(const char* vertex_source, const char* fragment_source) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, vertex_source), fs = compile(GL_FRAGMENT_SHADER, fragment_source);
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex_source),
+               fs = compile(GL_FRAGMENT_SHADER, fragment_source);
   id_ = glCreateProgram();
   glAttachShader(id_, vs);
   glAttachShader(id_, fs);

@@ -10,11 +10,16 @@
 int main(int argc, char** argv) {
   runnel::viewer::ViewerOptions o;
   std::string size = "1280x800";
-  CLI::App app{"runnel-viewer: the SPH rain-erosion simulation live in a window; paint rain with the left mouse "
-               "button. Right drag orbits, middle drag pans, the wheel zooms (ctrl/shift + wheel: brush radius); "
-               "space pause, N step, R reset, S save checkpoint, P screenshot, H help, Esc quit."};
-  app.add_option("input", o.input, "scenario (.toml) or checkpoint (.h5); default: built-in defaults");
-  app.add_option("--frames", o.frames, "run this many frames, then exit")->check(CLI::NonNegativeNumber);
+  CLI::App app{
+      "runnel-viewer: the SPH rain-erosion simulation live in a window; paint rain with the left "
+      "mouse "
+      "button. Right drag orbits, middle drag pans, the wheel zooms (ctrl/shift + wheel: brush "
+      "radius); "
+      "space pause, N step, R reset, S save checkpoint, P screenshot, H help, Esc quit."};
+  app.add_option("input", o.input,
+                 "scenario (.toml) or checkpoint (.h5); default: built-in defaults");
+  app.add_option("--frames", o.frames, "run this many frames, then exit")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--screenshot", o.screenshot, "save the last frame as PNG");
   app.add_option("--stats-every", o.stats_every, "print a JSON line of statistics every K frames")
       ->check(CLI::NonNegativeNumber);

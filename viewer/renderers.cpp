@@ -95,7 +95,8 @@ TerrainRenderer::TerrainRenderer(const Heightmap& t)
   }
   std::vector<GLuint> index;
   for (int j = 0; j + 1 < t.ny; ++j) {
-    for (int i = 0; i + 1 < t.nx; ++i) {  // the diagonal (i, j)–(i+1, j+1), as the simulation's mesh
+    for (int i = 0; i + 1 < t.nx;
+         ++i) {  // the diagonal (i, j)–(i+1, j+1), as the simulation's mesh
       const GLuint a = j * t.nx + i, b = a + 1, c = a + t.nx + 1, d = a + t.nx;
       index.insert(index.end(), {a, c, b, a, d, c});
     }
@@ -115,7 +116,8 @@ TerrainRenderer::TerrainRenderer(const Heightmap& t)
   glEnableVertexAttribArray(1);
   glGenBuffers(1, &ibo_);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo_);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
+               GL_STATIC_DRAW);
   glBindVertexArray(0);
 }
 
@@ -138,8 +140,8 @@ void TerrainRenderer::update(const std::vector<float>& height, const std::vector
   glBufferSubData(GL_ARRAY_BUFFER, 0, interleaved_.size() * sizeof(float), interleaved_.data());
 }
 
-void TerrainRenderer::draw(const glm::mat4& vp, float lo, float hi, TerrainOverlay overlay, float scale,
-                           const glm::vec3& brush, bool brush_visible) const {
+void TerrainRenderer::draw(const glm::mat4& vp, float lo, float hi, TerrainOverlay overlay,
+                           float scale, const glm::vec3& brush, bool brush_visible) const {
   program_.use();
   glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
   glUniform1f(program_.uniform("min_height"), lo);
@@ -174,7 +176,8 @@ void ParticleRenderer::update(const std::vector<float>& xyzv) {
   glBufferData(GL_ARRAY_BUFFER, xyzv.size() * sizeof(float), xyzv.data(), GL_STREAM_DRAW);
 }
 
-void ParticleRenderer::draw(const glm::mat4& vp, float size_metres, float viewport_height, ParticleColour mode) const {
+void ParticleRenderer::draw(const glm::mat4& vp, float size_metres, float viewport_height,
+                            ParticleColour mode) const {
   if (count_ == 0) return;
   program_.use();
   glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));

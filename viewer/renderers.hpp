@@ -22,8 +22,9 @@ class TerrainRenderer {
   ~TerrainRenderer();
   // New heights and vertex normals (3 per vertex) after a simulation step.
   void update(const std::vector<float>& height, const std::vector<float>& normal);
-  void draw(const glm::mat4& view_projection, float min_height, float max_height, TerrainOverlay overlay,
-            float overlay_scale, const glm::vec3& brush, bool brush_visible) const;
+  void draw(const glm::mat4& view_projection, float min_height, float max_height,
+            TerrainOverlay overlay, float overlay_scale, const glm::vec3& brush,
+            bool brush_visible) const;
 
  private:
   GlProgram program_;
@@ -40,7 +41,8 @@ class ParticleRenderer {
   ~ParticleRenderer();
   // x, y, z, value (in [0, 1]) per particle.
   void update(const std::vector<float>& xyzv);
-  void draw(const glm::mat4& view_projection, float point_size_metres, float viewport_height, ParticleColour mode) const;
+  void draw(const glm::mat4& view_projection, float point_size_metres, float viewport_height,
+            ParticleColour mode) const;
 
  private:
   GlProgram program_;

@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: MIT
+// runnel-viewer under a real X server (Xvfb + Mesa): the screenshot is a rendering of the terrain,
+// and a real mouse drag on the terrain (xdotool) paints rain.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+
+// One Xvfb server for the test, on a display number of its own.
+class XServer {
+ public:
+  XServer() {
+    display_ = std::to_string(80 + getpid() % 100);
+    display_.insert(0, ":");  // not ":" + std::string&&, which GCC 12 warns about falsely (-Wrestrict)
+    const std::string cmd = "Xvfb " + display_ + " -screen 0 1280x900x24 -nolisten tcp >/dev/null 2>&1 & echo $!";
+    FILE* p = popen(cmd.c_str(), "r");
+    if (p) {
+      if (std::fscanf(p, "%d", &pid_) != 1) pid_ = -1;
+      pclose(p);
+    }
+    for (int k = 0; k < 50 && !ready(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ~XServer() {
+    if (pid_ > 0) std::system(("kill " + std::to_string(pid_) + " 2>/dev/null").c_str());
+  }
+  bool ready() const { return std::system(("DISPLAY=" + display_ + " xdpyinfo >/dev/null 2>&1").c_str()) == 0; }
+  std::string env() const { return "DISPLAY=" + display_; }
+
+ private:
+  std::string display_;
+  int pid_ = -1;
+};
+
+struct Picture {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+Picture read_rgb_png(const std::string& path) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  Picture p;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) return p;
+  image.format = PNG_FORMAT_RGB;
+  p.rgb.resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, p.rgb.data(), 0, nullptr)) return {};
+  p.width = static_cast<int>(image.width);
+  p.height = static_cast<int>(image.height);
+  return p;
+}
+
+#define REQUIRE_X_TOOLS()                                                                       \
+  do {                                                                                          \
+    for (const char* tool : {"Xvfb", "xdotool", "xdpyinfo"}) {                                  \
+      if (!have(tool)) GTEST_SKIP() << tool << " is not installed (scripts/setup.sh installs it)"; \
+    }                                                                                           \
+  } while (0)
+
+TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start";
+  test::ScratchDir dir;
+  const std::string cmd = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
+                          "/data/scenarios/default.toml --frames 20 --size 640x480 --screenshot " +
+                          dir.path("shot.png") + " > " + dir.path("log.txt") + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << test::read_text(dir.path("log.txt"));
+  const Picture p = read_rgb_png(dir.path("shot.png"));
+  ASSERT_EQ(p.width, 640);
+  ASSERT_EQ(p.height, 480);
+  // Not blank: most pixels differ from the sky, and they are terrain colours (green, brown, grey, white).
+  std::size_t sky = 0, greenish = 0;
+  double mean = 0, mean2 = 0;
+  for (std::size_t k = 0; k < p.rgb.size(); k += 3) {
+    const int r = p.rgb[k], g = p.rgb[k + 1], b = p.rgb[k + 2];
+    sky += std::abs(r - 140) < 6 && std::abs(g - 173) < 6 && std::abs(b - 209) < 6;
+    greenish += g > r && g > b;
+    const double l = 0.3 * r + 0.59 * g + 0.11 * b;
+    mean += l;
+    mean2 += l * l;
+  }
+  const double n = p.rgb.size() / 3.0;
+  EXPECT_LT(sky / n, 0.7) << "the terrain covers the view";
+  EXPECT_GT(greenish / n, 0.15) << "grass-coloured terrain is visible";
+  EXPECT_GT(std::sqrt(mean2 / n - (mean / n) * (mean / n)), 10.0) << "shading varies across the picture";
+}
+
+TEST(Viewer, MouseDragOnTheTerrainPaintsRain) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start";
+  test::ScratchDir dir;
+  // Global rain off: every particle must come from the brush.
+  const std::string viewer = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
+                             "/data/scenarios/default.toml --no-rain --frames 160 --stats-every 5 --size 800x600 > " +
+                             dir.path("stats.txt") + " 2>&1 &";
+  ASSERT_EQ(std::system(viewer.c_str()), 0);
+  const std::string find = x.env() + " xdotool search --sync --name runnel-viewer > " + dir.path("wid.txt");
+  ASSERT_EQ(std::system(("timeout 30 sh -c '" + find + "'").c_str()), 0) << "no viewer window";
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  // Press on the middle of the window (the terrain), hold, drag a little, release.
+  const std::string wid = test::read_text(dir.path("wid.txt")).substr(0, test::read_text(dir.path("wid.txt")).find('\n'));
+  const std::string drag = x.env() + " xdotool mousemove --window " + wid + " 560 380 mousedown 1 sleep 2 " +
+                           "mousemove --window " + wid + " 600 400 sleep 2 mouseup 1";
+  ASSERT_EQ(std::system(drag.c_str()), 0);
+  // Wait for the viewer to finish its frames.
+  for (int k = 0; k < 120; ++k) {
+    if (test::read_text(dir.path("stats.txt")).find("\"frame\": 160,") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  std::istringstream lines(test::read_text(dir.path("stats.txt")));
+  long long first = -1, last = -1;
+  bool painted = false;
+  for (std::string line; std::getline(lines, line);) {
+    const auto at = line.find("\"particles\": ");
+    if (at == std::string::npos) continue;
+    const long long particles = std::stoll(line.substr(at + 13));
+    if (first < 0) first = particles;
+    last = particles;
+    painted = painted || line.find("\"painting\": true") != std::string::npos;
+  }
+  EXPECT_EQ(first, 0) << "no rain before the drag";
+  EXPECT_TRUE(painted) << "the drag was seen as painting on the terrain";
+  EXPECT_GT(last, 50) << test::read_text(dir.path("stats.txt"));
+}
+
+}  // namespace
+}  // namespace runnel
