@@ -17,26 +17,33 @@
 namespace runnel {
 namespace {
 
-bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+bool have(const char* tool) {
+  return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0;
+}
 
 // One Xvfb server for the test, on a display number of its own.
 class XServer {
  public:
   XServer() {
-    display_ = std::to_string(80 + getpid() % 100);
-    display_.insert(0, ":");  // not ":" + std::string&&, which GCC 12 warns about falsely (-Wrestrict)
-    const std::string cmd = "Xvfb " + display_ + " -screen 0 1280x900x24 -nolisten tcp >/dev/null 2>&1 & echo $!";
+    display_ =
+        ":";  // appended, not ":" + std::string&&, which GCC 12 warns about falsely (-Wrestrict)
+    display_ += std::to_string(80 + getpid() % 100);
+    const std::string cmd =
+        "Xvfb " + display_ + " -screen 0 1280x900x24 -nolisten tcp >/dev/null 2>&1 & echo $!";
     FILE* p = popen(cmd.c_str(), "r");
     if (p) {
       if (std::fscanf(p, "%d", &pid_) != 1) pid_ = -1;
       pclose(p);
     }
-    for (int k = 0; k < 50 && !ready(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    for (int k = 0; k < 50 && !ready(); ++k)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   ~XServer() {
     if (pid_ > 0) std::system(("kill " + std::to_string(pid_) + " 2>/dev/null").c_str());
   }
-  bool ready() const { return std::system(("DISPLAY=" + display_ + " xdpyinfo >/dev/null 2>&1").c_str()) == 0; }
+  bool ready() const {
+    return std::system(("DISPLAY=" + display_ + " xdpyinfo >/dev/null 2>&1").c_str()) == 0;
+  }
   std::string env() const { return "DISPLAY=" + display_; }
 
  private:
@@ -63,11 +70,11 @@ Picture read_rgb_png(const std::string& path) {
   return p;
 }
 
-#define REQUIRE_X_TOOLS()                                                                       \
-  do {                                                                                          \
-    for (const char* tool : {"Xvfb", "xdotool", "xdpyinfo"}) {                                  \
+#define REQUIRE_X_TOOLS()                                                                          \
+  do {                                                                                             \
+    for (const char* tool : {"Xvfb", "xdotool", "xdpyinfo"}) {                                     \
       if (!have(tool)) GTEST_SKIP() << tool << " is not installed (scripts/setup.sh installs it)"; \
-    }                                                                                           \
+    }                                                                                              \
   } while (0)
 
 TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
@@ -82,7 +89,8 @@ TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
   const Picture p = read_rgb_png(dir.path("shot.png"));
   ASSERT_EQ(p.width, 640);
   ASSERT_EQ(p.height, 480);
-  // Not blank: most pixels differ from the sky, and they are terrain colours (green, brown, grey, white).
+  // Not blank: most pixels differ from the sky, and they are terrain colours (green, brown, grey,
+  // white).
   std::size_t sky = 0, greenish = 0;
   double mean = 0, mean2 = 0;
   for (std::size_t k = 0; k < p.rgb.size(); k += 3) {
@@ -96,7 +104,8 @@ TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
   const double n = p.rgb.size() / 3.0;
   EXPECT_LT(sky / n, 0.7) << "the terrain covers the view";
   EXPECT_GT(greenish / n, 0.15) << "grass-coloured terrain is visible";
-  EXPECT_GT(std::sqrt(mean2 / n - (mean / n) * (mean / n)), 10.0) << "shading varies across the picture";
+  EXPECT_GT(std::sqrt(mean2 / n - (mean / n) * (mean / n)), 10.0)
+      << "shading varies across the picture";
 }
 
 TEST(Viewer, MouseDragOnTheTerrainPaintsRain) {
@@ -105,17 +114,21 @@ TEST(Viewer, MouseDragOnTheTerrainPaintsRain) {
   ASSERT_TRUE(x.ready()) << "Xvfb did not start";
   test::ScratchDir dir;
   // Global rain off: every particle must come from the brush.
-  const std::string viewer = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
-                             "/data/scenarios/default.toml --no-rain --frames 160 --stats-every 5 --size 800x600 > " +
-                             dir.path("stats.txt") + " 2>&1 &";
+  const std::string viewer =
+      x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
+      "/data/scenarios/default.toml --no-rain --frames 160 --stats-every 5 --size 800x600 > " +
+      dir.path("stats.txt") + " 2>&1 &";
   ASSERT_EQ(std::system(viewer.c_str()), 0);
-  const std::string find = x.env() + " xdotool search --sync --name runnel-viewer > " + dir.path("wid.txt");
+  const std::string find =
+      x.env() + " xdotool search --sync --name runnel-viewer > " + dir.path("wid.txt");
   ASSERT_EQ(std::system(("timeout 30 sh -c '" + find + "'").c_str()), 0) << "no viewer window";
   std::this_thread::sleep_for(std::chrono::seconds(2));
   // Press on the middle of the window (the terrain), hold, drag a little, release.
-  const std::string wid = test::read_text(dir.path("wid.txt")).substr(0, test::read_text(dir.path("wid.txt")).find('\n'));
-  const std::string drag = x.env() + " xdotool mousemove --window " + wid + " 560 380 mousedown 1 sleep 2 " +
-                           "mousemove --window " + wid + " 600 400 sleep 2 mouseup 1";
+  const std::string wid = test::read_text(dir.path("wid.txt"))
+                              .substr(0, test::read_text(dir.path("wid.txt")).find('\n'));
+  const std::string drag = x.env() + " xdotool mousemove --window " + wid +
+                           " 560 380 mousedown 1 sleep 2 " + "mousemove --window " + wid +
+                           " 600 400 sleep 2 mouseup 1";
   ASSERT_EQ(std::system(drag.c_str()), 0);
   // Wait for the viewer to finish its frames.
   for (int k = 0; k < 120; ++k) {
