@@ -25,9 +25,10 @@ bool have(const char* tool) {
 class XServer {
  public:
   XServer() {
-    display_ =
-        ":";  // appended, not ":" + std::string&&, which GCC 12 warns about falsely (-Wrestrict)
-    display_ += std::to_string(80 + getpid() % 100);
+    char name[32];  // formatted, not built from std::string&& pieces, which GCC 12 warns about
+                    // falsely
+    std::snprintf(name, sizeof name, ":%d", 80 + getpid() % 100);
+    display_ = name;
     const std::string cmd =
         "Xvfb " + display_ + " -screen 0 1280x900x24 -nolisten tcp >/dev/null 2>&1 & echo $!";
     FILE* p = popen(cmd.c_str(), "r");
