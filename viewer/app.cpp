@@ -50,6 +50,8 @@ class Viewer {
   void load();
   void reset();
   void save_checkpoint();
+  void load_checkpoint(const std::string& path);
+  void frame_camera();
   void screenshot(const std::string& path);
   void handle_input();
   void update_rain();
@@ -88,6 +90,7 @@ class Viewer {
   double last_x_ = 0, last_y_ = 0;
   MassBalance balance_;
   std::string message_;
+  char load_path_[512] = "runnel-out/final.h5";
 };
 
 void Viewer::load() {
@@ -111,9 +114,7 @@ void Viewer::reset() {
   min_height_ = t.min_height();
   max_height_ = std::max(t.max_height(), min_height_ + 1e-3f);
   const float extent = static_cast<float>(std::max(t.nx - 1, t.ny - 1) * t.cell);
-  camera_.frame(glm::vec3(0.5f * (t.nx - 1) * t.cell, 0.5f * (min_height_ + max_height_),
-                          0.5f * (t.ny - 1) * t.cell),
-                extent);
+  frame_camera();
   brush_.radius = 0.05 * extent;
   // A brush intensity that rains about 300 particles per second at the starting radius.
   const double dx = sim_->solver().settings().spacing;
@@ -121,6 +122,27 @@ void Viewer::reset() {
   terrain_ = std::make_unique<TerrainRenderer>(t);
   particles_ = std::make_unique<ParticleRenderer>();
   upload();
+}
+
+void Viewer::frame_camera() {
+  const Heightmap& t = sim_->initial_terrain();
+  const float extent = static_cast<float>(std::max(t.nx - 1, t.ny - 1) * t.cell);
+  camera_.frame(glm::vec3(0.5f * (t.nx - 1) * t.cell, 0.5f * (min_height_ + max_height_),
+                          0.5f * (t.ny - 1) * t.cell),
+                extent);
+}
+
+// Replaces the running simulation by a checkpoint's; a bad file leaves the current one running.
+void Viewer::load_checkpoint(const std::string& path) {
+  try {
+    auto data = std::make_unique<CheckpointData>(read_checkpoint(path));
+    start_checkpoint_ = std::move(data);
+    params_ = parse_scenario(start_checkpoint_->parameters_toml, "checkpoint parameters");
+    reset();
+    message_ = "loaded " + path;
+  } catch (const Error& e) {
+    message_ = e.what();
+  }
 }
 
 void Viewer::save_checkpoint() {
@@ -269,10 +291,15 @@ void Viewer::draw_panel() {
   if (ImGui::Button("Step")) step_once_ = true;
   ImGui::SameLine();
   if (ImGui::Button("Reset")) reset();
+  ImGui::SameLine();
+  if (ImGui::Button("Reset view")) frame_camera();
   if (ImGui::Button("Save checkpoint")) save_checkpoint();
   ImGui::SameLine();
   if (ImGui::Button("Screenshot"))
     screenshot("runnel-viewer-" + std::to_string(sim_->steps()) + ".png");
+  ImGui::InputText("##checkpoint", load_path_, sizeof load_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Load checkpoint")) load_checkpoint(load_path_);
   ImGui::Separator();
   ImGui::Checkbox("global rain", &global_rain_on_);
   float radius = static_cast<float>(brush_.radius),
@@ -298,6 +325,11 @@ void Viewer::draw_panel() {
   ImGui::Text("mass balance %.2e m3 (rel %.1e)", balance_.residual, balance_.relative);
   ImGui::Text("framerate: %.1f fps", ImGui::GetIO().Framerate);
   if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+  if (ImGui::CollapsingHeader("parameters")) {
+    for (auto& [key, value] : sim_->parameters().values()) {
+      ImGui::Text("%s = %s", key.c_str(), Parameters::to_text(value).c_str());
+    }
+  }
   ImGui::End();
   if (help_) {
     ImGui::Begin("help", &help_);
