@@ -3,11 +3,13 @@
 // and a real mouse drag on the terrain (xdotool) paints rain.
 #include <gtest/gtest.h>
 #include <png.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -25,27 +27,45 @@ bool have(const char* tool) {
 class XServer {
  public:
   XServer() {
-    char name[32];  // formatted, not built from std::string&& pieces, which GCC 12 warns about
-                    // falsely
-    std::snprintf(name, sizeof name, ":%d", 80 + getpid() % 100);
-    display_ = name;
+    // A display number of our own (from the pid), the next one if it is taken. -noreset: an X
+    // server resets when its last client leaves, and would refuse connections for a moment.
+    for (int attempt = 0; attempt < 8 && !ready(); ++attempt) {
+      stop();
+      start(100 + getpid() % 800 + 7 * attempt);
+    }
+  }
+  void start(int number) {
+    char name[32];
+    std::snprintf(name, sizeof name, ":%d", number);
     const std::string cmd =
-        "Xvfb " + display_ + " -screen 0 1280x900x24 -nolisten tcp >/dev/null 2>&1 & echo $!";
+        "Xvfb " + std::string(name) +
+        " -screen 0 1280x900x24 -nolisten tcp -noreset >/dev/null 2>&1 & echo $!";
     FILE* p = popen(cmd.c_str(), "r");
     if (p) {
       if (std::fscanf(p, "%d", &pid_) != 1) pid_ = -1;
       pclose(p);
     }
+    display_ = name;
     for (int k = 0; k < 50 && !ready(); ++k)
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  ~XServer() {
+  void stop() {
     if (pid_ > 0) std::system(("kill " + std::to_string(pid_) + " 2>/dev/null").c_str());
+    pid_ = -1;
+    display_.clear();
   }
+  ~XServer() { stop(); }
+  // An empty DISPLAY would make xdpyinfo try :0, which another test's server may own.
+  // Our own server answers on our display (not another test's, nor a server that lost the display).
   bool ready() const {
-    return std::system(("DISPLAY=" + display_ + " xdpyinfo >/dev/null 2>&1").c_str()) == 0;
+    return pid_ > 0 && kill(pid_, 0) == 0 && !display_.empty() &&
+           std::system(("DISPLAY=" + display_ + " xdpyinfo >/dev/null 2>&1").c_str()) == 0;
   }
   std::string env() const { return "DISPLAY=" + display_; }
+  std::string describe() const {
+    return "display " + display_ + ", pid " + std::to_string(pid_) +
+           (pid_ > 0 && kill(pid_, 0) == 0 ? " alive" : " gone");
+  }
 
  private:
   std::string display_;
@@ -81,7 +101,7 @@ Picture read_rgb_png(const std::string& path) {
 TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
   REQUIRE_X_TOOLS();
   XServer x;
-  ASSERT_TRUE(x.ready()) << "Xvfb did not start";
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
   test::ScratchDir dir;
   const std::string cmd = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
                           "/data/scenarios/default.toml --frames 20 --size 640x480 --screenshot " +
@@ -112,7 +132,7 @@ TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
 TEST(Viewer, MouseDragOnTheTerrainPaintsRain) {
   REQUIRE_X_TOOLS();
   XServer x;
-  ASSERT_TRUE(x.ready()) << "Xvfb did not start";
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
   test::ScratchDir dir;
   // Global rain off: every particle must come from the brush.
   const std::string viewer =
