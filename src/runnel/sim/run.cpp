@@ -15,6 +15,7 @@
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/io/images.hpp"
 #include "runnel/io/progress.hpp"
+#include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
@@ -197,6 +198,7 @@ RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOpt
                           .add("cell", initial.cell)
                           .add("min_height", initial.min_height())
                           .add("max_height", initial.max_height()))
+      .add("terrain_metrics", metrics::terrain_metrics(initial, final_terrain))
       .add("effective", sim.effective_settings())
       .add("kernel_seconds", kernel_seconds)
       .add("parameters", parameters_json(params))

@@ -1,0 +1,328 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/metrics/terrain_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numeric>
+#include <queue>
+
+namespace runnel::metrics {
+namespace {
+
+constexpr int kDi[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+constexpr int kDj[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+
+// Least-squares slope of y on x.
+double fit_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n, my = std::accumulate(y.begin(), y.end(), 0.0) / n;
+  double sxy = 0, sxx = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    sxy += (x[k] - mx) * (y[k] - my);
+    sxx += (x[k] - mx) * (x[k] - mx);
+  }
+  return sxx > 0 ? sxy / sxx : NAN;
+}
+
+std::vector<double> ranks(const std::vector<double>& v) {
+  std::vector<std::size_t> order(v.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+  std::vector<double> r(v.size());
+  for (std::size_t k = 0; k < order.size();) {  // ties share their mean rank
+    std::size_t e = k;
+    while (e + 1 < order.size() && v[order[e + 1]] == v[order[k]]) ++e;
+    for (std::size_t m = k; m <= e; ++m) r[order[m]] = 0.5 * (k + e);
+    k = e + 1;
+  }
+  return r;
+}
+
+// Spearman's rank correlation: Pearson's correlation of the ranks.
+double spearman(const std::vector<double>& a, const std::vector<double>& b) {
+  const auto ra = ranks(a), rb = ranks(b);
+  const double m = (static_cast<double>(ra.size()) - 1) / 2.0;
+  double num = 0, da = 0, db = 0;
+  for (std::size_t k = 0; k < ra.size(); ++k) {
+    num += (ra[k] - m) * (rb[k] - m);
+    da += (ra[k] - m) * (ra[k] - m);
+    db += (rb[k] - m) * (rb[k] - m);
+  }
+  return da > 0 && db > 0 ? num / std::sqrt(da * db) : NAN;
+}
+
+// In-place iterative radix-2 FFT (n a power of two).
+void fft(std::vector<std::complex<double>>& a, bool inverse) {
+  const std::size_t n = a.size();
+  for (std::size_t i = 1, j = 0; i < n; ++i) {
+    std::size_t bit = n >> 1;
+    for (; j & bit; bit >>= 1) j ^= bit;
+    j ^= bit;
+    if (i < j) std::swap(a[i], a[j]);
+  }
+  for (std::size_t len = 2; len <= n; len <<= 1) {
+    const double angle = 2 * M_PI / static_cast<double>(len) * (inverse ? 1 : -1);
+    const std::complex<double> w(std::cos(angle), std::sin(angle));
+    for (std::size_t i = 0; i < n; i += len) {
+      std::complex<double> wn(1);
+      for (std::size_t j = 0; j < len / 2; ++j) {
+        const auto u = a[i + j], v = a[i + j + len / 2] * wn;
+        a[i + j] = u + v;
+        a[i + j + len / 2] = u - v;
+        wn *= w;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+double hypsometric_integral(const Heightmap& t) {
+  const double lo = t.min_height(), hi = t.max_height();
+  if (!(hi > lo)) return NAN;
+  double mean = 0;
+  for (float v : t.h) mean += v;
+  mean /= static_cast<double>(t.size());
+  return (mean - lo) / (hi - lo);
+}
+
+std::vector<double> slope_degrees(const Heightmap& t) {
+  std::vector<double> s(t.size());
+  for (int j = 0; j < t.ny; ++j) {
+    for (int i = 0; i < t.nx; ++i) {
+      const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, t.nx - 1);
+      const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, t.ny - 1);
+      const double gx = (double(t.at(i1, j)) - t.at(i0, j)) / ((i1 - i0) * t.cell);
+      const double gz = (double(t.at(i, j1)) - t.at(i, j0)) / ((j1 - j0) * t.cell);
+      s[static_cast<std::size_t>(j) * t.nx + i] = std::atan(std::hypot(gx, gz)) * 180.0 / M_PI;
+    }
+  }
+  return s;
+}
+
+double mean_slope_degrees(const Heightmap& t) {
+  const auto s = slope_degrees(t);
+  return std::accumulate(s.begin(), s.end(), 0.0) / static_cast<double>(s.size());
+}
+
+std::vector<long long> slope_histogram(const Heightmap& t, double bin) {
+  std::vector<long long> h(static_cast<std::size_t>(std::ceil(90.0 / bin)), 0);
+  for (double s : slope_degrees(t)) h[std::min(h.size() - 1, static_cast<std::size_t>(s / bin))]++;
+  return h;
+}
+
+double erosion_score(const Heightmap& t) {
+  std::vector<double> s;
+  for (int j = 1; j + 1 < t.ny; ++j) {
+    for (int i = 1; i + 1 < t.nx; ++i) {
+      const double h = t.at(i, j);
+      s.push_back(std::max({std::fabs(h - t.at(i - 1, j)), std::fabs(h - t.at(i + 1, j)), std::fabs(h - t.at(i, j - 1)),
+                            std::fabs(h - t.at(i, j + 1))}));
+    }
+  }
+  if (s.empty()) return NAN;
+  const double mean = std::accumulate(s.begin(), s.end(), 0.0) / static_cast<double>(s.size());
+  double var = 0;
+  for (double v : s) var += (v - mean) * (v - mean);
+  return mean > 0 ? std::sqrt(var / static_cast<double>(s.size())) / mean : NAN;
+}
+
+std::vector<double> fill_depressions(const Heightmap& t) {
+  // Priority flood with ε: border cells seed the queue; each cell popped raises its unvisited
+  // neighbours to at least its own height plus a tiny ε, so flats drain.
+  const std::size_t n = t.size();
+  std::vector<double> h(t.h.begin(), t.h.end());
+  std::vector<char> done(n, 0);
+  using Item = std::pair<double, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+  for (int j = 0; j < t.ny; ++j) {
+    for (int i = 0; i < t.nx; ++i) {
+      if (i == 0 || j == 0 || i == t.nx - 1 || j == t.ny - 1) {
+        const std::size_t k = static_cast<std::size_t>(j) * t.nx + i;
+        open.emplace(h[k], k);
+        done[k] = 1;
+      }
+    }
+  }
+  const double eps = 1e-7 * std::max(1.0, double(t.max_height()) - t.min_height());
+  while (!open.empty()) {
+    const auto [height, k] = open.top();
+    open.pop();
+    const int i = static_cast<int>(k % t.nx), j = static_cast<int>(k / t.nx);
+    for (int d = 0; d < 8; ++d) {
+      const int a = i + kDi[d], b = j + kDj[d];
+      if (a < 0 || b < 0 || a >= t.nx || b >= t.ny) continue;
+      const std::size_t m = static_cast<std::size_t>(b) * t.nx + a;
+      if (done[m]) continue;
+      done[m] = 1;
+      h[m] = std::max(h[m], height + eps);
+      open.emplace(h[m], m);
+    }
+  }
+  return h;
+}
+
+std::vector<long long> d8_receivers(const Heightmap& t, const std::vector<double>& h) {
+  std::vector<long long> r(t.size(), -1);
+  for (int j = 0; j < t.ny; ++j) {
+    for (int i = 0; i < t.nx; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * t.nx + i;
+      if (i == 0 || j == 0 || i == t.nx - 1 || j == t.ny - 1) continue;  // border vertices are outlets
+      double steepest = 0;
+      for (int d = 0; d < 8; ++d) {
+        const int a = i + kDi[d], b = j + kDj[d];
+        const std::size_t m = static_cast<std::size_t>(b) * t.nx + a;
+        const double drop = (h[k] - h[m]) / (t.cell * ((d % 2) ? M_SQRT2 : 1.0));
+        if (drop > steepest) {
+          steepest = drop;
+          r[k] = static_cast<long long>(m);
+        }
+      }
+    }
+  }
+  return r;
+}
+
+std::vector<double> flow_accumulation(const Heightmap& t) {
+  const std::vector<double> filled = fill_depressions(t);
+  const std::vector<long long> receiver = d8_receivers(t, filled);
+  std::vector<std::size_t> order(t.size());
+  std::iota(order.begin(), order.end(), 0);
+  // Highest first: every donor is handled before its receiver.
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return filled[a] > filled[b]; });
+  std::vector<double> area(t.size(), t.cell * t.cell);
+  for (std::size_t k : order) {
+    if (receiver[k] >= 0) area[static_cast<std::size_t>(receiver[k])] += area[k];
+  }
+  return area;
+}
+
+double drainage_density(const Heightmap& t, const std::vector<double>& area, double threshold) {
+  const std::vector<long long> receiver = d8_receivers(t, fill_depressions(t));
+  double length = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (area[k] < threshold || receiver[k] < 0) continue;
+    const long long d = receiver[k] - static_cast<long long>(k);
+    const bool diagonal = d != 1 && d != -1 && d != t.nx && d != -t.nx;
+    length += t.cell * (diagonal ? M_SQRT2 : 1.0);
+  }
+  return length / ((t.nx - 1) * t.cell * (t.ny - 1) * t.cell);
+}
+
+double concavity(const Heightmap& t, const std::vector<double>& area, double threshold) {
+  const std::vector<double> filled = fill_depressions(t);
+  const std::vector<long long> receiver = d8_receivers(t, filled);
+  std::vector<double> log_a, log_s;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (area[k] < threshold || receiver[k] < 0) continue;
+    const std::size_t m = static_cast<std::size_t>(receiver[k]);
+    const long long d = static_cast<long long>(m) - static_cast<long long>(k);
+    const double run = t.cell * ((d != 1 && d != -1 && d != t.nx && d != -t.nx) ? M_SQRT2 : 1.0);
+    const double slope = (double(t.h[k]) - t.h[m]) / run;  // on the real surface, not the filled one
+    if (slope <= 0) continue;
+    log_a.push_back(std::log(area[k]));
+    log_s.push_back(std::log(slope));
+  }
+  if (log_a.size() < 10) return NAN;
+  return -fit_slope(log_a, log_s);
+}
+
+double spectral_slope(const Heightmap& t) {
+  // Detrend: remove the least-squares plane.
+  const int nx = t.nx, ny = t.ny;
+  double sx = 0, sz = 0, sh = 0, sxx = 0, szz = 0, sxh = 0, szh = 0;
+  const double n = static_cast<double>(t.size());
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double h = t.at(i, j);
+      sx += i, sz += j, sh += h, sxx += double(i) * i, szz += double(j) * j, sxh += i * h, szh += j * h;
+    }
+  }
+  const double mx = sx / n, mz = sz / n, mh = sh / n;
+  const double bx = (sxh / n - mx * mh) / (sxx / n - mx * mx), bz = (szh / n - mz * mh) / (szz / n - mz * mz);
+  std::size_t px = 1, pz = 1;
+  while (px < static_cast<std::size_t>(nx)) px <<= 1;
+  while (pz < static_cast<std::size_t>(ny)) pz <<= 1;
+  std::vector<std::complex<double>> grid(px * pz);
+  for (int j = 0; j < ny; ++j) {
+    const double wz = 0.5 * (1 - std::cos(2 * M_PI * j / (ny - 1)));
+    for (int i = 0; i < nx; ++i) {
+      const double wx = 0.5 * (1 - std::cos(2 * M_PI * i / (nx - 1)));  // Hann window
+      grid[static_cast<std::size_t>(j) * px + i] = (t.at(i, j) - (mh + bx * (i - mx) + bz * (j - mz))) * wx * wz;
+    }
+  }
+  std::vector<std::complex<double>> line;
+  for (std::size_t j = 0; j < pz; ++j) {  // rows
+    line.assign(grid.begin() + j * px, grid.begin() + (j + 1) * px);
+    fft(line, false);
+    std::copy(line.begin(), line.end(), grid.begin() + j * px);
+  }
+  line.resize(pz);
+  for (std::size_t i = 0; i < px; ++i) {  // columns
+    for (std::size_t j = 0; j < pz; ++j) line[j] = grid[j * px + i];
+    fft(line, false);
+    for (std::size_t j = 0; j < pz; ++j) grid[j * px + i] = line[j];
+  }
+  // Radial average in log-spaced bins of the wavenumber, between 2 cycles per map and Nyquist/2.
+  const int bins = 24;
+  std::vector<double> sum(bins, 0), count(bins, 0);
+  const double k_min = 2.0 / std::max(px, pz), k_max = 0.25;  // cycles per sample
+  for (std::size_t j = 0; j < pz; ++j) {
+    for (std::size_t i = 0; i < px; ++i) {
+      const double fx = (i <= px / 2 ? double(i) : double(i) - px) / px;
+      const double fz = (j <= pz / 2 ? double(j) : double(j) - pz) / pz;
+      const double k = std::hypot(fx, fz);
+      if (k < k_min || k > k_max) continue;
+      const int b = std::min(bins - 1, static_cast<int>(bins * std::log(k / k_min) / std::log(k_max / k_min)));
+      sum[b] += std::norm(grid[j * px + i]);
+      count[b] += 1;
+    }
+  }
+  std::vector<double> lk, lp;
+  for (int b = 0; b < bins; ++b) {
+    if (count[b] == 0 || sum[b] <= 0) continue;
+    lk.push_back(std::log(k_min) + (b + 0.5) * std::log(k_max / k_min) / bins);
+    lp.push_back(std::log(sum[b] / count[b]));
+  }
+  return lk.size() >= 4 ? fit_slope(lk, lp) : NAN;
+}
+
+double erosion_flow_correlation(const Heightmap& before, const Heightmap& after) {
+  const std::vector<double> area = flow_accumulation(after);
+  std::vector<double> eroded, log_area;
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    const double e = double(before.h[k]) - after.h[k];
+    if (e <= 0) continue;
+    eroded.push_back(e);
+    log_area.push_back(std::log(area[k]));
+  }
+  if (eroded.size() < 3) return NAN;
+  return spearman(eroded, log_area);
+}
+
+JsonObject terrain_metrics(const Heightmap& before, const Heightmap& after) {
+  const std::vector<double> area = flow_accumulation(after);
+  // Channels: vertices draining at least 1 % of the terrain (and at least 20 cells).
+  const double total = (after.nx - 1) * after.cell * (after.ny - 1) * after.cell;
+  const double threshold = std::max(0.01 * total, 20.0 * after.cell * after.cell);
+  std::string histogram = "[";
+  const auto hist = slope_histogram(after);
+  for (std::size_t k = 0; k < hist.size(); ++k) histogram += (k ? ", " : "") + std::to_string(hist[k]);
+  histogram += "]";
+  JsonObject o;
+  o.add("hypsometric_integral", hypsometric_integral(after))
+      .add("hypsometric_integral_initial", hypsometric_integral(before))
+      .add("erosion_score", erosion_score(after))
+      .add("erosion_score_initial", erosion_score(before))
+      .add("mean_slope_deg", mean_slope_degrees(after))
+      .raw("slope_histogram_5deg", histogram)
+      .add("channel_threshold_m2", threshold)
+      .add("drainage_density_per_m", drainage_density(after, area, threshold))
+      .add("concavity_theta", concavity(after, area, threshold))
+      .add("spectral_slope", spectral_slope(after))
+      .add("erosion_flow_correlation", erosion_flow_correlation(before, after));
+  return o;
+}
+
+}  // namespace runnel::metrics

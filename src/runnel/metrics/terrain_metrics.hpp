@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <vector>
+
+#include "runnel/core/heightmap.hpp"
+#include "runnel/io/json.hpp"
+
+// The terrain metrics every run reports (models.md, "Metrics"), computed on the host.
+namespace runnel::metrics {
+
+// (mean h − min h) / (max h − min h), Strahler 1952.
+double hypsometric_integral(const Heightmap& t);
+
+// Slope per vertex in degrees, central differences (one-sided at the border).
+std::vector<double> slope_degrees(const Heightmap& t);
+double mean_slope_degrees(const Heightmap& t);
+// Counts of vertices per slope bin of `bin_degrees` from 0 to 90.
+std::vector<long long> slope_histogram(const Heightmap& t, double bin_degrees = 5.0);
+
+// Olsen 2004's erosion score: per interior vertex the largest absolute height difference to its
+// four neighbours, s; score = std(s) / mean(s).
+double erosion_score(const Heightmap& t);
+
+// Heights after priority-flood depression filling (Barnes et al. 2014), so every cell drains to
+// the border; flats get an ε gradient towards their outlet.
+std::vector<double> fill_depressions(const Heightmap& t);
+// D8 receiver of every vertex (index, or −1 for border outlets) on the filled surface.
+std::vector<long long> d8_receivers(const Heightmap& t, const std::vector<double>& filled);
+// Drainage area (m²) of every vertex: its own cell² plus everything that flows through it (D8).
+std::vector<double> flow_accumulation(const Heightmap& t);
+
+// Channel length (along D8 links of vertices whose drainage area ≥ threshold) per terrain area, 1/m.
+double drainage_density(const Heightmap& t, const std::vector<double>& area, double threshold_m2);
+// θ of S = k_s A^(−θ) fitted over channel vertices (Flint's law); NaN when fewer than 10 qualify.
+double concavity(const Heightmap& t, const std::vector<double>& area, double threshold_m2);
+
+// Slope of log power against log wavenumber of the radially averaged power spectrum of the
+// detrended (plane removed), Hann-windowed heightmap (Perron et al. 2008). For a surface with
+// P(k) ∝ k^−β it returns −β.
+double spectral_slope(const Heightmap& t);
+
+// Spearman rank correlation of eroded depth (h0 − h, eroded vertices only) with log drainage area.
+double erosion_flow_correlation(const Heightmap& before, const Heightmap& after);
+
+// Every metric above for a terrain (and its initial state), for metrics.json.
+JsonObject terrain_metrics(const Heightmap& before, const Heightmap& after);
+
+}  // namespace runnel::metrics
