@@ -28,11 +28,13 @@ TEST(TerrainMetrics, ConeHypsometricIntegralIsOneThird) {
   samples.h = inside;
   EXPECT_NEAR(hypsometric_integral(samples), 1.0 / 3.0, 2e-3);
   // A square pyramid over its square base: 1/3 as well.
-  EXPECT_NEAR(hypsometric_integral(generate_terrain("pyramid", 401, 401, 1.0, 1, {{"base", 1.0}})), 1.0 / 3.0, 5e-3);
+  EXPECT_NEAR(hypsometric_integral(generate_terrain("pyramid", 401, 401, 1.0, 1, {{"base", 1.0}})),
+              1.0 / 3.0, 5e-3);
 }
 
 TEST(TerrainMetrics, PlaneSlopeAndItsHistogram) {
-  const Heightmap plane = generate_terrain("plane", 65, 65, 2.0, 1, {{"slope", 27.0}, {"azimuth", 40.0}});
+  const Heightmap plane =
+      generate_terrain("plane", 65, 65, 2.0, 1, {{"slope", 27.0}, {"azimuth", 40.0}});
   EXPECT_NEAR(mean_slope_degrees(plane), 27.0, 1e-4);
   const auto hist = slope_histogram(plane, 5.0);
   EXPECT_EQ(hist[5], 65 * 65) << "every vertex in the 25–30° bin";
@@ -45,16 +47,19 @@ TEST(TerrainMetrics, HandMadeDrainageNetwork) {
   const int nx = 9, ny = 7;
   Heightmap t(nx, ny, 10.0);
   for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) t.at(i, j) = static_cast<float>(100 - 5 * i + 20 * std::abs(j - 3));
+    for (int i = 0; i < nx; ++i)
+      t.at(i, j) = static_cast<float>(100 - 5 * i + 20 * std::abs(j - 3));
   }
   const auto area = flow_accumulation(t);
   const double cell_area = 100.0;
   // Interior side vertices drain only themselves...
   EXPECT_DOUBLE_EQ(area[1 * nx + 4], cell_area);
-  EXPECT_DOUBLE_EQ(area[2 * nx + 4], cell_area + cell_area);  // its uphill neighbour (row 1) flows through it
+  EXPECT_DOUBLE_EQ(area[2 * nx + 4],
+                   cell_area + cell_area);  // its uphill neighbour (row 1) flows through it
   // ...the valley vertex of column i gathers its own column's interior sides (rows 1, 2, 4, 5),
   // and everything upstream along the floor, which starts at column 1 (column 0 is the border).
-  for (int i = 1; i < nx - 1; ++i) EXPECT_DOUBLE_EQ(area[3 * nx + i], cell_area * 5 * i) << "column " << i;
+  for (int i = 1; i < nx - 1; ++i)
+    EXPECT_DOUBLE_EQ(area[3 * nx + i], cell_area * 5 * i) << "column " << i;
   // Channels (≥ 3 cells) are the floor vertices from column 1 on: seven D8 links of 10 m.
   EXPECT_NEAR(drainage_density(t, area, 3 * cell_area), 7 * 10.0 / (80.0 * 60.0), 1e-12);
 }
@@ -75,7 +80,8 @@ TEST(TerrainMetrics, PowerLawSurfaceSpectralSlope) {
       if (k == 0 || std::hypot(u, v) > 40) continue;
       const double amplitude = std::pow(k, -beta / 2), p = phase(rng);
       for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) h[j * n + i] += amplitude * std::cos(2 * M_PI * (u * i + v * j) / n + p);
+        for (int i = 0; i < n; ++i)
+          h[j * n + i] += amplitude * std::cos(2 * M_PI * (u * i + v * j) / n + p);
       }
     }
   }
@@ -87,7 +93,8 @@ TEST(TerrainMetrics, ErosionFollowingFlowCorrelatesWithDrainageArea) {
   const Heightmap before = generate_terrain("fbm", 65, 65, 1.0, 3, {{"relief", 0.2}});
   const auto area = flow_accumulation(before);
   Heightmap after = before;
-  for (std::size_t k = 0; k < after.size(); ++k) after.h[k] -= static_cast<float>(1e-3 * std::log(area[k]));
+  for (std::size_t k = 0; k < after.size(); ++k)
+    after.h[k] -= static_cast<float>(1e-3 * std::log(area[k]));
   EXPECT_GT(erosion_flow_correlation(before, after), 0.9);
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/metrics/terrain_metrics.hpp"
 
+#include "runnel/terrain/terrain_normals.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -16,7 +18,8 @@ constexpr int kDj[8] = {0, 1, 1, 1, 0, -1, -1, -1};
 // Least-squares slope of y on x.
 double fit_slope(const std::vector<double>& x, const std::vector<double>& y) {
   const double n = static_cast<double>(x.size());
-  const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n, my = std::accumulate(y.begin(), y.end(), 0.0) / n;
+  const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n,
+               my = std::accumulate(y.begin(), y.end(), 0.0) / n;
   double sxy = 0, sxx = 0;
   for (std::size_t k = 0; k < x.size(); ++k) {
     sxy += (x[k] - mx) * (y[k] - my);
@@ -28,7 +31,8 @@ double fit_slope(const std::vector<double>& x, const std::vector<double>& y) {
 std::vector<double> ranks(const std::vector<double>& v) {
   std::vector<std::size_t> order(v.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
   std::vector<double> r(v.size());
   for (std::size_t k = 0; k < order.size();) {  // ties share their mean rank
     std::size_t e = k;
@@ -88,16 +92,11 @@ double hypsometric_integral(const Heightmap& t) {
 }
 
 std::vector<double> slope_degrees(const Heightmap& t) {
+  // The angle between the vertex normal (central differences) and the vertical.
+  const std::vector<float> normal = terrain_normals_reference(t);
   std::vector<double> s(t.size());
-  for (int j = 0; j < t.ny; ++j) {
-    for (int i = 0; i < t.nx; ++i) {
-      const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, t.nx - 1);
-      const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, t.ny - 1);
-      const double gx = (double(t.at(i1, j)) - t.at(i0, j)) / ((i1 - i0) * t.cell);
-      const double gz = (double(t.at(i, j1)) - t.at(i, j0)) / ((j1 - j0) * t.cell);
-      s[static_cast<std::size_t>(j) * t.nx + i] = std::atan(std::hypot(gx, gz)) * 180.0 / M_PI;
-    }
-  }
+  for (std::size_t k = 0; k < s.size(); ++k)
+    s[k] = std::acos(std::clamp<double>(normal[3 * k + 1], -1, 1)) * 180.0 / M_PI;
   return s;
 }
 
@@ -117,8 +116,8 @@ double erosion_score(const Heightmap& t) {
   for (int j = 1; j + 1 < t.ny; ++j) {
     for (int i = 1; i + 1 < t.nx; ++i) {
       const double h = t.at(i, j);
-      s.push_back(std::max({std::fabs(h - t.at(i - 1, j)), std::fabs(h - t.at(i + 1, j)), std::fabs(h - t.at(i, j - 1)),
-                            std::fabs(h - t.at(i, j + 1))}));
+      s.push_back(std::max({std::fabs(h - t.at(i - 1, j)), std::fabs(h - t.at(i + 1, j)),
+                            std::fabs(h - t.at(i, j - 1)), std::fabs(h - t.at(i, j + 1))}));
     }
   }
   if (s.empty()) return NAN;
@@ -168,7 +167,8 @@ std::vector<long long> d8_receivers(const Heightmap& t, const std::vector<double
   for (int j = 0; j < t.ny; ++j) {
     for (int i = 0; i < t.nx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * t.nx + i;
-      if (i == 0 || j == 0 || i == t.nx - 1 || j == t.ny - 1) continue;  // border vertices are outlets
+      if (i == 0 || j == 0 || i == t.nx - 1 || j == t.ny - 1)
+        continue;  // border vertices are outlets
       double steepest = 0;
       for (int d = 0; d < 8; ++d) {
         const int a = i + kDi[d], b = j + kDj[d];
@@ -190,7 +190,8 @@ std::vector<double> flow_accumulation(const Heightmap& t) {
   std::vector<std::size_t> order(t.size());
   std::iota(order.begin(), order.end(), 0);
   // Highest first: every donor is handled before its receiver.
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return filled[a] > filled[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return filled[a] > filled[b]; });
   std::vector<double> area(t.size(), t.cell * t.cell);
   for (std::size_t k : order) {
     if (receiver[k] >= 0) area[static_cast<std::size_t>(receiver[k])] += area[k];
@@ -219,7 +220,8 @@ double concavity(const Heightmap& t, const std::vector<double>& area, double thr
     const std::size_t m = static_cast<std::size_t>(receiver[k]);
     const long long d = static_cast<long long>(m) - static_cast<long long>(k);
     const double run = t.cell * ((d != 1 && d != -1 && d != t.nx && d != -t.nx) ? M_SQRT2 : 1.0);
-    const double slope = (double(t.h[k]) - t.h[m]) / run;  // on the real surface, not the filled one
+    const double slope =
+        (double(t.h[k]) - t.h[m]) / run;  // on the real surface, not the filled one
     if (slope <= 0) continue;
     log_a.push_back(std::log(area[k]));
     log_s.push_back(std::log(slope));
@@ -236,11 +238,13 @@ double spectral_slope(const Heightmap& t) {
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const double h = t.at(i, j);
-      sx += i, sz += j, sh += h, sxx += double(i) * i, szz += double(j) * j, sxh += i * h, szh += j * h;
+      sx += i, sz += j, sh += h, sxx += double(i) * i, szz += double(j) * j, sxh += i * h,
+          szh += j * h;
     }
   }
   const double mx = sx / n, mz = sz / n, mh = sh / n;
-  const double bx = (sxh / n - mx * mh) / (sxx / n - mx * mx), bz = (szh / n - mz * mh) / (szz / n - mz * mz);
+  const double bx = (sxh / n - mx * mh) / (sxx / n - mx * mx),
+               bz = (szh / n - mz * mh) / (szz / n - mz * mz);
   std::size_t px = 1, pz = 1;
   while (px < static_cast<std::size_t>(nx)) px <<= 1;
   while (pz < static_cast<std::size_t>(ny)) pz <<= 1;
@@ -249,7 +253,8 @@ double spectral_slope(const Heightmap& t) {
     const double wz = 0.5 * (1 - std::cos(2 * M_PI * j / (ny - 1)));
     for (int i = 0; i < nx; ++i) {
       const double wx = 0.5 * (1 - std::cos(2 * M_PI * i / (nx - 1)));  // Hann window
-      grid[static_cast<std::size_t>(j) * px + i] = (t.at(i, j) - (mh + bx * (i - mx) + bz * (j - mz))) * wx * wz;
+      grid[static_cast<std::size_t>(j) * px + i] =
+          (t.at(i, j) - (mh + bx * (i - mx) + bz * (j - mz))) * wx * wz;
     }
   }
   std::vector<std::complex<double>> line;
@@ -274,7 +279,8 @@ double spectral_slope(const Heightmap& t) {
       const double fz = (j <= pz / 2 ? double(j) : double(j) - pz) / pz;
       const double k = std::hypot(fx, fz);
       if (k < k_min || k > k_max) continue;
-      const int b = std::min(bins - 1, static_cast<int>(bins * std::log(k / k_min) / std::log(k_max / k_min)));
+      const int b = std::min(
+          bins - 1, static_cast<int>(bins * std::log(k / k_min) / std::log(k_max / k_min)));
       sum[b] += std::norm(grid[j * px + i]);
       count[b] += 1;
     }
@@ -308,7 +314,8 @@ JsonObject terrain_metrics(const Heightmap& before, const Heightmap& after) {
   const double threshold = std::max(0.01 * total, 20.0 * after.cell * after.cell);
   std::string histogram = "[";
   const auto hist = slope_histogram(after);
-  for (std::size_t k = 0; k < hist.size(); ++k) histogram += (k ? ", " : "") + std::to_string(hist[k]);
+  for (std::size_t k = 0; k < hist.size(); ++k)
+    histogram += (k ? ", " : "") + std::to_string(hist[k]);
   histogram += "]";
   JsonObject o;
   o.add("hypsometric_integral", hypsometric_integral(after))

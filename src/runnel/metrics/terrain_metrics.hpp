@@ -29,7 +29,8 @@ std::vector<long long> d8_receivers(const Heightmap& t, const std::vector<double
 // Drainage area (m²) of every vertex: its own cell² plus everything that flows through it (D8).
 std::vector<double> flow_accumulation(const Heightmap& t);
 
-// Channel length (along D8 links of vertices whose drainage area ≥ threshold) per terrain area, 1/m.
+// Channel length (along D8 links of vertices whose drainage area ≥ threshold) per terrain area,
+// 1/m.
 double drainage_density(const Heightmap& t, const std::vector<double>& area, double threshold_m2);
 // θ of S = k_s A^(−θ) fitted over channel vertices (Flint's law); NaN when fewer than 10 qualify.
 double concavity(const Heightmap& t, const std::vector<double>& area, double threshold_m2);
