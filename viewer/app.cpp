@@ -103,6 +103,7 @@ void Viewer::load() {
     start_terrain_ = load_terrain(params_);
   }
   global_rain_on_ = options_.rain;
+  overlay_ = static_cast<TerrainOverlay>(options_.overlay);
   reset();
 }
 
@@ -279,6 +280,24 @@ void Viewer::upload() {
     xyzv[4 * i + 3] = value;
   }
   particles_->update(xyzv);
+  // Water depth and flow speed per vertex: each particle's volume spread over its nearest vertex.
+  const int nx = t.nx(), ny = t.ny();
+  const float cell = t.cell();
+  std::vector<float> water(2 * n, 0.0f);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const int a = std::clamp(static_cast<int>(std::lround(p.f[kX][i] / cell)), 0, nx - 1);
+    const int b = std::clamp(static_cast<int>(std::lround(p.f[kZ][i] / cell)), 0, ny - 1);
+    const std::size_t k = static_cast<std::size_t>(b) * nx + a;
+    water[2 * k] += static_cast<float>(volume / (cell * cell));
+    water[2 * k + 1] += std::sqrt(p.f[kVx][i] * p.f[kVx][i] + p.f[kVy][i] * p.f[kVy][i] +
+                                  p.f[kVz][i] * p.f[kVz][i]);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (water[2 * k] > 0)
+      water[2 * k + 1] /= static_cast<float>(water[2 * k] * cell * cell / volume);
+  }
+  terrain_->update_water(water);
+  terrain_->set_depth_scale(static_cast<float>(2.0 * sim_->solver().settings().spacing));
 }
 
 void Viewer::draw_panel() {
@@ -312,7 +331,8 @@ void Viewer::draw_panel() {
     brush_.intensity = intensity;
   }
   int overlay = static_cast<int>(overlay_), colour = static_cast<int>(particle_colour_);
-  ImGui::Combo("terrain overlay", &overlay, "none\0erosion / deposition\0");
+  ImGui::Combo("terrain overlay", &overlay,
+               "none\0erosion / deposition\0water depth\0flow speed\0");
   ImGui::Combo("water colour", &colour, "sediment load\0flow speed\0");
   overlay_ = static_cast<TerrainOverlay>(overlay);
   particle_colour_ = static_cast<ParticleColour>(colour);

@@ -16,6 +16,7 @@ struct ViewerOptions {
   std::string screenshot;     // PNG of the last frame
   long long stats_every = 0;  // JSON line on stdout every K frames
   bool rain = true;           // global rain at start
+  int overlay = 0;  // terrain overlay at start: 0 none, 1 erosion, 2 water depth, 3 flow speed
 };
 
 // Runs the viewer; returns the process exit code.

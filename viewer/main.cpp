@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
   bool no_rain = false;
   app.add_flag("--no-rain", no_rain, "start with global rain off (paint it)");
   app.add_option("--size", size, "window size WxH")->capture_default_str();
+  std::string overlay = "none";
+  app.add_option("--overlay", overlay, "terrain overlay at start: none, erosion, water or speed")
+      ->check(CLI::IsMember({"none", "erosion", "water", "speed"}))
+      ->capture_default_str();
   app.add_option("--device", o.device, "OpenCL device (see 'runnel devices')");
   try {
     app.parse(argc, argv);
@@ -37,6 +41,7 @@ int main(int argc, char** argv) {
       throw runnel::input_error("--size " + size + ": out of range");
     }
     o.rain = !no_rain;
+    o.overlay = overlay == "erosion" ? 1 : overlay == "water" ? 2 : overlay == "speed" ? 3 : 0;
     return runnel::viewer::run_viewer(o);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -9,11 +9,14 @@ namespace {
 const char* kTerrainVertex = R"(#version 330 core
 layout(location = 0) in vec3 grid;     // x, z, initial height
 layout(location = 1) in vec4 dynamic;  // height, normal
+layout(location = 2) in vec2 water_in;  // water depth (m), mean flow speed (m/s)
 uniform mat4 view_projection;
 out vec3 world;
 out vec3 normal;
 out float dh;
+out vec2 water;
 void main() {
+  water = water_in;
   world = vec3(grid.x, dynamic.x, grid.y);
   normal = dynamic.yzw;
   dh = dynamic.x - grid.z;
@@ -24,7 +27,8 @@ const char* kTerrainFragment = R"(#version 330 core
 in vec3 world;
 in vec3 normal;
 in float dh;
-uniform float min_height, max_height, overlay_scale;
+in vec2 water;
+uniform float min_height, max_height, overlay_scale, depth_scale;
 uniform int overlay;
 uniform vec3 brush;  // x, z, radius
 uniform int brush_visible;
@@ -45,6 +49,11 @@ void main() {
   float steep = smoothstep(0.25, 0.45, 1.0 - n.y);
   base = mix(base, rock, steep);
   if (overlay == 1) base = mix(base, diverging(clamp(dh / overlay_scale, -1.0, 1.0)), 0.85);
+  if (overlay == 2) base = mix(base, vec3(0.10, 0.35, 0.85), clamp(water.x / depth_scale, 0.0, 0.9));
+  if (overlay == 3 && water.x > 0.0) {
+    vec3 slow = vec3(0.15, 0.35, 0.85), fast = vec3(0.95, 0.90, 0.20);
+    base = mix(base, mix(slow, fast, clamp(water.y / 15.0, 0.0, 1.0)), 0.85);
+  }
   vec3 light = normalize(vec3(-0.5, 0.8, -0.3));
   vec3 lit = base * (0.35 + 0.65 * max(dot(n, light), 0.0));
   if (brush_visible == 1) {
@@ -114,6 +123,12 @@ TerrainRenderer::TerrainRenderer(const Heightmap& t)
   glBufferData(GL_ARRAY_BUFFER, t.size() * 4 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
   glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
   glEnableVertexAttribArray(1);
+  glGenBuffers(1, &water_vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, water_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, t.size() * 2 * sizeof(float),
+               std::vector<float>(t.size() * 2, 0.0f).data(), GL_DYNAMIC_DRAW);
+  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(2);
   glGenBuffers(1, &ibo_);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
@@ -124,6 +139,7 @@ TerrainRenderer::TerrainRenderer(const Heightmap& t)
 TerrainRenderer::~TerrainRenderer() {
   glDeleteBuffers(1, &grid_vbo_);
   glDeleteBuffers(1, &dynamic_vbo_);
+  glDeleteBuffers(1, &water_vbo_);
   glDeleteBuffers(1, &ibo_);
   glDeleteVertexArrays(1, &vao_);
 }
@@ -140,6 +156,12 @@ void TerrainRenderer::update(const std::vector<float>& height, const std::vector
   glBufferSubData(GL_ARRAY_BUFFER, 0, interleaved_.size() * sizeof(float), interleaved_.data());
 }
 
+void TerrainRenderer::update_water(const std::vector<float>& depth_and_speed) {
+  glBindBuffer(GL_ARRAY_BUFFER, water_vbo_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, depth_and_speed.size() * sizeof(float),
+                  depth_and_speed.data());
+}
+
 void TerrainRenderer::draw(const glm::mat4& vp, float lo, float hi, TerrainOverlay overlay,
                            float scale, const glm::vec3& brush, bool brush_visible) const {
   program_.use();
@@ -147,6 +169,7 @@ void TerrainRenderer::draw(const glm::mat4& vp, float lo, float hi, TerrainOverl
   glUniform1f(program_.uniform("min_height"), lo);
   glUniform1f(program_.uniform("max_height"), hi);
   glUniform1f(program_.uniform("overlay_scale"), scale);
+  glUniform1f(program_.uniform("depth_scale"), depth_scale_);
   glUniform1i(program_.uniform("overlay"), static_cast<int>(overlay));
   glUniform3f(program_.uniform("brush"), brush.x, brush.y, brush.z);
   glUniform1i(program_.uniform("brush_visible"), brush_visible ? 1 : 0);

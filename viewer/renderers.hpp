@@ -11,7 +11,7 @@
 
 namespace runnel::viewer {
 
-enum class TerrainOverlay { kNone = 0, kErosion = 1 };
+enum class TerrainOverlay { kNone = 0, kErosion = 1, kWaterDepth = 2, kFlowSpeed = 3 };
 enum class ParticleColour { kSediment = 0, kSpeed = 1 };
 
 // The terrain mesh: texture splatting by height and slope (sand, grass, rock, snow; rock on steep
@@ -22,13 +22,17 @@ class TerrainRenderer {
   ~TerrainRenderer();
   // New heights and vertex normals (3 per vertex) after a simulation step.
   void update(const std::vector<float>& height, const std::vector<float>& normal);
+  // Water depth (m) and mean flow speed (m/s) per vertex, from the particles around it.
+  void update_water(const std::vector<float>& depth_and_speed);
+  void set_depth_scale(float metres) { depth_scale_ = metres; }
   void draw(const glm::mat4& view_projection, float min_height, float max_height,
             TerrainOverlay overlay, float overlay_scale, const glm::vec3& brush,
             bool brush_visible) const;
 
  private:
   GlProgram program_;
-  GLuint vao_ = 0, grid_vbo_ = 0, dynamic_vbo_ = 0, ibo_ = 0;
+  GLuint vao_ = 0, grid_vbo_ = 0, dynamic_vbo_ = 0, water_vbo_ = 0, ibo_ = 0;
+  float depth_scale_ = 1.0f;
   GLsizei indices_ = 0;
   int nx_, ny_;
   std::vector<float> interleaved_;
