@@ -69,6 +69,8 @@ const std::vector<ParamSpec>& parameter_table() {
       {"thermal.every", T::kInteger, "10", "steps", 0, 1e9, {}, "relax slopes steeper than the talus angle every N steps; 0: off"},
       {"thermal.talus_angle", T::kReal, "40", "deg", 0, 89, {}, "talus angle"},
       {"thermal.rate", T::kReal, "0.5", "1", 0, 1, {}, "c, the fraction of the excess moved per relaxation"},
+      {"thermal.height_aware", T::kBool, "false", "", 0, 0, {}, "height-aware talus (Fritz 2016): the threshold rises with height, keeping peaks sharp"},
+      {"thermal.hardness", T::kReal, "1", "1", 0, 100, {}, "height-aware: threshold × (1 + hardness · normalised height)"},
       // run: the simulation as a whole
       {"run.seed", T::kInteger, "1", "1", 0, 9.2e18, {}, "seed of the simulation's random numbers (rain)"},
       {"run.steps", T::kInteger, "0", "steps", 0, 1e12, {}, "steps to run; 0: run for run.sim_time"},

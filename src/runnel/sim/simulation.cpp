@@ -66,6 +66,8 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
     ThermalSettings thermal;
     thermal.talus_angle_deg = params.real("thermal.talus_angle");
     thermal.rate = params.real("thermal.rate");
+    thermal.height_aware = params.boolean("thermal.height_aware");
+    thermal.hardness = params.real("thermal.hardness");
     thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal);
   }
 }
