@@ -71,9 +71,4 @@ std::string source_dir() {
   return RUNNEL_SOURCE_DIR;
 }
 
-std::string shared_data(const std::string& name) {
-  const auto p = std::filesystem::path(RUNNEL_SOURCE_DIR) / ".." / "shared" / "data" / name;
-  return std::filesystem::exists(p) ? p.string() : "";
-}
-
 }  // namespace runnel::test

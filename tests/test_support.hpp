@@ -33,6 +33,5 @@ struct CliResult {
 CliResult run_cli(const std::vector<std::string>& args, const std::string& env = "");
 
 std::string source_dir();
-std::string shared_data(const std::string& name);  // ../shared/data/NAME, "" if absent
 
 }  // namespace runnel::test

@@ -400,13 +400,11 @@ int Viewer::loop() {
     glEnable(GL_DEPTH_TEST);
     const glm::mat4 vp =
         camera_.projection(static_cast<float>(w) / std::max(h, 1)) * camera_.view();
-    const Heightmap& t = sim_->initial_terrain();
     const float scale = static_cast<float>(std::max(1e-3, 0.02 * (max_height_ - min_height_)));
     terrain_->draw(vp, min_height_, max_height_, overlay_, scale,
                    glm::vec3(brush_.x, brush_.z, brush_.radius), brush_.over_terrain);
     particles_->draw(vp, static_cast<float>(sim_->solver().settings().spacing),
                      static_cast<float>(h), particle_colour_);
-    (void)t;
     draw_panel();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -31,7 +31,8 @@ double steepest(const Heightmap& t) {
 
 TEST(Thermal, ConvergesToTheTalusAngleAndConservesVolume) {
   // A 60° pyramid relaxes towards 35°.
-  const Heightmap pyramid = generate_terrain("pyramid", 41, 41, 1.0, 1, {{"relief", 0.8}, {"base", 0.5}});
+  const Heightmap pyramid =
+      generate_terrain("pyramid", 41, 41, 1.0, 1, {{"relief", 0.8}, {"base", 0.5}});
   ASSERT_GT(steepest(pyramid), 55.0);
   DeviceTerrain terrain(compute(), pyramid);
   const auto before = terrain.download_fixed();
@@ -40,13 +41,16 @@ TEST(Thermal, ConvergesToTheTalusAngleAndConservesVolume) {
   ThermalRelaxation thermal(compute(), terrain, s);
   for (int k = 0; k < 600; ++k) thermal.relax();
   const auto after = terrain.download_fixed();
-  EXPECT_EQ(std::accumulate(before.begin(), before.end(), 0LL), std::accumulate(after.begin(), after.end(), 0LL))
+  EXPECT_EQ(std::accumulate(before.begin(), before.end(), 0LL),
+            std::accumulate(after.begin(), after.end(), 0LL))
       << "volume is moved in whole quanta, never made or lost";
-  EXPECT_LT(steepest(terrain.download()), 35.0 + 1.0) << "no slope steeper than the talus angle (within 1°)";
+  EXPECT_LT(steepest(terrain.download()), 35.0 + 1.0)
+      << "no slope steeper than the talus angle (within 1°)";
 }
 
 TEST(Thermal, HeightAwareVariantKeepsPeaksSharper) {
-  const Heightmap cone = generate_terrain("cone", 41, 41, 1.0, 1, {{"relief", 0.8}, {"radius", 0.3}});
+  const Heightmap cone =
+      generate_terrain("cone", 41, 41, 1.0, 1, {{"relief", 0.8}, {"radius", 0.3}});
   double peaks[2];
   for (int variant = 0; variant < 2; ++variant) {
     DeviceTerrain terrain(compute(), cone);
