@@ -13,17 +13,20 @@ void add_bench_command(CLI::App& app) {
   struct Options {
     std::string which, device;
     long long particles = 100000;
+    int size = 1024;
     int steps = 20;
     std::vector<std::string> sets;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd =
-      app.add_subcommand("bench",
-                         "Measure throughput and print JSON with per-kernel times from OpenCL "
-                         "profiling events. sph: a block of N particles settling in a tank");
-  cmd->add_option("model", opt->which, "what to measure: sph")
+  auto* cmd = app.add_subcommand(
+      "bench",
+      "Measure throughput and print JSON with per-kernel times from OpenCL "
+      "profiling events. sph: a block of N particles settling in a tank; droplet: "
+      "batches of Beyer droplets on a size x size terrain (--steps batches)");
+  cmd->add_option("model", opt->which, "what to measure: sph or droplet")
       ->required()
-      ->check(CLI::IsMember({"sph"}));
+      ->check(CLI::IsMember({"sph", "droplet"}));
+  cmd->add_option("--size", opt->size, "droplet: terrain vertices per side")->capture_default_str();
   cmd->add_option("--particles", opt->particles, "number of particles")->capture_default_str();
   cmd->add_option("--steps", opt->steps, "timed steps (after 3 warm-up steps)")
       ->capture_default_str();
@@ -36,6 +39,11 @@ void add_bench_command(CLI::App& app) {
     Parameters params;
     apply_overrides(params, opt->sets);
     ComputeContext compute(opt->device);
+    if (opt->which == "droplet") {
+      if (opt->size < 16 || opt->size > 16384) throw input_error("--size: must be in 16..16384");
+      std::cout << benchmark_droplet(compute, opt->size, opt->steps, params).str() << "\n";
+      return;
+    }
     std::cout << benchmark_sph(compute, opt->particles, opt->steps, params).str() << "\n";
   });
 }

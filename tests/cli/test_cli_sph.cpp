@@ -63,6 +63,14 @@ TEST(CliSph, BenchPrintsThroughputAndKernelTimes) {
   EXPECT_NE(r.out.find("\"radix_scatter\""), std::string::npos);
 }
 
+TEST(CliSph, BenchDropletPrintsItsThroughput) {
+  const auto r = run_cli({"bench", "droplet", "--size", "129", "--steps", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(json_number(r.out, "droplet_steps_per_second"), 0.0);
+  EXPECT_NE(r.out.find("\"droplet_batch\""), std::string::npos);
+  EXPECT_EQ(run_cli({"bench", "droplet", "--size", "3"}).exit_code, 2);
+}
+
 TEST(CliSph, BadValidateAndBenchArgumentsExitWithTwo) {
   for (std::vector<std::string> args :
        std::vector<std::vector<std::string>>{{"validate", "tsunami"},

@@ -11,4 +11,8 @@ namespace runnel {
 JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps,
                          const Parameters& params);
 
+// `runnel bench droplet`: batches of Beyer droplets on an fBm terrain of size × size vertices.
+JsonObject benchmark_droplet(ComputeContext& compute, int size, int batches,
+                             const Parameters& params);
+
 }  // namespace runnel

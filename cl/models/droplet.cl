@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+// Particle droplets (Beyer 2015; models.md "droplet"). One work-item runs one droplet for its whole
+// lifetime over the terrain as it was when the batch started (height, m); its erosion and deposition
+// go into the fixed-point deltas (counts of the height quantum) with 64-bit integer atomics, so a
+// batch's result does not depend on the order of the droplets. Sediment is carried as quanta too:
+// what a droplet erodes, it deposits (or carries out of the map, booked as outflow) exactly.
+// Per step, with cell coordinates and bilinear height and gradient:
+//   dir = dir·inertia − grad·(1 − inertia), normalised; move one cell; Δh = h_new − h_old
+//   capacity = max(−Δh · speed · water · capacity_factor, min_capacity)
+//   uphill (Δh > 0): deposit min(Δh, sediment); over capacity: deposit (sediment − capacity)·deposit_speed
+//   else erode min((capacity − sediment)·erode_speed, −Δh) with a radius brush
+//   speed = sqrt(max(0, speed² − Δh·gravity)); water *= 1 − evaporate_speed
+// Compile-time constants (host -D): DROPLET_*.
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+
+#define DROPLET_STREAM 0x64726f70UL  // "drop"
+
+inline float height_at(const __global float* h, int nx, float x, float z, float* gx, float* gz) {
+  const int i = (int)x, j = (int)z;
+  const float u = x - (float)i, v = z - (float)j;
+  const int k = j * nx + i;
+  const float h00 = h[k], h10 = h[k + 1], h01 = h[k + nx], h11 = h[k + nx + 1];
+  *gx = (h10 - h00) * (1.0f - v) + (h11 - h01) * v;
+  *gz = (h01 - h00) * (1.0f - u) + (h11 - h10) * u;
+  return h00 * (1.0f - u) * (1.0f - v) + h10 * u * (1.0f - v) + h01 * (1.0f - u) * v + h11 * u * v;
+}
+
+// Deposits `quanta` on the 4 corners of the cell with bilinear weights, exactly.
+inline void deposit_bilinear(volatile __global long* delta, int nx, float x, float z, long quanta) {
+  if (quanta <= 0) return;
+  const int i = (int)x, j = (int)z;
+  const float u = x - (float)i, v = z - (float)j;
+  const float w[4] = {(1.0f - u) * (1.0f - v), u * (1.0f - v), (1.0f - u) * v, u * v};
+  const int k[4] = {j * nx + i, j * nx + i + 1, (j + 1) * nx + i, (j + 1) * nx + i + 1};
+  long given = 0;
+  int largest = 0;
+  for (int c = 0; c < 4; ++c) {
+    const long part = min((long)floor((float)quanta * w[c]), quanta - given);
+    given += part;
+    if (w[c] > w[largest]) largest = c;
+    if (part > 0) atom_add(&delta[k[c]], part);
+  }
+  if (quanta - given > 0) atom_add(&delta[k[largest]], quanta - given);
+}
+
+// Erodes `quanta` from the vertices within DROPLET_RADIUS cells, weighted by (radius − distance).
+inline void erode_brush(volatile __global long* delta, int nx, int ny, float x, float z, long quanta) {
+  if (quanta <= 0) return;
+  const int r = (int)ceil(DROPLET_RADIUS);
+  const int ci = (int)x, cj = (int)z;
+  float total = 0.0f;
+  for (int dj = -r; dj <= r + 1; ++dj) {
+    for (int di = -r; di <= r + 1; ++di) {
+      const int a = ci + di, b = cj + dj;
+      if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
+      total += fmax(0.0f, DROPLET_RADIUS - hypot((float)a - x, (float)b - z));
+    }
+  }
+  if (total <= 0.0f) return;
+  long taken = 0, best_part = -1;
+  int best = -1;
+  for (int dj = -r; dj <= r + 1; ++dj) {
+    for (int di = -r; di <= r + 1; ++di) {
+      const int a = ci + di, b = cj + dj;
+      if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
+      const float w = fmax(0.0f, DROPLET_RADIUS - hypot((float)a - x, (float)b - z)) / total;
+      if (w <= 0.0f) continue;
+      const long part = min((long)floor((float)quanta * w), quanta - taken);
+      taken += part;
+      if (part > best_part) {
+        best_part = part;
+        best = b * nx + a;
+      }
+      if (part > 0) atom_add(&delta[b * nx + a], -part);
+    }
+  }
+  if (quanta - taken > 0 && best >= 0) atom_add(&delta[best], -(quanta - taken));
+}
+
+__kernel void droplet_batch(const __global float* height, volatile __global long* delta, const int nx, const int ny,
+                            const float quantum, const ulong seed, const ulong first_droplet, const uint count,
+                            volatile __global long* counters) {
+  const uint d = get_global_id(0);
+  if (d >= count) return;
+  const ulong id = first_droplet + d;
+  float x = rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1);
+  float z = rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1);
+  x = fmin(x, (float)(nx - 1) - 1e-3f);
+  z = fmin(z, (float)(ny - 1) - 1e-3f);
+  float dir_x = 0.0f, dir_z = 0.0f, speed = DROPLET_INITIAL_SPEED, water = DROPLET_INITIAL_WATER;
+  long sediment = 0;  // quanta of height
+  for (int step = 0; step < DROPLET_LIFETIME; ++step) {
+    float gx, gz;
+    const float h_old = height_at(height, nx, x, z, &gx, &gz);
+    dir_x = dir_x * DROPLET_INERTIA - gx * (1.0f - DROPLET_INERTIA);
+    dir_z = dir_z * DROPLET_INERTIA - gz * (1.0f - DROPLET_INERTIA);
+    const float len = sqrt(dir_x * dir_x + dir_z * dir_z);
+    if (len == 0.0f) break;  // flat: the droplet stops and deposits below
+    dir_x /= len;
+    dir_z /= len;
+    const float nx_pos = x + dir_x, nz_pos = z + dir_z;
+    if (nx_pos < 0.0f || nz_pos < 0.0f || nx_pos >= (float)(nx - 1) || nz_pos >= (float)(ny - 1)) {
+      atom_add(&counters[1], sediment);  // carried out of the map
+      atom_inc(&counters[0]);
+      return;
+    }
+    float gx2, gz2;
+    const float h_new = height_at(height, nx, nx_pos, nz_pos, &gx2, &gz2);
+    const float dh = h_new - h_old;  // m
+    const float capacity = fmax(-dh * speed * water * DROPLET_CAPACITY, DROPLET_MIN_CAPACITY);  // m of height
+    const float carried = (float)sediment * quantum;
+    if (dh > 0.0f || carried > capacity) {
+      const float amount = dh > 0.0f ? fmin(dh, carried) : (carried - capacity) * DROPLET_DEPOSIT;
+      const long q = min(sediment, (long)floor(amount / quantum));
+      deposit_bilinear(delta, nx, x, z, q);
+      sediment -= q;
+    } else {
+      const float amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
+      const long q = (long)floor(amount / quantum);
+      erode_brush(delta, nx, ny, x, z, q);
+      sediment += q;
+    }
+    speed = sqrt(fmax(0.0f, speed * speed - dh * DROPLET_GRAVITY));
+    water *= 1.0f - DROPLET_EVAPORATE;
+    x = nx_pos;
+    z = nz_pos;
+  }
+  deposit_bilinear(delta, nx, x, z, sediment);  // what the droplet still carries when it dies
+}
