@@ -3,7 +3,7 @@
 # Fails when a C++ source differs from .clang-format. Fix with: scripts/check-format.sh --fix
 set -euo pipefail
 cd "$(dirname "$0")/.."
-files=$(git ls-files 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'viewer/*.cpp' 'viewer/*.hpp' 'bench/*.cpp' 2>/dev/null || true)
+files=$(git ls-files --cached --others --exclude-standard 'src/*.cpp' 'src/*.hpp' 'tests/*.cpp' 'tests/*.hpp' 'viewer/*.cpp' 'viewer/*.hpp' 'bench/*.cpp' 2>/dev/null || true)
 [ -n "$files" ] || exit 0
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i $files

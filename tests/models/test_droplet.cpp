@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The droplet model (Beyer 2015) in OpenCL: volume conserved exactly (outflow booked), deterministic,
-// and it carves: the terrain changes and erosion follows the drainage.
+// The droplet model (Beyer 2015) in OpenCL: volume conserved exactly (outflow booked),
+// deterministic, and it carves: the terrain changes and erosion follows the drainage.
 #include <gtest/gtest.h>
 
 #include <numeric>

@@ -41,13 +41,14 @@ std::string DropletSettings::build_options() const {
   return o;
 }
 
-DropletModel::DropletModel(ComputeContext& compute, DeviceTerrain& terrain, const DropletSettings& settings,
-                           std::uint64_t seed)
+DropletModel::DropletModel(ComputeContext& compute, DeviceTerrain& terrain,
+                           const DropletSettings& settings, std::uint64_t seed)
     : compute_(compute),
       terrain_(terrain),
       settings_(settings),
       seed_(seed),
-      kernel_(compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings.build_options()), "droplet_batch"),
+      kernel_(compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings.build_options()),
+              "droplet_batch"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long)) {
   const cl_long zero = 0;
   compute.queue().enqueueFillBuffer(counters_, zero, 0, 2 * sizeof(cl_long));
@@ -56,11 +57,12 @@ DropletModel::DropletModel(ComputeContext& compute, DeviceTerrain& terrain, cons
 void DropletModel::advance() {
   // Droplets of one batch do not see each other's changes: many ending in the same pit would all
   // fill it. One droplet per 64 cells by default keeps that rare.
-  const long long automatic = std::max<long long>(1, static_cast<long long>(terrain_.nx()) * terrain_.ny() / 64);
+  const long long automatic =
+      std::max<long long>(1, static_cast<long long>(terrain_.nx()) * terrain_.ny() / 64);
   const cl_uint count = static_cast<cl_uint>(settings_.batch > 0 ? settings_.batch : automatic);
   set_args(kernel_, terrain_.height(), terrain_.delta(), terrain_.nx(), terrain_.ny(),
-           static_cast<float>(terrain_.quantum()), static_cast<cl_ulong>(seed_), static_cast<cl_ulong>(droplets_),
-           count, counters_);
+           static_cast<float>(terrain_.quantum()), static_cast<cl_ulong>(seed_),
+           static_cast<cl_ulong>(droplets_), count, counters_);
   compute_.profiler().launch(kernel_, round_up_work(count), "droplet_batch");
   terrain_.apply();
   droplets_ += count;

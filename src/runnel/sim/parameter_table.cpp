@@ -84,6 +84,11 @@ const std::vector<ParamSpec>& parameter_table() {
       {"droplet.initial_water", T::kReal, "1", "1", 0, 1e6, {}, "water a droplet starts with"},
       {"droplet.initial_speed", T::kReal, "1", "1", 0, 1e6, {}, "speed a droplet starts with"},
       {"droplet.batch", T::kInteger, "0", "droplets", 0, 1e8, {}, "droplets per parallel batch (they see the terrain as at the batch start); 0: one per 64 cells, so few share a pit"},
+      // olsen: cellular-automaton hydraulic erosion (Olsen 2004), per iteration
+      {"olsen.rain", T::kReal, "0.01", "m", 0, 1e3, {}, "K_r, water added to every cell per iteration"},
+      {"olsen.solubility", T::kReal, "0.01", "1", 0, 1, {}, "K_s, terrain dissolved per unit water depth"},
+      {"olsen.evaporation", T::kReal, "0.5", "1", 0, 1, {}, "K_e, fraction of the water evaporating per iteration"},
+      {"olsen.capacity", T::kReal, "0.01", "1", 0, 1e3, {}, "K_c, sediment capacity per unit water depth"},
       // run: the simulation as a whole
       {"run.seed", T::kInteger, "1", "1", 0, 9.2e18, {}, "seed of the simulation's random numbers (rain)"},
       {"run.steps", T::kInteger, "0", "steps", 0, 1e12, {}, "steps to run; 0: run for run.sim_time"},

@@ -14,5 +14,8 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
 // `runnel bench droplet`: batches of Beyer droplets on an fBm terrain of size × size vertices.
 JsonObject benchmark_droplet(ComputeContext& compute, int size, int batches,
                              const Parameters& params);
+// `runnel bench olsen`: iterations of Olsen's cellular automaton on a size × size terrain.
+JsonObject benchmark_olsen(ComputeContext& compute, int size, int iterations,
+                           const Parameters& params);
 
 }  // namespace runnel
