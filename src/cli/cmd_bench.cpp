@@ -23,9 +23,9 @@ void add_bench_command(CLI::App& app) {
       "Measure throughput and print JSON with per-kernel times from OpenCL "
       "profiling events. sph: a block of N particles settling in a tank; droplet: "
       "batches of Beyer droplets on a size x size terrain (--steps batches)");
-  cmd->add_option("model", opt->which, "what to measure: sph, droplet or olsen")
+  cmd->add_option("model", opt->which, "what to measure: sph, droplet, olsen or thermal")
       ->required()
-      ->check(CLI::IsMember({"sph", "droplet", "olsen"}));
+      ->check(CLI::IsMember({"sph", "droplet", "olsen", "thermal"}));
   cmd->add_option("--size", opt->size, "droplet: terrain vertices per side")->capture_default_str();
   cmd->add_option("--particles", opt->particles, "number of particles")->capture_default_str();
   cmd->add_option("--steps", opt->steps, "timed steps (after 3 warm-up steps)")
@@ -39,11 +39,12 @@ void add_bench_command(CLI::App& app) {
     Parameters params;
     apply_overrides(params, opt->sets);
     ComputeContext compute(opt->device);
-    if (opt->which == "droplet" || opt->which == "olsen") {
+    if (opt->which != "sph") {
       if (opt->size < 16 || opt->size > 16384) throw input_error("--size: must be in 16..16384");
-      const JsonObject result = opt->which == "droplet"
-                                    ? benchmark_droplet(compute, opt->size, opt->steps, params)
-                                    : benchmark_olsen(compute, opt->size, opt->steps, params);
+      const JsonObject result =
+          opt->which == "droplet" ? benchmark_droplet(compute, opt->size, opt->steps, params)
+          : opt->which == "olsen" ? benchmark_olsen(compute, opt->size, opt->steps, params)
+                                  : benchmark_thermal(compute, opt->size, opt->steps, params);
       std::cout << result.str() << "\n";
       return;
     }

@@ -4,6 +4,7 @@
 #include "runnel/models/droplet_model.hpp"
 #include "runnel/models/olsen_model.hpp"
 #include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/thermal.hpp"
 #include "runnel/validation/sph_benchmark.hpp"
 
 namespace runnel {
@@ -73,6 +74,43 @@ JsonObject benchmark_olsen(ComputeContext& compute, int size, int iterations,
       .add("steps", iterations)
       .add("seconds", seconds)
       .add("cell_steps_per_second", cells * iterations / seconds)
+      .add("kernel_seconds", kernels);
+}
+
+}  // namespace runnel
+
+namespace runnel {
+
+JsonObject benchmark_thermal(ComputeContext& compute, int size, int iterations,
+                             const Parameters& params) {
+  const Heightmap t = generate_terrain("fbm", size, size, 1.0, 1, {{"relief", 0.5}});
+  DeviceTerrain terrain(compute, t);
+  ThermalSettings s;
+  s.talus_angle_deg = params.real("thermal.talus_angle");
+  s.rate = params.real("thermal.rate");
+  s.height_aware = params.boolean("thermal.height_aware");
+  s.hardness = params.real("thermal.hardness");
+  ThermalRelaxation thermal(compute, terrain, s);
+  thermal.relax();  // warm-up: kernel builds
+  compute.queue().finish();
+  KernelProfiler& profiler = compute.profiler();
+  profiler.reset();
+  profiler.enable(true);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < iterations; ++k) thermal.relax();
+  compute.queue().finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  JsonObject kernels;
+  for (auto& [name, v] : profiler.collect()) kernels.add(name, v);
+  profiler.enable(false);
+  return JsonObject()
+      .add("benchmark", "thermal")
+      .add("device", compute.info().name)
+      .add("size", size)
+      .add("steps", iterations)
+      .add("seconds", seconds)
+      .add("cell_steps_per_second", static_cast<double>(size) * size * iterations / seconds)
       .add("kernel_seconds", kernels);
 }
 

@@ -17,5 +17,8 @@ JsonObject benchmark_droplet(ComputeContext& compute, int size, int batches,
 // `runnel bench olsen`: iterations of Olsen's cellular automaton on a size × size terrain.
 JsonObject benchmark_olsen(ComputeContext& compute, int size, int iterations,
                            const Parameters& params);
+// `runnel bench thermal`: talus relaxation passes on a size × size terrain.
+JsonObject benchmark_thermal(ComputeContext& compute, int size, int iterations,
+                             const Parameters& params);
 
 }  // namespace runnel
