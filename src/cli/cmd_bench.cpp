@@ -23,9 +23,9 @@ void add_bench_command(CLI::App& app) {
       "Measure throughput and print JSON with per-kernel times from OpenCL "
       "profiling events. sph: a block of N particles settling in a tank; droplet: "
       "batches of Beyer droplets on a size x size terrain (--steps batches)");
-  cmd->add_option("model", opt->which, "what to measure: sph, droplet, olsen or thermal")
+  cmd->add_option("model", opt->which, "what to measure: sph, droplet, olsen, thermal or pipe")
       ->required()
-      ->check(CLI::IsMember({"sph", "droplet", "olsen", "thermal"}));
+      ->check(CLI::IsMember({"sph", "droplet", "olsen", "thermal", "pipe"}));
   cmd->add_option("--size", opt->size, "droplet: terrain vertices per side")->capture_default_str();
   cmd->add_option("--particles", opt->particles, "number of particles")->capture_default_str();
   cmd->add_option("--steps", opt->steps, "timed steps (after 3 warm-up steps)")
@@ -44,6 +44,7 @@ void add_bench_command(CLI::App& app) {
       const JsonObject result =
           opt->which == "droplet" ? benchmark_droplet(compute, opt->size, opt->steps, params)
           : opt->which == "olsen" ? benchmark_olsen(compute, opt->size, opt->steps, params)
+          : opt->which == "pipe"  ? benchmark_pipe(compute, opt->size, opt->steps, params)
                                   : benchmark_thermal(compute, opt->size, opt->steps, params);
       std::cout << result.str() << "\n";
       return;

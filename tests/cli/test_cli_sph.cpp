@@ -69,7 +69,7 @@ TEST(CliSph, BenchDropletPrintsItsThroughput) {
   EXPECT_GT(json_number(r.out, "droplet_steps_per_second"), 0.0);
   EXPECT_NE(r.out.find("\"droplet_batch\""), std::string::npos);
   EXPECT_EQ(run_cli({"bench", "droplet", "--size", "3"}).exit_code, 2);
-  for (const char* model : {"olsen", "thermal"}) {
+  for (const char* model : {"olsen", "thermal", "pipe"}) {
     const auto g = run_cli({"bench", model, "--size", "129", "--steps", "3"});
     ASSERT_EQ(g.exit_code, 0) << model << ": " << g.err;
     EXPECT_GT(json_number(g.out, "cell_steps_per_second"), 0.0) << model;

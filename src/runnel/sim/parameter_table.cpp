@@ -89,6 +89,18 @@ const std::vector<ParamSpec>& parameter_table() {
       {"olsen.solubility", T::kReal, "0.01", "1", 0, 1, {}, "K_s, terrain dissolved per unit water depth"},
       {"olsen.evaporation", T::kReal, "0.5", "1", 0, 1, {}, "K_e, fraction of the water evaporating per iteration"},
       {"olsen.capacity", T::kReal, "0.01", "1", 0, 1e3, {}, "K_c, sediment capacity per unit water depth"},
+      // pipe: virtual-pipe shallow water with erosion (Mei, Decaudin, Hu 2007)
+      {"pipe.rain", T::kReal, "0.01", "m/s", 0, 1e3, {}, "rain on every cell"},
+      {"pipe.area", T::kReal, "1", "m^2", 1e-6, 1e6, {}, "A, cross-section of the virtual pipes"},
+      {"pipe.gravity", T::kReal, "9.81", "m/s^2", 0, 100, {}, "gravity"},
+      {"pipe.capacity", T::kReal, "0.05", "s", 0, 1e6, {}, "K_c: capacity = K_c · max(sin α, min_tilt) · |v| (m of height)"},
+      {"pipe.dissolve", T::kReal, "0.1", "1", 0, 1, {}, "K_s, fraction of the free capacity dissolved per step"},
+      {"pipe.deposit", T::kReal, "0.1", "1", 0, 1, {}, "K_d, fraction of the excess load deposited per step"},
+      {"pipe.evaporation", T::kReal, "0.05", "1/s", 0, 1e3, {}, "K_e, evaporation rate"},
+      {"pipe.min_tilt", T::kReal, "0.05", "1", 0, 1, {}, "smallest sin α in the capacity"},
+      {"pipe.cfl", T::kReal, "0.25", "1", 0.01, 1, {}, "Δt ≤ cfl · l / (sqrt(g d_max) + |v|_max)"},
+      {"pipe.dt_max", T::kReal, "0.05", "s", 1e-9, 100, {}, "largest time step"},
+      {"pipe.edges", T::kString, "\"outflow\"", "", 0, 0, {"outflow", "closed"}, "outflow (outside cells have b = d = 0) or closed"},
       // run: the simulation as a whole
       {"run.seed", T::kInteger, "1", "1", 0, 9.2e18, {}, "seed of the simulation's random numbers (rain)"},
       {"run.steps", T::kInteger, "0", "steps", 0, 1e12, {}, "steps to run; 0: run for run.sim_time"},

@@ -3,6 +3,7 @@
 
 #include "runnel/models/droplet_model.hpp"
 #include "runnel/models/olsen_model.hpp"
+#include "runnel/models/pipe_model.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/thermal.hpp"
 #include "runnel/validation/sph_benchmark.hpp"
@@ -111,6 +112,37 @@ JsonObject benchmark_thermal(ComputeContext& compute, int size, int iterations,
       .add("steps", iterations)
       .add("seconds", seconds)
       .add("cell_steps_per_second", static_cast<double>(size) * size * iterations / seconds)
+      .add("kernel_seconds", kernels);
+}
+
+}  // namespace runnel
+
+namespace runnel {
+
+JsonObject benchmark_pipe(ComputeContext& compute, int size, int steps, const Parameters& params) {
+  const Heightmap t = generate_terrain("fbm", size, size, 1.0, 1, {{"relief", 0.1}});
+  DeviceTerrain terrain(compute, t);
+  PipeModel model(compute, terrain, PipeSettings::from(params));
+  model.advance();  // warm-up: kernel builds
+  compute.queue().finish();
+  KernelProfiler& profiler = compute.profiler();
+  profiler.reset();
+  profiler.enable(true);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < steps; ++k) model.advance();
+  compute.queue().finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  JsonObject kernels;
+  for (auto& [name, v] : profiler.collect()) kernels.add(name, v);
+  profiler.enable(false);
+  return JsonObject()
+      .add("benchmark", "pipe")
+      .add("device", compute.info().name)
+      .add("size", size)
+      .add("steps", steps)
+      .add("seconds", seconds)
+      .add("cell_steps_per_second", static_cast<double>(size) * size * steps / seconds)
       .add("kernel_seconds", kernels);
 }
 

@@ -20,5 +20,7 @@ JsonObject benchmark_olsen(ComputeContext& compute, int size, int iterations,
 // `runnel bench thermal`: talus relaxation passes on a size × size terrain.
 JsonObject benchmark_thermal(ComputeContext& compute, int size, int iterations,
                              const Parameters& params);
+// `runnel bench pipe`: adaptive steps of the virtual-pipe model on a size × size terrain.
+JsonObject benchmark_pipe(ComputeContext& compute, int size, int steps, const Parameters& params);
 
 }  // namespace runnel

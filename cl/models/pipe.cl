@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: MIT
+// Virtual-pipe shallow water with erosion (Mei, Decaudin & Hu 2007; models.md "pipe"). Terrain b and
+// suspended sediment s are integer counts of the height quantum (so b + s + outflow is conserved
+// exactly); water depth d (m), pipe fluxes f (m³/s, L R T B) and velocity v (m/s) are floats.
+// One step of Δt, each pass reading only what the previous passes wrote:
+//   pipe_flux:      d1 = d + Δt·r (read only: neighbours read d too);  f_X = max(0, f_X + Δt·A·g·Δh_X/l);  scale all four by
+//                   K = min(1, d1·l²/(Σf·Δt))   (outflow edges: outside b = d = 0; closed edges: f = 0)
+//   pipe_water:     d2 = d1 + Δt(Σf_in − Σf_out)/l²;  v from the mean flux through the cell
+//   pipe_erode:     C = K_c · max(sin α, sin α_min) · |v|; below capacity dissolve K_s(C − s), above deposit
+//                   K_d(s − C); then evaporation d *= 1 − K_e·Δt
+//   pipe_transport: sediment leaves with the water that leaves, s·f_X·Δt/(d1·l²) to each neighbour
+//                   (upwind, a gather: each cell adds what its neighbours send it); what leaves the map
+//                   is booked as outflow
+// Compile-time constants (host -D): PIPE_*.
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+
+__constant int2 kPipeNeighbour[4] = {(int2)(-1, 0), (int2)(1, 0), (int2)(0, -1), (int2)(0, 1)};  // L R T B
+
+inline int pipe_inside(int x, int z, int nx, int ny) { return x >= 0 && z >= 0 && x < nx && z < ny; }
+
+__kernel void pipe_flux(const __global long* height, const __global float* depth, __global float* flux, const int nx,
+                        const int ny, const float quantum, const float cell, const float dt) {
+  const int k = get_global_id(0);
+  if (k >= nx * ny) return;
+  const int i = k % nx, j = k / nx;
+  const float d1 = depth[k] + dt * PIPE_RAIN;
+  const float level = (float)height[k] * quantum + d1;
+  float f[4], total = 0.0f;
+  for (int d = 0; d < 4; ++d) {
+    const int x = i + kPipeNeighbour[d].x, z = j + kPipeNeighbour[d].y;
+    float other;
+    if (pipe_inside(x, z, nx, ny)) {
+      const int m = z * nx + x;
+      other = (float)height[m] * quantum + depth[m] + dt * PIPE_RAIN;
+    } else {
+#if PIPE_CLOSED
+      f[d] = 0.0f;
+      continue;
+#else
+      other = 0.0f;  // outside: b = 0, d = 0
+#endif
+    }
+    f[d] = fmax(0.0f, flux[4 * k + d] + dt * PIPE_AREA * PIPE_GRAVITY * (level - other) / cell);
+    total += f[d];
+  }
+  const float scale = total > 0.0f ? fmin(1.0f, d1 * cell * cell / (total * dt)) : 0.0f;
+  for (int d = 0; d < 4; ++d) flux[4 * k + d] = f[d] * scale;
+}
+
+__kernel void pipe_water(__global float* depth, const __global float* flux, __global float* velocity,
+                         __global float* previous_depth, const int nx, const int ny, const float cell, const float dt) {
+  const int k = get_global_id(0);
+  if (k >= nx * ny) return;
+  const int i = k % nx, j = k / nx;
+  float in[4] = {0.0f, 0.0f, 0.0f, 0.0f}, out_total = 0.0f, in_total = 0.0f;
+  for (int d = 0; d < 4; ++d) {
+    out_total += flux[4 * k + d];
+    const int x = i + kPipeNeighbour[d].x, z = j + kPipeNeighbour[d].y;
+    if (!pipe_inside(x, z, nx, ny)) continue;
+    in[d] = flux[4 * (z * nx + x) + (d ^ 1)];
+    in_total += in[d];
+  }
+  const float d1 = depth[k] + dt * PIPE_RAIN;  // the same d1 the flux pass used
+  const float d2 = fmax(0.0f, d1 + dt * (in_total - out_total) / (cell * cell));
+  previous_depth[k] = d1;
+  depth[k] = d2;
+  // Mean flux through the cell in x (from the left in, out to the right, ...) over the mean depth.
+  const float wx = 0.5f * (in[0] - flux[4 * k + 0] + flux[4 * k + 1] - in[1]);
+  const float wz = 0.5f * (in[2] - flux[4 * k + 2] + flux[4 * k + 3] - in[3]);
+  const float mean_depth = 0.5f * (d1 + d2);
+  velocity[2 * k] = mean_depth > 1e-6f ? wx / (cell * mean_depth) : 0.0f;
+  velocity[2 * k + 1] = mean_depth > 1e-6f ? wz / (cell * mean_depth) : 0.0f;
+}
+
+__kernel void pipe_erode(__global long* height, const __global float* height_view, __global long* sediment,
+                         __global float* depth, const __global float* velocity, const int nx, const int ny,
+                         const float quantum, const float cell, const float dt) {
+  const int k = get_global_id(0);
+  if (k >= nx * ny) return;
+  const int i = k % nx, j = k / nx;
+  // The slope from the heights as the step began (height_view), not from height, which this kernel
+  // changes: no cell reads what another work-item writes.
+  const int i0 = max(i - 1, 0), i1 = min(i + 1, nx - 1), j0 = max(j - 1, 0), j1 = min(j + 1, ny - 1);
+  const float gx = (height_view[j * nx + i1] - height_view[j * nx + i0]) / ((float)(i1 - i0) * cell);
+  const float gz = (height_view[j1 * nx + i] - height_view[j0 * nx + i]) / ((float)(j1 - j0) * cell);
+  const float sin_slope = sqrt(gx * gx + gz * gz) / sqrt(1.0f + gx * gx + gz * gz);
+  const float speed = hypot(velocity[2 * k], velocity[2 * k + 1]);
+  // The water cannot carry more sediment than its own depth (thin films move fast).
+  const float capacity = fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth[k]);  // m
+  const float s = (float)sediment[k] * quantum;
+  if (capacity > s) {
+    const long q = (long)floor(PIPE_DISSOLVE * (capacity - s) / quantum);
+    height[k] -= q;
+    sediment[k] += q;
+  } else {
+    const long q = min(sediment[k], (long)floor(PIPE_DEPOSIT * (s - capacity) / quantum));
+    height[k] += q;
+    sediment[k] -= q;
+  }
+  depth[k] *= fmax(0.0f, 1.0f - PIPE_EVAPORATION * dt);
+}
+
+__kernel void pipe_transport(const __global long* sediment, __global long* sediment_next, const __global float* flux,
+                             const __global float* previous_depth, const int nx, const int ny, const float cell,
+                             const float dt, volatile __global long* outflow) {
+  const int k = get_global_id(0);
+  if (k >= nx * ny) return;
+  const int i = k % nx, j = k / nx;
+  long s = sediment[k];
+  for (int d = 0; d < 4; ++d) {
+    // What this cell sends to neighbour d (the same expression the neighbour evaluates below).
+    const float volume = previous_depth[k] * cell * cell;
+    const long sent = volume > 0.0f ? (long)floor((float)sediment[k] * fmin(1.0f, flux[4 * k + d] * dt / volume)) : 0;
+    s -= sent;
+    const int x = i + kPipeNeighbour[d].x, z = j + kPipeNeighbour[d].y;
+    if (!pipe_inside(x, z, nx, ny)) {
+      if (sent > 0) atom_add(outflow, sent);
+      continue;
+    }
+    const int m = z * nx + x;
+    const float volume_m = previous_depth[m] * cell * cell;
+    const long received =
+        volume_m > 0.0f ? (long)floor((float)sediment[m] * fmin(1.0f, flux[4 * m + (d ^ 1)] * dt / volume_m)) : 0;
+    s += received;
+  }
+  sediment_next[k] = s;
+}
+
+// Largest depth and speed per block of cells, for the adaptive time step.
+__kernel void pipe_stats(const __global float* depth, const __global float* velocity, const int n, const int chunk,
+                         __global float* stats) {
+  const int b = get_global_id(0);
+  float dmax = 0.0f, vmax = 0.0f;
+  for (int k = b * chunk; k < min(n, (b + 1) * chunk); ++k) {
+    dmax = fmax(dmax, depth[k]);
+    vmax = fmax(vmax, hypot(velocity[2 * k], velocity[2 * k + 1]));
+  }
+  stats[2 * b] = dmax;
+  stats[2 * b + 1] = vmax;
+}
