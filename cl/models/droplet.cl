@@ -44,16 +44,21 @@ inline void deposit_bilinear(volatile __global long* delta, int nx, float x, flo
 }
 
 // Erodes `quanta` from the vertices within DROPLET_RADIUS cells, weighted by (radius − distance).
+#define BRUSH_SIDE (2 * (int)DROPLET_RADIUS_CELLS + 2)
 inline void erode_brush(volatile __global long* delta, int nx, int ny, float x, float z, long quanta) {
   if (quanta <= 0) return;
-  const int r = (int)ceil(DROPLET_RADIUS);
+  const int r = DROPLET_RADIUS_CELLS;
   const int ci = (int)x, cj = (int)z;
+  // The weights once, kept for the second pass.
+  float weight[BRUSH_SIDE * BRUSH_SIDE];
   float total = 0.0f;
   for (int dj = -r; dj <= r + 1; ++dj) {
     for (int di = -r; di <= r + 1; ++di) {
       const int a = ci + di, b = cj + dj;
-      if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
-      total += fmax(0.0f, DROPLET_RADIUS - hypot((float)a - x, (float)b - z));
+      float w = 0.0f;
+      if (a >= 0 && b >= 0 && a < nx && b < ny) w = fmax(0.0f, DROPLET_RADIUS - hypot((float)a - x, (float)b - z));
+      weight[(dj + r) * BRUSH_SIDE + (di + r)] = w;
+      total += w;
     }
   }
   if (total <= 0.0f) return;
@@ -61,17 +66,16 @@ inline void erode_brush(volatile __global long* delta, int nx, int ny, float x, 
   int best = -1;
   for (int dj = -r; dj <= r + 1; ++dj) {
     for (int di = -r; di <= r + 1; ++di) {
-      const int a = ci + di, b = cj + dj;
-      if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
-      const float w = fmax(0.0f, DROPLET_RADIUS - hypot((float)a - x, (float)b - z)) / total;
+      const float w = weight[(dj + r) * BRUSH_SIDE + (di + r)] / total;
       if (w <= 0.0f) continue;
+      const int m = (cj + dj) * nx + (ci + di);
       const long part = min((long)floor((float)quanta * w), quanta - taken);
       taken += part;
       if (part > best_part) {
         best_part = part;
-        best = b * nx + a;
+        best = m;
       }
-      if (part > 0) atom_add(&delta[b * nx + a], -part);
+      if (part > 0) atom_add(&delta[m], -part);
     }
   }
   if (quanta - taken > 0 && best >= 0) atom_add(&delta[best], -(quanta - taken));

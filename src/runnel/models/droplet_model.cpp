@@ -2,6 +2,7 @@
 #include "runnel/models/droplet_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
@@ -38,6 +39,7 @@ std::string DropletSettings::build_options() const {
   o += float_define("DROPLET_INITIAL_WATER", initial_water);
   o += float_define("DROPLET_INITIAL_SPEED", initial_speed);
   o += " -DDROPLET_LIFETIME=" + std::to_string(lifetime);
+  o += " -DDROPLET_RADIUS_CELLS=" + std::to_string(static_cast<int>(std::ceil(radius)));
   return o;
 }
 

@@ -72,7 +72,7 @@ const std::vector<ParamSpec>& parameter_table() {
       {"thermal.height_aware", T::kBool, "false", "", 0, 0, {}, "height-aware talus (Fritz 2016): the threshold rises with height, keeping peaks sharp"},
       {"thermal.hardness", T::kReal, "1", "1", 0, 100, {}, "height-aware: threshold × (1 + hardness · normalised height)"},
       // droplet: Beyer 2015's particle droplets (models.md), in cells and metres of height
-      {"droplet.radius", T::kReal, "3", "cells", 0.5, 64, {}, "erosion brush radius"},
+      {"droplet.radius", T::kReal, "3", "cells", 0.5, 8, {}, "erosion brush radius (its weights are kept in private memory: at most 8)"},
       {"droplet.inertia", T::kReal, "0.05", "1", 0, 1, {}, "how much a droplet keeps its direction"},
       {"droplet.capacity", T::kReal, "4", "1", 0, 1e6, {}, "capacity factor: capacity = −Δh · speed · water · factor"},
       {"droplet.min_capacity", T::kReal, "0.01", "m", 0, 1e6, {}, "smallest capacity"},
