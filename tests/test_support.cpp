@@ -72,3 +72,12 @@ std::string source_dir() {
 }
 
 }  // namespace runnel::test
+
+namespace runnel::test {
+
+ComputeContext& compute() {
+  static ComputeContext context("cpu");
+  return context;
+}
+
+}  // namespace runnel::test

@@ -7,7 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "runnel/compute/context.hpp"
+
 namespace runnel::test {
+
+// The CPU device (PoCL) every OpenCL test runs on, created once per test process.
+ComputeContext& compute();
 
 // A fresh, empty folder for one test, removed when the test ends.
 class ScratchDir {

@@ -17,10 +17,7 @@
 namespace runnel {
 namespace {
 
-ComputeContext& compute() {
-  static ComputeContext c("cpu");
-  return c;
-}
+using test::compute;
 
 Parameters rainy() {
   Parameters p;

@@ -8,14 +8,12 @@
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/droplet_model.hpp"
 #include "runnel/terrain/generators.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
 
-ComputeContext& compute() {
-  static ComputeContext c("cpu");
-  return c;
-}
+using test::compute;
 
 struct Outcome {
   std::vector<std::int64_t> before, after;

@@ -7,14 +7,12 @@
 
 #include "runnel/models/olsen_model.hpp"
 #include "runnel/terrain/generators.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
 
-ComputeContext& compute() {
-  static ComputeContext c("cpu");
-  return c;
-}
+using test::compute;
 
 TEST(OlsenModel, ConservesTerrainPlusSedimentExactly) {
   const Heightmap t = generate_terrain("fbm", 97, 97, 1.0, 2, {{"relief", 0.1}});

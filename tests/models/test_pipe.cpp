@@ -8,14 +8,12 @@
 
 #include "runnel/models/pipe_model.hpp"
 #include "runnel/terrain/generators.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
 
-ComputeContext& compute() {
-  static ComputeContext c("cpu");
-  return c;
-}
+using test::compute;
 
 TEST(PipeModel, StaysFiniteAndConservesUnderHeavyRain) {
   const Heightmap rough =

@@ -9,14 +9,12 @@
 #include "runnel/sim/simulation.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/surface.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
 
-ComputeContext& compute() {
-  static ComputeContext c("cpu");
-  return c;
-}
+using test::compute;
 
 // Heavy, short-lived rain with strong erosion on a small terrain: every mass-balance term moves.
 Parameters busy_parameters() {

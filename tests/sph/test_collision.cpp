@@ -9,14 +9,12 @@
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/surface.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
 
-ComputeContext& compute() {
-  static ComputeContext c("cpu");
-  return c;
-}
+using test::compute;
 
 SphSettings droplet_settings(double cfl) {
   Parameters p;

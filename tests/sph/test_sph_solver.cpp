@@ -12,14 +12,12 @@
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/validation/tank.hpp"
 #include "runnel/validation/validation.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
 
-ComputeContext& compute() {
-  static ComputeContext c("cpu");
-  return c;
-}
+using test::compute;
 
 SphSettings settings(double gravity = 9.81, bool walls = true) {
   Parameters p;

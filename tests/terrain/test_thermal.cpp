@@ -8,14 +8,12 @@
 
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/thermal.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
 
-ComputeContext& compute() {
-  static ComputeContext c("cpu");
-  return c;
-}
+using test::compute;
 
 // The steepest slope (degrees) between 4-neighbours.
 double steepest(const Heightmap& t) {
