@@ -84,7 +84,8 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   const float gx = (height_view[j * nx + i1] - height_view[j * nx + i0]) / ((float)(i1 - i0) * cell);
   const float gz = (height_view[j1 * nx + i] - height_view[j0 * nx + i]) / ((float)(j1 - j0) * cell);
   const float sin_slope = sqrt(gx * gx + gz * gz) / sqrt(1.0f + gx * gx + gz * gz);
-  const float speed = hypot(velocity[2 * k], velocity[2 * k + 1]);
+  const float vx = velocity[2 * k], vz = velocity[2 * k + 1];
+  const float speed = sqrt(vx * vx + vz * vz);  // not hypot: no overflow to guard against, and it is slow on CPUs
   // The water cannot carry more sediment than its own depth (thin films move fast).
   const float capacity = fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth[k]);  // m
   const float s = (float)sediment[k] * quantum;
@@ -130,11 +131,14 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
 __kernel void pipe_stats(const __global float* depth, const __global float* velocity, const int n, const int chunk,
                          __global float* stats) {
   const int b = get_global_id(0);
-  float dmax = 0.0f, vmax = 0.0f;
+  float dmax = 0.0f, vmax2 = 0.0f;
   for (int k = b * chunk; k < min(n, (b + 1) * chunk); ++k) {
-    dmax = fmax(dmax, depth[k]);
-    vmax = fmax(vmax, hypot(velocity[2 * k], velocity[2 * k + 1]));
+    const float vx = velocity[2 * k], vz = velocity[2 * k + 1];
+    const float v2 = vx * vx + vz * vz;
+    // fmax ignores NaN: turn it into infinity so that the host sees it.
+    dmax = fmax(dmax, isnan(depth[k]) ? INFINITY : depth[k]);
+    vmax2 = fmax(vmax2, isnan(v2) ? INFINITY : v2);
   }
   stats[2 * b] = dmax;
-  stats[2 * b + 1] = vmax;
+  stats[2 * b + 1] = sqrt(vmax2);
 }

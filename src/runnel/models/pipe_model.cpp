@@ -10,7 +10,7 @@
 
 namespace runnel {
 namespace {
-constexpr int kStatBlocks = 256;
+constexpr int kStatBlocks = 1024;
 }
 
 PipeSettings PipeSettings::from(const Parameters& p) {
@@ -88,8 +88,9 @@ void PipeModel::advance() {
   const int chunk = (n + kStatBlocks - 1) / kStatBlocks;
   set_args(stats_kernel_, depth_, velocity_, n, chunk, stats_);
   prof.launch(stats_kernel_, kStatBlocks, "pipe_stats");
-  float stats[2 * kStatBlocks];
-  compute_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, sizeof(stats), stats);
+  std::vector<float> stats(2 * kStatBlocks);
+  compute_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, stats.size() * sizeof(float),
+                                     stats.data());
   double d_max = 0, v_max = 0;
   for (int b = 0; b < kStatBlocks; ++b) {
     d_max = std::max(d_max, static_cast<double>(stats[2 * b]));
