@@ -127,17 +127,24 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
   sediment_next[k] = s;
 }
 
-// Largest depth and speed per block of cells, for the adaptive time step.
-__kernel void pipe_stats(const __global float* depth, const __global float* velocity, const int n, const int chunk,
-                         __global float* stats) {
+// Largest depth and speed per block of cells, for the adaptive time step. A speed counts only
+// where the water is at least PIPE_CFL_DEPTH deep and the flux limit K did not act (the cell kept
+// some of its water): a limited cell's 'velocity' is its whole volume leaving in one step, about
+// l/Δt whatever Δt, so counting it shrinks the step by the CFL factor every step; the limit itself
+// keeps such cells non-negative, and the wave speed sqrt(g·d) still bounds the step.
+__kernel void pipe_stats(const __global float* depth, const __global float* velocity, const __global float* flux,
+                         const __global float* previous_depth, const int n, const int chunk, const float cell,
+                         const float dt, __global float* stats) {
   const int b = get_global_id(0);
   float dmax = 0.0f, vmax2 = 0.0f;
   for (int k = b * chunk; k < min(n, (b + 1) * chunk); ++k) {
     const float vx = velocity[2 * k], vz = velocity[2 * k + 1];
-    const float v2 = vx * vx + vz * vz;
+    const float out = (flux[4 * k] + flux[4 * k + 1] + flux[4 * k + 2] + flux[4 * k + 3]) * dt;
+    const int limited = out >= 0.999f * previous_depth[k] * cell * cell;
+    const float v2 = depth[k] >= PIPE_CFL_DEPTH && !limited ? vx * vx + vz * vz : 0.0f;
     // fmax ignores NaN: turn it into infinity so that the host sees it.
     dmax = fmax(dmax, isnan(depth[k]) ? INFINITY : depth[k]);
-    vmax2 = fmax(vmax2, isnan(v2) ? INFINITY : v2);
+    vmax2 = fmax(vmax2, isnan(vx + vz) ? INFINITY : v2);
   }
   stats[2 * b] = dmax;
   stats[2 * b + 1] = sqrt(vmax2);

@@ -41,12 +41,8 @@ void add_bench_command(CLI::App& app) {
     ComputeContext compute(opt->device);
     if (opt->which != "sph") {
       if (opt->size < 16 || opt->size > 16384) throw input_error("--size: must be in 16..16384");
-      const JsonObject result =
-          opt->which == "droplet" ? benchmark_droplet(compute, opt->size, opt->steps, params)
-          : opt->which == "olsen" ? benchmark_olsen(compute, opt->size, opt->steps, params)
-          : opt->which == "pipe"  ? benchmark_pipe(compute, opt->size, opt->steps, params)
-                                  : benchmark_thermal(compute, opt->size, opt->steps, params);
-      std::cout << result.str() << "\n";
+      std::cout << benchmark_model(compute, opt->which, opt->size, opt->steps, params).str()
+                << "\n";
       return;
     }
     std::cout << benchmark_sph(compute, opt->particles, opt->steps, params).str() << "\n";

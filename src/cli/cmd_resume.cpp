@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/io/checkpoint.hpp"
+#include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
 
 namespace runnel::cli {
@@ -33,13 +34,13 @@ void add_resume_command(CLI::App& app) {
   cmd->callback([opt] {
     const CheckpointData data = read_checkpoint(opt->file);
     ComputeContext compute(opt->device);
-    auto sim = Simulation::from_checkpoint(compute, data);
-    RunOptions options = run_options_from(sim->parameters());
-    options.until_step = sim->steps() + static_cast<std::uint64_t>(opt->steps);
+    const std::unique_ptr<Model> model = make_model_from_checkpoint(compute, data);
+    RunOptions options = run_options_from(model->parameters(), model->info().clock);
+    options.until_step = model->steps() + static_cast<std::uint64_t>(opt->steps);
     options.out_dir = opt->out;
     options.quiet = opt->quiet;
     opt->output.apply(options);
-    const RunSummary s = run_simulation(compute, *sim, options);
+    const RunSummary s = run_model(compute, *model, options);
     std::cout << opt->out << "/metrics.json: resumed at step " << data.steps << ", now " << s.steps
               << " steps, mass balance " << s.balance.residual << " m^3\n";
   });

@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
 #include "runnel/sim/scenario.hpp"
 
@@ -12,7 +13,7 @@ namespace runnel::cli {
 
 void add_run_command(CLI::App& app) {
   struct Options {
-    std::string scenario, terrain, generate, out = "runnel-out", device;
+    std::string scenario, terrain, generate, model, out = "runnel-out", device;
     long long steps = -1;
     double sim_time = -1;
     long long seed = -1;
@@ -21,17 +22,22 @@ void add_run_command(CLI::App& app) {
     OutputFlags output;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("run",
-                                 "Run the SPH rain-erosion model: rain falls on the terrain, "
-                                 "flows, erodes and deposits. Writes "
-                                 "height_initial.png, height_final.png, erosion.png, final.asc, "
-                                 "final.npy and metrics.json into --out");
+  auto* cmd = app.add_subcommand(
+      "run",
+      "Run an erosion model on a terrain: by default runnel's SPH rain erosion (rain falls, flows, "
+      "erodes and deposits), or droplet, pipe, olsen or thermal (--model). Writes "
+      "height_initial.png, height_final.png, erosion.png, final.asc, final.npy, final.h5 and "
+      "metrics.json into --out");
   cmd->add_option("scenario", opt->scenario,
                   "scenario file (TOML; see 'runnel params'); default: built-in defaults");
   auto* terrain = cmd->add_option("--terrain", opt->terrain,
                                   "terrain file (.asc, .png, .npy) instead of the scenario's");
   cmd->add_option("--generate", opt->generate, "generate the terrain with this generator instead")
       ->excludes(terrain);
+  cmd->add_option("--model", opt->model,
+                  "erosion model (run.model): sph, droplet, pipe, olsen or thermal; see "
+                  "docs/models.md")
+      ->check(CLI::IsMember(model_names()));
   auto* steps = cmd->add_option("--steps", opt->steps, "number of steps (run.steps)");
   cmd->add_option("--sim-time", opt->sim_time, "simulated seconds (run.sim_time)")->excludes(steps);
   cmd->add_option("--seed", opt->seed, "random seed of the rain (run.seed)");
@@ -54,17 +60,18 @@ void add_run_command(CLI::App& app) {
     }
     if (opt->seed >= 0) params.set("run.seed", static_cast<std::int64_t>(opt->seed), "--seed");
     apply_overrides(params, opt->sets);
-    if (params.integer("run.steps") == 0 && !(params.real("run.sim_time") > 0)) {
-      throw input_error("run.sim_time: must be positive when run.steps is 0");
-    }
+    if (!opt->model.empty()) params.set("run.model", opt->model, "--model");
+    const ModelClock clock = model_entry(params.text("run.model")).info().clock;
+    require_run_length(params, clock);
     const Heightmap terrain = load_terrain(params);
     ComputeContext compute(opt->device);
-    RunOptions options = run_options_from(params);
+    RunOptions options = run_options_from(params, clock);
     options.out_dir = opt->out;
     options.quiet = opt->quiet;
     opt->output.apply(options);
-    Simulation sim(compute, params, terrain);  // validates every setting before anything is written
-    const RunSummary s = run_simulation(compute, sim, options);
+    // Building the model validates every setting before anything is written.
+    const std::unique_ptr<Model> model = make_model(compute, params, terrain);
+    const RunSummary s = run_model(compute, *model, options);
     std::cout << opt->out << "/metrics.json: " << s.steps << " steps, mass balance "
               << s.balance.residual << " m^3 (relative " << s.balance.relative << ")\n";
   });

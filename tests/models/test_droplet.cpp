@@ -23,12 +23,13 @@ struct Outcome {
 
 Outcome run_droplets(std::uint64_t seed, int batches) {
   const Heightmap t = generate_terrain("fbm", 129, 129, 1.0, 6, {{"relief", 0.25}});
-  DeviceTerrain terrain(compute(), t);
-  DropletSettings s = DropletSettings::from(Parameters());
-  s.batch = 0;  // one droplet per 64 cells
-  DropletModel model(compute(), terrain, s, seed);
+  Parameters p;
+  p.set("droplet.batch", std::int64_t{0});  // one droplet per 64 cells
+  p.set("run.seed", static_cast<std::int64_t>(seed));
+  DropletModel model(compute(), p, t);
+  DeviceTerrain& terrain = model.state().terrain();
   Outcome o{terrain.download_fixed(), {}, 0, terrain.download(), {}};
-  for (int k = 0; k < batches; ++k) model.advance();
+  for (int k = 0; k < batches; ++k) model.step();
   o.after = terrain.download_fixed();
   o.outflow = model.outflow_quanta();
   o.final_terrain = terrain.download();

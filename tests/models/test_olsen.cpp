@@ -16,10 +16,10 @@ using test::compute;
 
 TEST(OlsenModel, ConservesTerrainPlusSedimentExactly) {
   const Heightmap t = generate_terrain("fbm", 97, 97, 1.0, 2, {{"relief", 0.1}});
-  DeviceTerrain terrain(compute(), t);
-  OlsenModel model(compute(), terrain, OlsenSettings::from(Parameters()));
+  OlsenModel model(compute(), Parameters(), t);
+  DeviceTerrain& terrain = model.state().terrain();
   const auto before = terrain.download_fixed();
-  for (int k = 0; k < 200; ++k) model.advance();
+  for (int k = 0; k < 200; ++k) model.step();
   const auto after = terrain.download_fixed();
   const long long h0 = std::accumulate(before.begin(), before.end(), 0LL);
   const long long h1 = std::accumulate(after.begin(), after.end(), 0LL);
@@ -38,10 +38,10 @@ TEST(OlsenModel, ConservesTerrainPlusSedimentExactly) {
 TEST(OlsenModel, IsDeterministic) {
   std::vector<std::vector<std::int64_t>> results;
   for (int run = 0; run < 2; ++run) {
-    DeviceTerrain terrain(compute(), generate_terrain("ridged", 65, 65, 1.0, 4, {{"relief", 0.2}}));
-    OlsenModel model(compute(), terrain, OlsenSettings::from(Parameters()));
-    for (int k = 0; k < 100; ++k) model.advance();
-    results.push_back(terrain.download_fixed());
+    OlsenModel model(compute(), Parameters(),
+                     generate_terrain("ridged", 65, 65, 1.0, 4, {{"relief", 0.2}}));
+    for (int k = 0; k < 100; ++k) model.step();
+    results.push_back(model.state().terrain().download_fixed());
   }
   EXPECT_EQ(results[0], results[1]);
 }

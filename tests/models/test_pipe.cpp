@@ -18,12 +18,12 @@ using test::compute;
 TEST(PipeModel, StaysFiniteAndConservesUnderHeavyRain) {
   const Heightmap rough =
       generate_terrain("diamond-square", 49, 49, 1.0, 4, {{"relief", 0.3}, {"roughness", 0.5}});
-  DeviceTerrain terrain(compute(), rough);
   Parameters p;
   p.set("pipe.rain", 0.2);  // heavy: 20 cm of water a second
-  PipeModel model(compute(), terrain, PipeSettings::from(p));
+  PipeModel model(compute(), p, rough);
+  DeviceTerrain& terrain = model.state().terrain();
   const auto before = terrain.download_fixed();
-  for (int k = 0; k < 10000; ++k) model.advance();
+  for (int k = 0; k < 10000; ++k) model.step();
   const auto depth = model.depth();
   for (float d : depth) {
     ASSERT_TRUE(std::isfinite(d));
@@ -42,10 +42,10 @@ TEST(PipeModel, StaysFiniteAndConservesUnderHeavyRain) {
 TEST(PipeModel, IsDeterministic) {
   std::vector<std::vector<std::int64_t>> results;
   for (int run = 0; run < 2; ++run) {
-    DeviceTerrain terrain(compute(), generate_terrain("fbm", 41, 41, 1.0, 2, {{"relief", 0.2}}));
-    PipeModel model(compute(), terrain, PipeSettings::from(Parameters()));
-    for (int k = 0; k < 300; ++k) model.advance();
-    results.push_back(terrain.download_fixed());
+    PipeModel model(compute(), Parameters(),
+                    generate_terrain("fbm", 41, 41, 1.0, 2, {{"relief", 0.2}}));
+    for (int k = 0; k < 300; ++k) model.step();
+    results.push_back(model.state().terrain().download_fixed());
   }
   EXPECT_EQ(results[0], results[1]);
 }

@@ -29,6 +29,41 @@ void require_finite(const std::string& path, const std::string& name,
   }
 }
 
+std::vector<std::string> split_names(const std::string& list) {
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  while (start < list.size()) {
+    const std::size_t end = std::min(list.find(',', start), list.size());
+    if (end > start) names.push_back(list.substr(start, end - start));
+    start = end + 1;
+  }
+  return names;
+}
+
+// Version 2: the grid models' fields (/fields/NAME, float32 or int64) and counters.
+void read_model_state(const H5File& f, const std::string& path, const std::vector<hsize_t>& grid,
+                      CheckpointData& d) {
+  for (const std::string& name : split_names(f.read_string_attribute("/state", "counters"))) {
+    d.model_counters.emplace_back(name, f.read_int_attribute("/state", "counter_" + name));
+  }
+  for (const std::string& name : split_names(f.read_string_attribute("/fields", "names"))) {
+    const std::string dataset = "/fields/" + name;
+    const std::vector<hsize_t> dims = f.dims(dataset);
+    if (dims.size() < 2 || dims.size() > 3 || dims[0] != grid[0] || dims[1] != grid[1])
+      throw input_error(path + ": " + dataset + " does not match the terrain grid");
+    StoredField field;
+    field.name = name;
+    field.components = dims.size() == 3 ? static_cast<int>(dims[2]) : 1;
+    if (f.is_integer(dataset)) {
+      field.i64 = f.read_int64(dataset, dims);
+    } else {
+      field.f32 = f.read_float(dataset, dims);
+      require_finite(path, dataset, field.f32);
+    }
+    d.fields.push_back(std::move(field));
+  }
+}
+
 }  // namespace
 
 std::string parameters_toml(const Parameters& params) {
@@ -123,6 +158,26 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
             std::vector<std::int64_t>{c.surface_projections, c.outflow_particles, c.collisions,
                                       c.outflow_sediment, c.evaporated_particles, c.lost_sediment},
             {6});
+    std::string counter_names;
+    for (auto& [name, value] : d.model_counters) {
+      counter_names += (counter_names.empty() ? "" : ",") + name;
+      f.attribute("/state", "counter_" + name, value);
+    }
+    f.attribute("/state", "counters", counter_names);
+
+    f.create_group("/fields");
+    std::string field_names;
+    for (const StoredField& field : d.fields) {
+      field_names += (field_names.empty() ? "" : ",") + field.name;
+      std::vector<hsize_t> dims = grid;
+      if (field.components > 1) dims.push_back(static_cast<hsize_t>(field.components));
+      const std::string name = "/fields/" + field.name;
+      if (!field.i64.empty())
+        f.write(name, field.i64, dims);
+      else
+        f.write(name, field.f32, dims);
+    }
+    f.attribute("/fields", "names", field_names);
     f.flush();
   });
 }
@@ -133,9 +188,10 @@ CheckpointData read_checkpoint(const std::string& path) {
     throw input_error(path + ": not a runnel checkpoint (no /terrain or /particles)");
   }
   const std::int64_t version = f.read_int_attribute("/", "schema_version");
-  if (version != kCheckpointSchemaVersion) {
+  if (version != kCheckpointSchemaVersion && version != 1) {
     throw input_error(path + ": checkpoint schema version " + std::to_string(version) +
-                      ", this runnel reads version " + std::to_string(kCheckpointSchemaVersion));
+                      ", this runnel reads versions 1 and " +
+                      std::to_string(kCheckpointSchemaVersion));
   }
   CheckpointData d;
   d.model = f.read_string_attribute("/", "model");
@@ -190,6 +246,7 @@ CheckpointData read_checkpoint(const std::string& path) {
   d.seed = f.read_int_attribute("/state", "seed");
   const auto c = f.read_int64("/state/counters", {6});
   d.counters = {c[0], c[1], c[2], c[3], c[4], c[5]};
+  if (version >= 2) read_model_state(f, path, grid, d);
   return d;
 }
 

@@ -12,7 +12,18 @@
 namespace runnel {
 
 // docs/hdf5-schema.md. Bump on any incompatible change; readers refuse other versions.
-inline constexpr std::int64_t kCheckpointSchemaVersion = 1;
+// Version 2 added /fields and /state@counters for the grid models; version 1 files (SPH only) are
+// still read.
+inline constexpr std::int64_t kCheckpointSchemaVersion = 2;
+
+// One vertex field of a grid model, as stored under /fields (float32 or int64 values, ny × nx ×
+// components).
+struct StoredField {
+  std::string name;
+  int components = 1;
+  std::vector<float> f32;
+  std::vector<std::int64_t> i64;
+};
 
 // Everything an exact restart needs, and what Python users read.
 struct CheckpointData {
@@ -34,6 +45,9 @@ struct CheckpointData {
   double rain_carry = 0;
   std::int64_t seed = 0;
   SphCounters counters;
+  // Grid models (model != "sph"): their vertex fields and named integer counters.
+  std::vector<StoredField> fields;
+  std::vector<std::pair<std::string, std::int64_t>> model_counters;
 };
 
 // Writes atomically (temporary file, sync, rename): an interrupted write leaves the old file

@@ -186,6 +186,13 @@ std::vector<hsize_t> H5File::dims(const std::string& name) const {
   return d;
 }
 
+bool H5File::is_integer(const std::string& name) const {
+  H5Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!set.valid()) throw input_error(path_ + ": missing dataset " + name);
+  H5Handle type(H5Dget_type(set.get()), H5Tclose);
+  return H5Tget_class(type.get()) == H5T_INTEGER;
+}
+
 template <typename T>
 std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsize_t>& expected,
                                   hid_t type) const {

@@ -44,6 +44,11 @@ class JsonObject {
     body_ += (body_.empty() ? "" : ", ") + quote(key) + ": " + json;
     return *this;
   }
+  // Appends every entry of `other`.
+  JsonObject& merge(const JsonObject& other) {
+    if (!other.body_.empty()) body_ += (body_.empty() ? "" : ", ") + other.body_;
+    return *this;
+  }
   std::string str() const { return "{" + body_ + "}"; }
 
   static std::string quote(const std::string& s) {

@@ -23,6 +23,7 @@ DropletSettings DropletSettings::from(const Parameters& p) {
   s.initial_water = p.real("droplet.initial_water");
   s.initial_speed = p.real("droplet.initial_speed");
   s.batch = p.integer("droplet.batch");
+  s.volume = p.real("droplet.volume");
   return s;
 }
 
@@ -43,31 +44,52 @@ std::string DropletSettings::build_options() const {
   return o;
 }
 
-DropletModel::DropletModel(ComputeContext& compute, DeviceTerrain& terrain,
-                           const DropletSettings& settings, std::uint64_t seed)
-    : compute_(compute),
-      terrain_(terrain),
-      settings_(settings),
-      seed_(seed),
-      kernel_(compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings.build_options()),
-              "droplet_batch"),
-      counters_(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long)) {
-  const cl_long zero = 0;
-  compute.queue().enqueueFillBuffer(counters_, zero, 0, 2 * sizeof(cl_long));
+const ModelInfo& DropletModel::model_info() {
+  static const ModelInfo info{"droplet",
+                              "Erosion_Beyer2015",
+                              "H. Beyer: Implementation of a method for hydraulic erosion, "
+                              "Bachelor's thesis, TU Munich, 2015",
+                              "droplet",
+                              ModelClock::kIterations,
+                              true,
+                              {{kTopographicElevation, FieldIntent::kInOut}}};
+  return info;
 }
 
-void DropletModel::advance() {
+DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
+                           const Heightmap& terrain)
+    : GridModel(compute, params, terrain),
+      settings_(DropletSettings::from(params)),
+      seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
+      kernel_(compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings_.build_options()),
+              "droplet_batch"),
+      counters_(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long)) {
+  compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 2 * sizeof(cl_long));
+}
+
+long long DropletModel::batch_size() const {
   // Droplets of one batch do not see each other's changes: many ending in the same pit would all
   // fill it. One droplet per 64 cells by default keeps that rare.
-  const long long automatic =
-      std::max<long long>(1, static_cast<long long>(terrain_.nx()) * terrain_.ny() / 64);
-  const cl_uint count = static_cast<cl_uint>(settings_.batch > 0 ? settings_.batch : automatic);
-  set_args(kernel_, terrain_.height(), terrain_.delta(), terrain_.nx(), terrain_.ny(),
-           static_cast<float>(terrain_.quantum()), static_cast<cl_ulong>(seed_),
+  return settings_.batch > 0
+             ? settings_.batch
+             : std::max<long long>(1, static_cast<long long>(state_.vertices()) / 64);
+}
+
+double DropletModel::droplet_volume() const {
+  const double cell = state_.initial_terrain().cell;
+  return settings_.volume > 0 ? settings_.volume : cell * cell * cell;
+}
+
+double DropletModel::take_step() {
+  DeviceTerrain& terrain = state_.terrain();
+  const cl_uint count = static_cast<cl_uint>(batch_size());
+  set_args(kernel_, terrain.height(), terrain.delta(), terrain.nx(), terrain.ny(),
+           static_cast<float>(terrain.quantum()), static_cast<cl_ulong>(seed_),
            static_cast<cl_ulong>(droplets_), count, counters_);
   compute_.profiler().launch(kernel_, round_up_work(count), "droplet_batch");
-  terrain_.apply();
+  terrain.apply();
   droplets_ += count;
+  return 1.0;
 }
 
 long long DropletModel::outflow_quanta() {
@@ -80,6 +102,26 @@ long long DropletModel::droplets_out() {
   cl_long c[2];
   compute_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof(c), c);
   return c[0];
+}
+
+std::vector<std::pair<std::string, std::int64_t>> DropletModel::counters() {
+  return {{"droplets", static_cast<std::int64_t>(droplets_)},
+          {"droplets_out", droplets_out()},
+          {"outflow_quanta", outflow_quanta()}};
+}
+
+void DropletModel::restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) {
+  droplets_ = static_cast<std::uint64_t>(counter_value(c, "droplets"));
+  const cl_long device[2] = {counter_value(c, "droplets_out"), counter_value(c, "outflow_quanta")};
+  compute_.queue().enqueueWriteBuffer(counters_, CL_TRUE, 0, sizeof(device), device);
+}
+
+JsonObject DropletModel::diagnostics() {
+  return JsonObject()
+      .add("droplets", static_cast<long long>(droplets_))
+      .add("droplets_out", droplets_out())
+      .add("droplets_per_batch", batch_size())
+      .add("droplet_volume_m3", droplet_volume());
 }
 
 }  // namespace runnel

@@ -3,9 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "runnel/compute/context.hpp"
-#include "runnel/sim/parameters.hpp"
-#include "runnel/terrain/device_terrain.hpp"
+#include "runnel/models/grid_model.hpp"
 
 namespace runnel {
 
@@ -20,33 +18,47 @@ struct DropletSettings {
   int lifetime = 30;  // steps
   double initial_water = 1, initial_speed = 1;
   long long batch =
-      0;  // droplets per batch (they read the terrain as at the batch start); 0: cells/64
+      0;  // droplets per batch (they see the terrain as at the batch start); 0: cells/64
+  double volume = 0;  // m³ of rain per droplet; 0: cell³
 
   static DropletSettings from(const Parameters& params);
   std::string build_options() const;
 };
 
-// Erosion_Beyer2015: host side of cl/models/droplet.cl. Each advance() runs one batch of droplets
-// in parallel and applies their fixed-point changes once, exactly conserving volume: what leaves
-// the map is counted as outflow.
-class DropletModel {
+// Erosion_Beyer2015: particle droplets (Beyer 2015), host side of cl/models/droplet.cl. Each step
+// runs one batch of droplets in parallel and applies their fixed-point changes once, exactly
+// conserving volume: what leaves the map is counted as outflow.
+class DropletModel final : public GridModel {
  public:
-  DropletModel(ComputeContext& compute, DeviceTerrain& terrain, const DropletSettings& settings,
-               std::uint64_t seed);
-  void advance();
+  static const ModelInfo& model_info();
+  DropletModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
+  const ModelInfo& info() const override { return model_info(); }
 
   std::uint64_t droplets() const { return droplets_; }
-  long long outflow_quanta();  // height quanta carried out of the map
-  long long droplets_out();    // droplets that left the map
+  // Droplets per batch (droplet.batch, or one per 64 cells).
+  long long batch_size() const;
+  long long outflow_quanta() override;  // height quanta carried out of the map
+  long long droplets_out();             // droplets that left the map
+  // m³ of rain one droplet stands for (droplet.volume, or cell³).
+  double droplet_volume() const;
+  double rain_volume() override { return droplet_volume() * static_cast<double>(droplets_); }
+  JsonObject diagnostics() override;
+  double step_work() override {
+    return static_cast<double>(batch_size()) * static_cast<double>(settings_.lifetime);
+  }
+  const char* work_unit() const override { return "droplet_steps"; }
+
+ protected:
+  double take_step() override;
+  std::vector<std::pair<std::string, std::int64_t>> counters() override;
+  void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
 
  private:
-  ComputeContext& compute_;
-  DeviceTerrain& terrain_;
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;
   cl::Kernel kernel_;
-  cl::Buffer counters_;
+  cl::Buffer counters_;  // {droplets out, outflow quanta}
 };
 
 }  // namespace runnel

@@ -15,18 +15,29 @@ OlsenSettings OlsenSettings::from(const Parameters& p) {
   return s;
 }
 
-OlsenModel::OlsenModel(ComputeContext& compute, DeviceTerrain& terrain, const OlsenSettings& s)
-    : compute_(compute), terrain_(terrain) {
-  const std::size_t n = static_cast<std::size_t>(terrain.nx()) * terrain.ny();
-  auto& ctx = compute.context();
-  water_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
-  sediment_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_long));
-  out_water_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(float));
-  out_sediment_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
-  const float zero = 0.0f;
-  const cl_long zero_long = 0;
-  compute.queue().enqueueFillBuffer(water_, zero, 0, n * sizeof(float));
-  compute.queue().enqueueFillBuffer(sediment_, zero_long, 0, n * sizeof(cl_long));
+const ModelInfo& OlsenModel::model_info() {
+  static const ModelInfo info{
+      "olsen",
+      "Erosion_Olsen2004",
+      "J. Olsen: Realtime procedural terrain generation, University of Southern Denmark, 2004",
+      "olsen",
+      ModelClock::kIterations,
+      true,
+      {{kTopographicElevation, FieldIntent::kInOut},
+       {kSurfaceWaterDepth, FieldIntent::kOut},
+       {kSedimentSuspended, FieldIntent::kOut}}};
+  return info;
+}
+
+OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
+    : GridModel(compute, params, terrain),
+      settings_(OlsenSettings::from(params)),
+      water_(state_.field(kSurfaceWaterDepth)),
+      sediment_(state_.field(kSedimentSuspended)) {
+  const std::size_t n = state_.vertices();
+  out_water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(float));
+  out_sediment_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
+  const OlsenSettings& s = settings_;
   const std::string options =
       float_define("OLSEN_RAIN", s.rain) + float_define("OLSEN_SOLUBILITY", s.solubility) +
       float_define("OLSEN_EVAPORATION", s.evaporation) + float_define("OLSEN_CAPACITY", s.capacity);
@@ -37,35 +48,37 @@ OlsenModel::OlsenModel(ComputeContext& compute, DeviceTerrain& terrain, const Ol
   settle_ = cl::Kernel(program, "olsen_settle");
 }
 
-void OlsenModel::advance() {
-  const int nx = terrain_.nx(), ny = terrain_.ny(), n = nx * ny;
-  const float q = static_cast<float>(terrain_.quantum());
+double OlsenModel::take_step() {
+  DeviceTerrain& terrain = state_.terrain();
+  const int nx = terrain.nx(), ny = terrain.ny(), n = nx * ny;
+  const float q = static_cast<float>(terrain.quantum());
   const std::size_t work = round_up_work(static_cast<std::size_t>(n));
+  cl::Buffer &water = state_.buffer(water_), &sediment = state_.buffer(sediment_);
   auto& prof = compute_.profiler();
-  set_args(dissolve_, terrain_.height_fixed(), water_, sediment_, n, q);
+  set_args(dissolve_, terrain.height_fixed(), water, sediment, n, q);
   prof.launch(dissolve_, work, "olsen_dissolve");
-  set_args(outflow_, terrain_.height_fixed(), water_, sediment_, out_water_, out_sediment_, nx, ny,
-           q);
+  set_args(outflow_, terrain.height_fixed(), water, sediment, out_water_, out_sediment_, nx, ny, q);
   prof.launch(outflow_, work, "olsen_outflow");
-  set_args(gather_, water_, sediment_, out_water_, out_sediment_, nx, ny);
+  set_args(gather_, water, sediment, out_water_, out_sediment_, nx, ny);
   prof.launch(gather_, work, "olsen_gather");
-  set_args(settle_, terrain_.height_fixed(), water_, sediment_, n, q);
+  set_args(settle_, terrain.height_fixed(), water, sediment, n, q);
   prof.launch(settle_, work, "olsen_settle");
-  terrain_.apply();
+  terrain.apply();
+  return 1.0;
 }
 
-long long OlsenModel::suspended_quanta() {
-  std::vector<cl_long> s(static_cast<std::size_t>(terrain_.nx()) * terrain_.ny());
-  compute_.queue().enqueueReadBuffer(sediment_, CL_TRUE, 0, s.size() * sizeof(cl_long), s.data());
-  long long sum = 0;
-  for (auto v : s) sum += v;
-  return sum;
+double OlsenModel::rain_volume() {
+  const double cell = state_.terrain().cell();
+  return settings_.rain * static_cast<double>(state_.vertices()) * cell * cell *
+         static_cast<double>(steps());
 }
 
-std::vector<float> OlsenModel::water() {
-  std::vector<float> w(static_cast<std::size_t>(terrain_.nx()) * terrain_.ny());
-  compute_.queue().enqueueReadBuffer(water_, CL_TRUE, 0, w.size() * sizeof(float), w.data());
-  return w;
+JsonObject OlsenModel::diagnostics() {
+  const std::vector<float> w = water();
+  double total = 0;
+  for (float v : w) total += v;
+  const double cell = state_.terrain().cell();
+  return JsonObject().add("water_volume_m3", total * cell * cell);
 }
 
 }  // namespace runnel

@@ -1,11 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include <cstdint>
 #include <vector>
 
-#include "runnel/compute/context.hpp"
-#include "runnel/sim/parameters.hpp"
-#include "runnel/terrain/device_terrain.hpp"
+#include "runnel/models/grid_model.hpp"
 
 namespace runnel {
 
@@ -17,20 +14,26 @@ struct OlsenSettings {
   static OlsenSettings from(const Parameters& params);
 };
 
-// Erosion_Olsen2004: host side of cl/models/olsen.cl. One advance() is one iteration over every
-// cell; terrain + suspended sediment is conserved exactly (integer quanta, closed edges).
-class OlsenModel {
+// Erosion_Olsen2004: cellular-automaton hydraulic erosion (Olsen 2004, as used by Fritz 2016), host
+// side of cl/models/olsen.cl. One step is one iteration over every cell; terrain + suspended
+// sediment is conserved exactly (integer quanta, closed edges).
+class OlsenModel final : public GridModel {
  public:
-  OlsenModel(ComputeContext& compute, DeviceTerrain& terrain, const OlsenSettings& settings);
-  void advance();
-  // Suspended sediment over all cells, in height quanta.
-  long long suspended_quanta();
-  std::vector<float> water();
+  static const ModelInfo& model_info();
+  OlsenModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
+  const ModelInfo& info() const override { return model_info(); }
+
+  std::vector<float> water() { return state_.download_float(kSurfaceWaterDepth); }
+  double rain_volume() override;
+  JsonObject diagnostics() override;
+
+ protected:
+  double take_step() override;
 
  private:
-  ComputeContext& compute_;
-  DeviceTerrain& terrain_;
-  cl::Buffer water_, sediment_, out_water_, out_sediment_;
+  OlsenSettings settings_;
+  int water_, sediment_;  // GridState handles
+  cl::Buffer out_water_, out_sediment_;
   cl::Kernel dissolve_, outflow_, gather_, settle_;
 };
 

@@ -24,6 +24,7 @@ PipeSettings PipeSettings::from(const Parameters& p) {
   s.evaporation = p.real("pipe.evaporation");
   s.min_tilt = p.real("pipe.min_tilt");
   s.cfl = p.real("pipe.cfl");
+  s.cfl_depth = p.real("pipe.cfl_depth");
   s.dt_max = p.real("pipe.dt_max");
   s.closed = p.text("pipe.edges") == "closed";
   return s;
@@ -34,29 +35,43 @@ std::string PipeSettings::build_options() const {
          float_define("PIPE_GRAVITY", gravity) + float_define("PIPE_CAPACITY", capacity) +
          float_define("PIPE_DISSOLVE", dissolve) + float_define("PIPE_DEPOSIT", deposit) +
          float_define("PIPE_EVAPORATION", evaporation) + float_define("PIPE_MIN_TILT", min_tilt) +
-         " -DPIPE_CLOSED=" + (closed ? "1" : "0");
+         float_define("PIPE_CFL_DEPTH", cfl_depth) + " -DPIPE_CLOSED=" + (closed ? "1" : "0");
 }
 
-PipeModel::PipeModel(ComputeContext& compute, DeviceTerrain& terrain, const PipeSettings& settings)
-    : compute_(compute), terrain_(terrain), settings_(settings), dt_(settings.dt_max) {
-  const std::size_t n = static_cast<std::size_t>(terrain.nx()) * terrain.ny();
+const ModelInfo& PipeModel::model_info() {
+  static const ModelInfo info{
+      "pipe",
+      "Erosion_Mei2007",
+      "X. Mei, P. Decaudin, B.-G. Hu: Fast hydraulic erosion simulation and visualization on GPU, "
+      "Pacific Graphics 2007",
+      "pipe",
+      ModelClock::kSeconds,
+      true,
+      {{kTopographicElevation, FieldIntent::kInOut},
+       {kSurfaceWaterDepth, FieldIntent::kOut},
+       {kSurfaceWaterOutflux, FieldIntent::kOut},
+       {kSurfaceWaterVelocity, FieldIntent::kOut},
+       {kSedimentSuspended, FieldIntent::kOut}}};
+  return info;
+}
+
+PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
+    : GridModel(compute, params, terrain),
+      settings_(PipeSettings::from(params)),
+      dt_(settings_.dt_max),
+      depth_(state_.field(kSurfaceWaterDepth)),
+      flux_(state_.field(kSurfaceWaterOutflux)),
+      velocity_(state_.field(kSurfaceWaterVelocity)),
+      sediment_(state_.field(kSedimentSuspended)) {
+  const std::size_t n = state_.vertices();
   auto& ctx = compute.context();
-  depth_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
-  flux_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(float));
-  velocity_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * n * sizeof(float));
   previous_depth_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
-  for (auto& s : sediment_) s = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_long));
+  compute.queue().enqueueFillBuffer(previous_depth_, 0.0f, 0, n * sizeof(float));
+  sediment_next_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_long));
   stats_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * kStatBlocks * sizeof(float));
   outflow_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
-  auto& q = compute.queue();
-  const float zero = 0.0f;
-  const cl_long zero_long = 0;
-  q.enqueueFillBuffer(depth_, zero, 0, n * sizeof(float));
-  q.enqueueFillBuffer(flux_, zero, 0, 4 * n * sizeof(float));
-  q.enqueueFillBuffer(velocity_, zero, 0, 2 * n * sizeof(float));
-  q.enqueueFillBuffer(sediment_[0], zero_long, 0, n * sizeof(cl_long));
-  q.enqueueFillBuffer(outflow_, zero_long, 0, sizeof(cl_long));
-  cl::Program& program = compute.program({"cl/models/pipe.cl"}, settings.build_options());
+  compute.queue().enqueueFillBuffer(outflow_, cl_long{0}, 0, sizeof(cl_long));
+  cl::Program& program = compute.program({"cl/models/pipe.cl"}, settings_.build_options());
   flux_kernel_ = cl::Kernel(program, "pipe_flux");
   water_kernel_ = cl::Kernel(program, "pipe_water");
   erode_kernel_ = cl::Kernel(program, "pipe_erode");
@@ -64,30 +79,41 @@ PipeModel::PipeModel(ComputeContext& compute, DeviceTerrain& terrain, const Pipe
   stats_kernel_ = cl::Kernel(program, "pipe_stats");
 }
 
-void PipeModel::advance() {
-  const int nx = terrain_.nx(), ny = terrain_.ny(), n = nx * ny;
-  const float q = static_cast<float>(terrain_.quantum()), cell = terrain_.cell(),
+double PipeModel::take_step() {
+  DeviceTerrain& terrain = state_.terrain();
+  const int nx = terrain.nx(), ny = terrain.ny(), n = nx * ny;
+  const float q = static_cast<float>(terrain.quantum()), cell = terrain.cell(),
               dt = static_cast<float>(dt_);
   const std::size_t work = round_up_work(static_cast<std::size_t>(n));
+  cl::Buffer &depth = state_.buffer(depth_), &flux = state_.buffer(flux_),
+             &velocity = state_.buffer(velocity_), &sediment = state_.buffer(sediment_);
   auto& prof = compute_.profiler();
-  set_args(flux_kernel_, terrain_.height_fixed(), depth_, flux_, nx, ny, q, cell, dt);
+  set_args(flux_kernel_, terrain.height_fixed(), depth, flux, nx, ny, q, cell, dt);
   prof.launch(flux_kernel_, work, "pipe_flux");
-  set_args(water_kernel_, depth_, flux_, velocity_, previous_depth_, nx, ny, cell, dt);
+  set_args(water_kernel_, depth, flux, velocity, previous_depth_, nx, ny, cell, dt);
   prof.launch(water_kernel_, work, "pipe_water");
-  set_args(erode_kernel_, terrain_.height_fixed(), terrain_.height(), sediment_[current_], depth_,
-           velocity_, nx, ny, q, cell, dt);
+  set_args(erode_kernel_, terrain.height_fixed(), terrain.height(), sediment, depth, velocity, nx,
+           ny, q, cell, dt);
   prof.launch(erode_kernel_, work, "pipe_erode");
-  set_args(transport_kernel_, sediment_[current_], sediment_[1 - current_], flux_, previous_depth_,
-           nx, ny, cell, dt, outflow_);
+  set_args(transport_kernel_, sediment, sediment_next_, flux, previous_depth_, nx, ny, cell, dt,
+           outflow_);
   prof.launch(transport_kernel_, work, "pipe_transport");
-  current_ = 1 - current_;
-  terrain_.apply();
-  time_ += dt_;
-  // The next step: the CFL limit of the shallow-water waves and the flow (Fritz 2016 saw
-  // oscillation and overflow with steps that violate it).
+  std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment
+  terrain.apply();
+  const double taken = dt_;
+  choose_next_dt();
+  return taken;
+}
+
+// The next step: the CFL limit of the shallow-water waves and the flow (Fritz 2016 saw oscillation
+// and overflow with steps that violate it).
+void PipeModel::choose_next_dt() {
+  const int n = static_cast<int>(state_.vertices());
   const int chunk = (n + kStatBlocks - 1) / kStatBlocks;
-  set_args(stats_kernel_, depth_, velocity_, n, chunk, stats_);
-  prof.launch(stats_kernel_, kStatBlocks, "pipe_stats");
+  // The flux and d1 of the step just taken (dt_ is still its length).
+  set_args(stats_kernel_, state_.buffer(depth_), state_.buffer(velocity_), state_.buffer(flux_),
+           previous_depth_, n, chunk, state_.terrain().cell(), static_cast<float>(dt_), stats_);
+  compute_.profiler().launch(stats_kernel_, kStatBlocks, "pipe_stats");
   std::vector<float> stats(2 * kStatBlocks);
   compute_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, stats.size() * sizeof(float),
                                      stats.data());
@@ -97,20 +123,11 @@ void PipeModel::advance() {
     v_max = std::max(v_max, static_cast<double>(stats[2 * b + 1]));
   }
   if (!std::isfinite(d_max) || !std::isfinite(v_max)) {
-    throw runtime_error("pipe model at t = " + std::to_string(time_) +
+    throw runtime_error("pipe model at t = " + std::to_string(time() + dt_) +
                         " s: water depth or velocity is not finite");
   }
-  dt_ = std::min(settings_.dt_max,
-                 settings_.cfl * cell / (std::sqrt(settings_.gravity * d_max) + v_max + 1e-9));
-}
-
-long long PipeModel::suspended_quanta() {
-  std::vector<cl_long> s(static_cast<std::size_t>(terrain_.nx()) * terrain_.ny());
-  compute_.queue().enqueueReadBuffer(sediment_[current_], CL_TRUE, 0, s.size() * sizeof(cl_long),
-                                     s.data());
-  long long sum = 0;
-  for (auto v : s) sum += v;
-  return sum;
+  dt_ = std::min(settings_.dt_max, settings_.cfl * state_.terrain().cell() /
+                                       (std::sqrt(settings_.gravity * d_max) + v_max + 1e-9));
 }
 
 long long PipeModel::outflow_quanta() {
@@ -119,10 +136,29 @@ long long PipeModel::outflow_quanta() {
   return v;
 }
 
-std::vector<float> PipeModel::depth() {
-  std::vector<float> d(static_cast<std::size_t>(terrain_.nx()) * terrain_.ny());
-  compute_.queue().enqueueReadBuffer(depth_, CL_TRUE, 0, d.size() * sizeof(float), d.data());
-  return d;
+std::vector<std::pair<std::string, std::int64_t>> PipeModel::counters() {
+  return {{"outflow_quanta", outflow_quanta()}};
+}
+
+void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) {
+  const cl_long outflow = counter_value(c, "outflow_quanta");
+  compute_.queue().enqueueWriteBuffer(outflow_, CL_TRUE, 0, sizeof(outflow), &outflow);
+}
+
+double PipeModel::rain_volume() {
+  const double cell = state_.terrain().cell();
+  return settings_.rain * static_cast<double>(state_.vertices()) * cell * cell * time();
+}
+
+JsonObject PipeModel::diagnostics() {
+  const std::vector<float> d = depth();
+  double water = 0;
+  for (float v : d) water += v;
+  const double cell = state_.terrain().cell();
+  return JsonObject()
+      .add("next_dt_s", dt_)
+      .add("water_volume_m3", water * cell * cell)
+      .add("edges", settings_.closed ? "closed" : "outflow");
 }
 
 }  // namespace runnel

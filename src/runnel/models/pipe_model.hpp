@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <string>
 #include <vector>
 
-#include "runnel/compute/context.hpp"
-#include "runnel/sim/parameters.hpp"
-#include "runnel/terrain/device_terrain.hpp"
+#include "runnel/models/grid_model.hpp"
 
 namespace runnel {
 
@@ -18,32 +17,42 @@ struct PipeSettings {
   double evaporation = 0.05;  // K_e, 1/s
   double min_tilt = 0.05;     // smallest sin α in the capacity
   double cfl = 0.25;
-  double dt_max = 0.05;  // s
-  bool closed = false;   // closed edges; default outflow
+  double cfl_depth = 0.01;  // m: thinner water does not limit the step
+  double dt_max = 0.05;     // s
+  bool closed = false;      // closed edges; default outflow
   static PipeSettings from(const Parameters& params);
   std::string build_options() const;
 };
 
-// Erosion_Mei2007: host side of cl/models/pipe.cl. advance() takes one adaptive step,
-// Δt = min(dt_max, CFL · l / (sqrt(g · d_max) + |v|_max)); terrain + suspended sediment + outflow
-// are conserved exactly (integer quanta, mass-conserving upwind transport).
-class PipeModel {
+// Erosion_Mei2007: virtual-pipe shallow water with erosion (Mei, Decaudin & Hu 2007), host side of
+// cl/models/pipe.cl. Each step is adaptive, Δt = min(dt_max, CFL · l / (sqrt(g · d_max) +
+// |v|_max)); terrain + suspended sediment + outflow are conserved exactly (integer quanta,
+// mass-conserving upwind transport).
+class PipeModel final : public GridModel {
  public:
-  PipeModel(ComputeContext& compute, DeviceTerrain& terrain, const PipeSettings& settings);
-  void advance();
+  static const ModelInfo& model_info();
+  PipeModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
+  const ModelInfo& info() const override { return model_info(); }
+
   double dt() const { return dt_; }
-  double time() const { return time_; }
-  long long suspended_quanta();
-  long long outflow_quanta();
-  std::vector<float> depth();
+  std::vector<float> depth() { return state_.download_float(kSurfaceWaterDepth); }
+  long long outflow_quanta() override;
+  double rain_volume() override;
+  JsonObject diagnostics() override;
+
+ protected:
+  double take_step() override;
+  std::vector<std::pair<std::string, std::int64_t>> counters() override;
+  void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
+  double next_dt() const override { return dt_; }
+  void restore_next_dt(double dt) override { dt_ = dt; }
 
  private:
-  ComputeContext& compute_;
-  DeviceTerrain& terrain_;
+  void choose_next_dt();
   PipeSettings settings_;
-  double dt_ = 0, time_ = 0;
-  cl::Buffer depth_, flux_, velocity_, previous_depth_, sediment_[2], stats_, outflow_;
-  int current_ = 0;
+  double dt_ = 0;
+  int depth_, flux_, velocity_, sediment_;  // GridState handles
+  cl::Buffer previous_depth_, sediment_next_, stats_, outflow_;
   cl::Kernel flux_kernel_, water_kernel_, erode_kernel_, transport_kernel_, stats_kernel_;
 };
 

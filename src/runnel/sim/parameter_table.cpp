@@ -84,6 +84,7 @@ const std::vector<ParamSpec>& parameter_table() {
       {"droplet.initial_water", T::kReal, "1", "1", 0, 1e6, {}, "water a droplet starts with"},
       {"droplet.initial_speed", T::kReal, "1", "1", 0, 1e6, {}, "speed a droplet starts with"},
       {"droplet.batch", T::kInteger, "0", "droplets", 0, 1e8, {}, "droplets per parallel batch (they see the terrain as at the batch start); 0: one per 64 cells, so few share a pit"},
+      {"droplet.volume", T::kReal, "0", "m^3", 0, 1e9, {}, "rain water one droplet stands for (rain_volume in metrics; runnel compare sets it to the SPH particle volume); 0: cell³"},
       // olsen: cellular-automaton hydraulic erosion (Olsen 2004), per iteration
       {"olsen.rain", T::kReal, "0.01", "m", 0, 1e3, {}, "K_r, water added to every cell per iteration"},
       {"olsen.solubility", T::kReal, "0.01", "1", 0, 1, {}, "K_s, terrain dissolved per unit water depth"},
@@ -99,12 +100,15 @@ const std::vector<ParamSpec>& parameter_table() {
       {"pipe.evaporation", T::kReal, "0.05", "1/s", 0, 1e3, {}, "K_e, evaporation rate"},
       {"pipe.min_tilt", T::kReal, "0.05", "1", 0, 1, {}, "smallest sin α in the capacity"},
       {"pipe.cfl", T::kReal, "0.25", "1", 0.01, 1, {}, "Δt ≤ cfl · l / (sqrt(g d_max) + |v|_max)"},
+      {"pipe.cfl_depth", T::kReal, "0.01", "m", 0, 1e3, {}, "water thinner than this does not count in the CFL limit (a thin film's flux over its depth is not a wave speed; the flux limit keeps it non-negative)"},
       {"pipe.dt_max", T::kReal, "0.05", "s", 1e-9, 100, {}, "largest time step"},
       {"pipe.edges", T::kString, "\"outflow\"", "", 0, 0, {"outflow", "closed"}, "outflow (outside cells have b = d = 0) or closed"},
       // run: the simulation as a whole
+      {"run.model", T::kString, "\"sph\"", "", 0, 0, {"sph", "droplet", "pipe", "olsen", "thermal"}, "erosion model (docs/models.md): sph (runnel's own), droplet (Beyer 2015), pipe (Mei 2007), olsen (Olsen 2004), thermal (talus)"},
       {"run.seed", T::kInteger, "1", "1", 0, 9.2e18, {}, "seed of the simulation's random numbers (rain)"},
       {"run.steps", T::kInteger, "0", "steps", 0, 1e12, {}, "steps to run; 0: run for run.sim_time"},
-      {"run.sim_time", T::kReal, "10", "s", 0, 1e12, {}, "simulated time to run when run.steps is 0"},
+      {"run.sim_time", T::kReal, "10", "s", 0, 1e12, {}, "simulated time to run when run.steps is 0 (models with a clock in seconds: sph, pipe)"},
+      {"run.iterations", T::kInteger, "100", "iterations", 0, 1e12, {}, "iterations to run when run.steps is 0 (models counting iterations: droplet batches, olsen, thermal)"},
       {"run.report_every", T::kInteger, "200", "steps", 1, 1e12, {}, "steps between mass-balance reports (progress lines when not on a terminal)"},
       // clang-format on
   };

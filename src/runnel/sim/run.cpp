@@ -21,11 +21,12 @@
 namespace runnel {
 namespace {
 
-std::string status_line(Simulation& sim, double steps_per_second) {
+std::string status_line(Model& model, double steps_per_second) {
+  const bool seconds = model.info().clock == ModelClock::kSeconds;
   char buf[200];
-  std::snprintf(buf, sizeof buf, "step %llu | %zu particles | t = %.3g s | %.0f steps/s",
-                static_cast<unsigned long long>(sim.steps()), sim.particles(), sim.time(),
-                steps_per_second);
+  std::snprintf(buf, sizeof buf, "step %llu | %s | t = %.3g%s | %.0f steps/s",
+                static_cast<unsigned long long>(model.steps()), model.status().c_str(),
+                model.time(), seconds ? " s" : "", steps_per_second);
   return buf;
 }
 
@@ -47,24 +48,35 @@ JsonObject parameters_json(const Parameters& params) {
 
 }  // namespace
 
-RunOptions run_options_from(const Parameters& params) {
+RunOptions run_options_from(const Parameters& params, ModelClock clock) {
   RunOptions o;
   o.until_step = static_cast<std::uint64_t>(params.integer("run.steps"));
+  if (o.until_step == 0 && clock == ModelClock::kIterations)
+    o.until_step = static_cast<std::uint64_t>(params.integer("run.iterations"));
   o.until_time = params.real("run.sim_time");
   o.report_every = params.integer("run.report_every");
   return o;
 }
 
+void require_run_length(const Parameters& params, ModelClock clock) {
+  if (params.integer("run.steps") > 0) return;
+  if (clock == ModelClock::kSeconds && !(params.real("run.sim_time") > 0))
+    throw input_error("run.sim_time: must be positive when run.steps is 0");
+  if (clock == ModelClock::kIterations && params.integer("run.iterations") <= 0)
+    throw input_error("run.iterations: must be positive when run.steps is 0");
+}
+
 namespace {
 
 // Writes DIR/checkpoints/step_XXXXXXXX.h5 and removes all but the newest `keep`.
-void write_rolling_checkpoint(Simulation& sim, const std::filesystem::path& out, int keep) {
+void write_rolling_checkpoint(Model& model, const std::filesystem::path& out, int keep) {
   namespace fs = std::filesystem;
   const fs::path dir = out / "checkpoints";
   fs::create_directories(dir);
   char name[64];
-  std::snprintf(name, sizeof name, "step_%08llu.h5", static_cast<unsigned long long>(sim.steps()));
-  write_checkpoint((dir / name).string(), sim.checkpoint());
+  std::snprintf(name, sizeof name, "step_%08llu.h5",
+                static_cast<unsigned long long>(model.steps()));
+  write_checkpoint((dir / name).string(), model.checkpoint());
   std::vector<fs::path> existing;
   for (auto& e : fs::directory_iterator(dir)) {
     const std::string f = e.path().filename().string();
@@ -77,7 +89,7 @@ void write_rolling_checkpoint(Simulation& sim, const std::filesystem::path& out,
 
 }  // namespace
 
-RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOptions& options) {
+RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
@@ -91,45 +103,45 @@ RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOpt
                             nullptr);  // per-kernel times in metrics.json
   Progress progress(Progress::mode_for_stderr(options.quiet));
   std::vector<JsonObject> reports;
-  double particle_steps = 0;
-  const std::uint64_t first_step = sim.steps();
-  const double first_time = sim.time();
+  double work = 0;  // particle-, cell- or droplet-steps
+  const std::uint64_t first_step = model.steps();
+  const double first_time = model.time();
   std::unique_ptr<H5File> series;
   if (options.series_every > 0) {
     series = std::make_unique<H5File>(H5File::create((out / "series.h5").string()));
     series->attribute("/", "series_every_steps", static_cast<std::int64_t>(options.series_every));
   }
   auto done = [&] {
-    return options.until_step > 0 ? sim.steps() >= options.until_step
-                                  : sim.time() >= options.until_time;
+    return options.until_step > 0 ? model.steps() >= options.until_step
+                                  : model.time() >= options.until_time;
   };
   while (!done()) {
-    sim.step();
-    particle_steps += static_cast<double>(sim.particles());
-    const bool report = sim.steps() % options.report_every == 0;
+    model.step();
+    work += model.step_work();
+    const bool report = model.steps() % options.report_every == 0;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double fraction =
         options.until_step > 0
-            ? static_cast<double>(sim.steps() - first_step) / (options.until_step - first_step)
-            : (sim.time() - first_time) / (options.until_time - first_time);
-    std::string status = status_line(sim, (sim.steps() - first_step) / std::max(elapsed, 1e-9));
+            ? static_cast<double>(model.steps() - first_step) / (options.until_step - first_step)
+            : (model.time() - first_time) / (options.until_time - first_time);
+    std::string status = status_line(model, (model.steps() - first_step) / std::max(elapsed, 1e-9));
     if (report) {
-      const MassBalance m = sim.mass_balance();
+      const MassBalance m = model.mass_balance();
       char buf[160];
       std::snprintf(buf, sizeof buf, " | eroded %.4g m3 | balance %.2e m3 (rel %.1e)", m.eroded,
                     m.residual, m.relative);
       status += buf;
       reports.push_back(JsonObject()
-                            .add("step", static_cast<long long>(sim.steps()))
-                            .add("sim_time", sim.time())
+                            .add("step", static_cast<long long>(model.steps()))
+                            .add("sim_time", model.time())
                             .add("balance", m.json()));
     }
-    if (options.checkpoint_every > 0 && sim.steps() % options.checkpoint_every == 0) {
-      write_rolling_checkpoint(sim, out, options.keep_checkpoints);
+    if (options.checkpoint_every > 0 && model.steps() % options.checkpoint_every == 0) {
+      write_rolling_checkpoint(model, out, options.keep_checkpoints);
     }
-    if (series && sim.steps() % options.series_every == 0) {
-      const Heightmap t = sim.terrain();
+    if (series && model.steps() % options.series_every == 0) {
+      const Heightmap t = model.terrain();
       series->append_frame("/height", t.h, t.ny, t.nx);
     }
     progress.update(fraction, status, report);
@@ -141,21 +153,20 @@ RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOpt
   JsonObject kernel_seconds;
   for (auto& [name, seconds] : compute.profiler().collect()) kernel_seconds.add(name, seconds);
   compute.profiler().enable(false);
-  const Parameters& params = sim.parameters();
-  write_checkpoint((out / "final.h5").string(), sim.checkpoint());
+  const Parameters& params = model.parameters();
+  write_checkpoint((out / "final.h5").string(), model.checkpoint());
 
   // Outputs.
-  const Heightmap& initial = sim.initial_terrain();
-  const Heightmap final_terrain = sim.terrain();
-  const MassBalance m = sim.mass_balance();
-  const SphCounters c = sim.counters();
+  const Heightmap& initial = model.initial_terrain();
+  const Heightmap final_terrain = model.terrain();
+  const MassBalance m = model.mass_balance();
   const float lo = std::min(initial.min_height(), final_terrain.min_height());
   const float hi = std::max(initial.max_height(), final_terrain.max_height());
   write_png_rgb((out / "height_initial.png").string(),
                 with_title(terrain_picture(initial, lo, hi), "initial terrain"));
   write_png_rgb((out / "height_final.png").string(),
                 with_title(terrain_picture(final_terrain, lo, hi),
-                           "after " + std::to_string(sim.steps()) + " steps"));
+                           "after " + std::to_string(model.steps()) + " steps"));
   write_png_rgb(
       (out / "erosion.png").string(),
       with_title(erosion_picture(initial, final_terrain, erosion_scale(initial, final_terrain)),
@@ -164,24 +175,23 @@ RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOpt
   write_terrain((out / "final.npy").string(), final_terrain);
 
   RunSummary s;
-  s.steps = sim.steps();
-  s.sim_time = sim.time();
+  s.steps = model.steps();
+  s.sim_time = model.time();
   s.wall_seconds = wall;
   s.balance = m;
   s.metrics.add("runnel_version", kVersion)
       .add("source_revision", kRevision)
       .add("device", compute.info().name)
-      .add("model", "sph")
+      .add("model", model.info().name)
+      .add("model_class", model.info().class_name)
+      .add("clock", model.info().clock == ModelClock::kSeconds ? "s" : "iterations")
       .add("seed", static_cast<long long>(params.integer("run.seed")))
-      .add("steps", static_cast<long long>(sim.steps()))
-      .add("sim_time", sim.time())
+      .add("steps", static_cast<long long>(model.steps()))
+      .add("sim_time", model.time())
       .add("wall_seconds", wall)
-      .add("particle_steps_per_second", particle_steps / std::max(wall, 1e-9))
+      .add(std::string(model.work_unit()) + "_per_second", work / std::max(wall, 1e-9))
       .add("resumed_from_step", static_cast<long long>(first_step))
-      .add("particles_spawned", static_cast<long long>(sim.rain().spawned()))
-      .add("particles_alive", static_cast<long long>(sim.particles()))
-      .add("particles_evaporated", c.evaporated_particles)
-      .add("particles_outflow", c.outflow_particles)
+      .add("rain_volume", model.rain_volume())
       .add("eroded_volume", m.eroded)
       .add("deposited_volume", m.deposited)
       .add("outflow_volume", m.outflow)
@@ -190,8 +200,7 @@ RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOpt
       .add("terrain_volume_change", m.terrain_change)
       .add("mass_balance_abs", m.residual)
       .add("mass_balance_rel", m.relative)
-      .add("below_surface_projections", c.surface_projections)
-      .add("collisions", c.collisions)
+      .merge(model.diagnostics())
       .add("terrain", JsonObject()
                           .add("nx", initial.nx)
                           .add("ny", initial.ny)
@@ -199,7 +208,6 @@ RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOpt
                           .add("min_height", initial.min_height())
                           .add("max_height", initial.max_height()))
       .add("terrain_metrics", metrics::terrain_metrics(initial, final_terrain))
-      .add("effective", sim.effective_settings())
       .add("kernel_seconds", kernel_seconds)
       .add("parameters", parameters_json(params))
       .add("mass_balance_reports", reports);

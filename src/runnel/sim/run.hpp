@@ -5,8 +5,8 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/io/json.hpp"
+#include "runnel/models/model.hpp"
 #include "runnel/sim/parameters.hpp"
-#include "runnel/sim/simulation.hpp"
 
 namespace runnel {
 
@@ -14,7 +14,7 @@ struct RunOptions {
   std::string out_dir;             // outputs; created if missing
   bool quiet = false;              // no progress on stderr
   std::uint64_t until_step = 0;    // run until this step count (absolute); 0: until until_time
-  double until_time = 0;           // s, simulated
+  double until_time = 0;           // the model's clock: s, or iterations
   long long report_every = 200;    // steps between mass-balance reports
   long long checkpoint_every = 0;  // steps; 0: none (final.h5 is always written)
   int keep_checkpoints = 3;        // the newest K checkpoints are kept
@@ -29,12 +29,15 @@ struct RunSummary {
   JsonObject metrics;  // what metrics.json holds
 };
 
-// Advances `sim` to the target, reporting the mass balance every report_every steps, writing
+// Advances `model` to the target, reporting the mass balance every report_every steps, writing
 // checkpoints and series frames as asked, then height_initial.png, height_final.png, erosion.png,
 // final.asc, final.npy, final.h5 and metrics.json into the output folder.
-RunSummary run_simulation(ComputeContext& compute, Simulation& sim, const RunOptions& options);
+RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& options);
 
-// The run options a parameter set asks for (run.steps or run.sim_time, run.report_every).
-RunOptions run_options_from(const Parameters& params);
+// The run options a parameter set asks for: run.steps, else run.sim_time (models with a clock in
+// seconds) or run.iterations (iteration models); run.report_every.
+RunOptions run_options_from(const Parameters& params, ModelClock clock);
+// Throws an input error when the run has no length (run.steps, run.sim_time or run.iterations 0).
+void require_run_length(const Parameters& params, ModelClock clock);
 
 }  // namespace runnel

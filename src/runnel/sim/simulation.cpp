@@ -20,19 +20,6 @@ std::vector<std::int64_t> to_fixed(const Heightmap& t, double quantum) {
 
 }  // namespace
 
-JsonObject MassBalance::json() const {
-  return JsonObject()
-      .add("terrain_change", terrain_change)
-      .add("suspended", suspended)
-      .add("outflow", outflow)
-      .add("lost", lost)
-      .add("residual", residual)
-      .add("residual_quanta", residual_quanta)
-      .add("eroded", eroded)
-      .add("deposited", deposited)
-      .add("relative", relative);
-}
-
 Simulation::Simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
     : compute_(compute), params_(params), initial_(terrain) {
   const double spacing = params.real("sph.spacing") > 0 ? params.real("sph.spacing") : terrain.cell;
@@ -63,12 +50,8 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_);
   thermal_every_ = params.integer("thermal.every");
   if (thermal_every_ > 0) {
-    ThermalSettings thermal;
-    thermal.talus_angle_deg = params.real("thermal.talus_angle");
-    thermal.rate = params.real("thermal.rate");
-    thermal.height_aware = params.boolean("thermal.height_aware");
-    thermal.hardness = params.real("thermal.hardness");
-    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal);
+    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(),
+                                                   ThermalSettings::from(params));
   }
 }
 
@@ -84,16 +67,6 @@ void Simulation::step() {
 }
 
 MassBalance Simulation::mass_balance() {
-  const auto fixed = solver_->terrain().download_fixed();
-  long long change = 0, eroded = 0, deposited = 0;
-  for (std::size_t k = 0; k < fixed.size(); ++k) {
-    const long long d = fixed[k] - initial_fixed_[k];
-    change += d;
-    if (d < 0)
-      eroded -= d;
-    else
-      deposited += d;
-  }
   long long suspended = 0;
   ParticleStore& store = solver_->particles();
   if (store.size() > 0) {
@@ -103,18 +76,8 @@ MassBalance Simulation::mass_balance() {
     for (auto s : sediment) suspended += s;
   }
   const SphCounters c = solver_->counters();
-  const double q = solver_->terrain().volume_quantum();
-  MassBalance m;
-  m.residual_quanta = change + suspended + c.outflow_sediment + c.lost_sediment;
-  m.terrain_change = change * q;
-  m.suspended = suspended * q;
-  m.outflow = c.outflow_sediment * q;
-  m.lost = c.lost_sediment * q;
-  m.residual = m.residual_quanta * q;
-  m.eroded = eroded * q;
-  m.deposited = deposited * q;
-  m.relative = eroded > 0 ? std::fabs(static_cast<double>(m.residual_quanta)) / eroded : 0.0;
-  return m;
+  return mass_balance_of(initial_fixed_, solver_->terrain().download_fixed(), suspended,
+                         c.outflow_sediment, c.lost_sediment, solver_->terrain().volume_quantum());
 }
 
 CheckpointData Simulation::checkpoint() {

@@ -8,6 +8,7 @@
 #include "runnel/core/heightmap.hpp"
 #include "runnel/io/checkpoint.hpp"
 #include "runnel/io/json.hpp"
+#include "runnel/models/mass_balance.hpp"
 #include "runnel/sim/parameters.hpp"
 #include "runnel/sph/erosion.hpp"
 #include "runnel/sph/rain_emitter.hpp"
@@ -15,18 +16,6 @@
 #include "runnel/terrain/thermal.hpp"
 
 namespace runnel {
-
-// The terms of the mass balance (physics.md §4), in m³:
-//   residual = ΔV_terrain + V_suspended + V_outflow + V_lost, which must be 0.
-// All terms are exact integer counts of the volume quantum, so the residual is exactly 0 unless
-// something leaks; `lost` is non-zero only with erosion.deposit_fraction < 1.
-struct MassBalance {
-  double terrain_change = 0, suspended = 0, outflow = 0, lost = 0, residual = 0;
-  double eroded = 0, deposited = 0;  // cell²·Σmax(0, h0 − h), cell²·Σmax(0, h − h0)
-  double relative = 0;               // |residual| / eroded (0 when nothing eroded)
-  long long residual_quanta = 0;
-  JsonObject json() const;
-};
 
 // One SPH rain-erosion run: the terrain, the fluid, the rain, erosion and talus, advanced together.
 // Defaults that depend on the terrain (particle spacing, rain, spawn height, c0) are derived here

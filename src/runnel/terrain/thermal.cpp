@@ -8,6 +8,15 @@
 
 namespace runnel {
 
+ThermalSettings ThermalSettings::from(const Parameters& p) {
+  ThermalSettings s;
+  s.talus_angle_deg = p.real("thermal.talus_angle");
+  s.rate = p.real("thermal.rate");
+  s.height_aware = p.boolean("thermal.height_aware");
+  s.hardness = p.real("thermal.hardness");
+  return s;
+}
+
 ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,
                                      const ThermalSettings& settings)
     : compute_(compute),

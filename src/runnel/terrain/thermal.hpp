@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include "runnel/compute/context.hpp"
+#include "runnel/sim/parameters.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
 namespace runnel {
@@ -10,6 +11,7 @@ struct ThermalSettings {
   double rate = 0.5;          // c: fraction of the excess moved per pass
   bool height_aware = false;  // talus threshold rising with height (hardness)
   double hardness = 1.0;      // height-aware: threshold × (1 + hardness · normalised height)
+  static ThermalSettings from(const Parameters& params);  // the thermal.* parameters
 };
 
 // Host side of cl/thermal.cl: one talus relaxation pass over the device terrain's fixed-point

@@ -3,12 +3,10 @@
 // with per-kernel times from OpenCL profiling events.
 #include <chrono>
 #include <functional>
+#include <memory>
 
-#include "runnel/models/droplet_model.hpp"
-#include "runnel/models/olsen_model.hpp"
-#include "runnel/models/pipe_model.hpp"
+#include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"
-#include "runnel/terrain/thermal.hpp"
 #include "runnel/validation/sph_benchmark.hpp"
 
 namespace runnel {
@@ -36,80 +34,40 @@ Timing time_steps(ComputeContext& compute, int steps, const std::function<void()
   return t;
 }
 
-// The JSON of a grid model's benchmark: cell-steps per second.
-JsonObject grid_result(ComputeContext& compute, const char* model, int size, int steps,
-                       const Timing& t) {
-  return JsonObject()
-      .add("benchmark", model)
-      .add("device", compute.info().name)
-      .add("size", size)
-      .add("steps", steps)
-      .add("seconds", t.seconds)
-      .add("cell_steps_per_second", static_cast<double>(size) * size * steps / t.seconds)
-      .add("kernel_seconds", t.kernels);
-}
-
-Heightmap bench_terrain(int size, double relief) {
-  return generate_terrain("fbm", size, size, 1.0, 1, {{"relief", relief}});
+// Relief of the benchmark terrain per model: droplets and water need slopes to run down, talus
+// needs slopes steeper than its angle.
+double bench_relief(const std::string& model) {
+  if (model == "droplet") return 0.25;
+  if (model == "thermal") return 0.5;
+  return 0.1;
 }
 
 }  // namespace
 
-JsonObject benchmark_droplet(ComputeContext& compute, int size, int batches,
-                             const Parameters& params) {
-  DeviceTerrain terrain(compute, bench_terrain(size, 0.25));
-  const DropletSettings s = DropletSettings::from(params);
-  DropletModel model(compute, terrain, s, 1);
-  std::uint64_t first = 0;
+JsonObject benchmark_model(ComputeContext& compute, const std::string& name, int size, int steps,
+                           Parameters params) {
+  params.set("run.model", name);
+  const Heightmap terrain =
+      generate_terrain("fbm", size, size, 1.0, 1, {{"relief", bench_relief(name)}});
+  const std::unique_ptr<Model> model = make_model(compute, params, terrain);
+  double work = 0;
   bool warm = false;
-  const Timing t = time_steps(compute, batches, [&] {
-    model.advance();
-    if (!warm) {  // the warm-up batch is not counted
-      first = model.droplets();
-      warm = true;
-    }
+  const Timing t = time_steps(compute, steps, [&] {
+    model->step();
+    if (warm) work += model->step_work();  // the warm-up step is not counted
+    warm = true;
   });
-  const double droplets = static_cast<double>(model.droplets() - first);
-  return JsonObject()
-      .add("benchmark", "droplet")
+  JsonObject o;
+  o.add("benchmark", name)
       .add("device", compute.info().name)
       .add("size", size)
-      .add("batches", batches)
-      .add("droplets", droplets)
-      .add("lifetime", s.lifetime)
+      .add("steps", steps)
       .add("seconds", t.seconds)
-      // Every droplet is counted for its whole lifetime; those that leave the map early did less
+      // Droplets are counted for their whole lifetime; those that leave the map early did less
       // work.
-      .add("droplet_steps_per_second", droplets * s.lifetime / t.seconds)
+      .add(std::string(model->work_unit()) + "_per_second", work / t.seconds)
       .add("kernel_seconds", t.kernels);
-}
-
-JsonObject benchmark_olsen(ComputeContext& compute, int size, int iterations,
-                           const Parameters& params) {
-  DeviceTerrain terrain(compute, bench_terrain(size, 0.1));
-  OlsenModel model(compute, terrain, OlsenSettings::from(params));
-  return grid_result(compute, "olsen", size, iterations,
-                     time_steps(compute, iterations, [&] { model.advance(); }));
-}
-
-JsonObject benchmark_thermal(ComputeContext& compute, int size, int iterations,
-                             const Parameters& params) {
-  DeviceTerrain terrain(compute, bench_terrain(size, 0.5));
-  ThermalSettings s;
-  s.talus_angle_deg = params.real("thermal.talus_angle");
-  s.rate = params.real("thermal.rate");
-  s.height_aware = params.boolean("thermal.height_aware");
-  s.hardness = params.real("thermal.hardness");
-  ThermalRelaxation thermal(compute, terrain, s);
-  return grid_result(compute, "thermal", size, iterations,
-                     time_steps(compute, iterations, [&] { thermal.relax(); }));
-}
-
-JsonObject benchmark_pipe(ComputeContext& compute, int size, int steps, const Parameters& params) {
-  DeviceTerrain terrain(compute, bench_terrain(size, 0.1));
-  PipeModel model(compute, terrain, PipeSettings::from(params));
-  return grid_result(compute, "pipe", size, steps,
-                     time_steps(compute, steps, [&] { model.advance(); }));
+  return o;
 }
 
 }  // namespace runnel

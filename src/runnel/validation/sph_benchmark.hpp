@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <string>
+
 #include "runnel/compute/context.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sim/parameters.hpp"
@@ -11,16 +13,10 @@ namespace runnel {
 JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps,
                          const Parameters& params);
 
-// `runnel bench droplet`: batches of Beyer droplets on an fBm terrain of size × size vertices.
-JsonObject benchmark_droplet(ComputeContext& compute, int size, int batches,
-                             const Parameters& params);
-// `runnel bench olsen`: iterations of Olsen's cellular automaton on a size × size terrain.
-JsonObject benchmark_olsen(ComputeContext& compute, int size, int iterations,
-                           const Parameters& params);
-// `runnel bench thermal`: talus relaxation passes on a size × size terrain.
-JsonObject benchmark_thermal(ComputeContext& compute, int size, int iterations,
-                             const Parameters& params);
-// `runnel bench pipe`: adaptive steps of the virtual-pipe model on a size × size terrain.
-JsonObject benchmark_pipe(ComputeContext& compute, int size, int steps, const Parameters& params);
+// `runnel bench droplet|pipe|olsen|thermal`: `steps` steps of a registered model on an fBm
+// terrain of size × size vertices after one warm-up step; cell_steps_per_second (or
+// droplet_steps_per_second) and per-kernel times.
+JsonObject benchmark_model(ComputeContext& compute, const std::string& name, int size, int steps,
+                           Parameters params);
 
 }  // namespace runnel

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runnel/compute/context.hpp"
+#include "runnel/models/grid_state.hpp"
+#include "runnel/models/model.hpp"
+
+namespace runnel {
+
+// What every grid model (droplet, pipe, olsen, thermal) shares: the GridState, the clock, the mass
+// balance (terrain change + suspended sediment + outflow, in quanta) and generic checkpoints (every
+// field of the state plus the model's named counters). A model implements take_step() and, where
+// it has them, its outflow and counters.
+class GridModel : public Model {
+ public:
+  GridModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
+
+  double step() final;
+  double time() const final { return time_; }
+  std::uint64_t steps() const final { return steps_; }
+  const Parameters& parameters() const final { return params_; }
+  Heightmap terrain() final;
+  const Heightmap& initial_terrain() const final { return state_.initial_terrain(); }
+  MassBalance mass_balance() final;
+  double rain_volume() override { return 0.0; }
+  CheckpointData checkpoint() final;
+  void restore(const CheckpointData& data) final;
+  std::string status() override;
+  double step_work() override { return static_cast<double>(state_.vertices()); }
+  const char* work_unit() const override { return "cell_steps"; }
+
+  GridState& state() { return state_; }
+  // Height quanta that left the map (outflow edges), and that the model has in suspension.
+  virtual long long outflow_quanta() { return 0; }
+  virtual long long suspended_quanta();
+
+ protected:
+  // One step of the numerics; returns its length in clock units.
+  virtual double take_step() = 0;
+  // Integer counters an exact restart needs, by name.
+  virtual std::vector<std::pair<std::string, std::int64_t>> counters() { return {}; }
+  virtual void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>&) {}
+  // The length of the next step where the model chooses it (pipe), saved for an exact restart.
+  virtual double next_dt() const { return 1.0; }
+  virtual void restore_next_dt(double) {}
+
+  ComputeContext& compute_;
+  Parameters params_;
+  GridState state_;
+
+ private:
+  double time_ = 0;
+  std::uint64_t steps_ = 0;
+};
+
+// The value of counter `name` in a restored list; throws an input error if it is missing.
+std::int64_t counter_value(const std::vector<std::pair<std::string, std::int64_t>>& counters,
+                           const std::string& name);
+
+}  // namespace runnel

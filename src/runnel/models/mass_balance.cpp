@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/models/mass_balance.hpp"
+
+#include <cmath>
+
+namespace runnel {
+
+JsonObject MassBalance::json() const {
+  return JsonObject()
+      .add("terrain_change", terrain_change)
+      .add("suspended", suspended)
+      .add("outflow", outflow)
+      .add("lost", lost)
+      .add("residual", residual)
+      .add("residual_quanta", residual_quanta)
+      .add("eroded", eroded)
+      .add("deposited", deposited)
+      .add("relative", relative);
+}
+
+MassBalance mass_balance_of(const std::vector<std::int64_t>& initial,
+                            const std::vector<std::int64_t>& current, long long suspended,
+                            long long outflow, long long lost, double q) {
+  long long change = 0, eroded = 0, deposited = 0;
+  for (std::size_t k = 0; k < current.size(); ++k) {
+    const long long d = current[k] - initial[k];
+    change += d;
+    if (d < 0)
+      eroded -= d;
+    else
+      deposited += d;
+  }
+  MassBalance m;
+  m.residual_quanta = change + suspended + outflow + lost;
+  m.terrain_change = change * q;
+  m.suspended = suspended * q;
+  m.outflow = outflow * q;
+  m.lost = lost * q;
+  m.residual = m.residual_quanta * q;
+  m.eroded = eroded * q;
+  m.deposited = deposited * q;
+  m.relative = eroded > 0 ? std::fabs(static_cast<double>(m.residual_quanta)) / eroded : 0.0;
+  return m;
+}
+
+}  // namespace runnel

@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/models/model.hpp"
+
+#include <cmath>
+
+namespace runnel {
+
+void Model::advance(double dt) {
+  if (!(dt > 0)) return;
+  if (info().clock == ModelClock::kIterations) {
+    for (long long k = std::llround(dt); k > 0; --k) step();
+    return;
+  }
+  // A relative tolerance, so that a clock summed from many steps still lands on the target.
+  const double target = time() + dt;
+  while (time() < target - 1e-12 * std::max(1.0, std::fabs(target))) step();
+}
+
+}  // namespace runnel

@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "runnel/core/heightmap.hpp"
+#include "runnel/io/checkpoint.hpp"
+#include "runnel/io/json.hpp"
+#include "runnel/models/fields.hpp"
+#include "runnel/models/mass_balance.hpp"
+#include "runnel/sim/parameters.hpp"
+
+namespace runnel {
+
+// How a model counts time: simulated seconds (sph, pipe) or iterations (olsen, thermal, and the
+// droplet model's batches), which have no physical duration.
+enum class ModelClock { kSeconds, kIterations };
+
+// What a model is, in the spirit of Landlab's component metadata: its registry key, the class
+// named after its paper, the citation, its parameter group and the fields it reads and writes.
+struct ModelInfo {
+  std::string name;        // registry key and --model value: "pipe"
+  std::string class_name;  // "Erosion_Mei2007"
+  std::string citation;
+  std::string parameter_group;  // its parameters are PARAMETER_GROUP.* in docs/parameters.md
+  ModelClock clock = ModelClock::kIterations;
+  bool has_rain = false;
+  std::vector<FieldUse> fields;
+};
+
+// One erosion model on one terrain. Every model advances the same way (`advance(dt)`, Landlab's
+// run_one_step), reports the same mass balance and is checkpointed through the same HDF5 files.
+class Model {
+ public:
+  virtual ~Model() = default;
+  virtual const ModelInfo& info() const = 0;
+
+  // One step of the model's own size (adaptive where the model has a stability limit); returns
+  // the step taken, in the model's clock units.
+  virtual double step() = 0;
+  // Advances the clock by `dt` (s or iterations): steps until the clock reaches time() + dt.
+  // Iteration models take round(dt) whole steps; seconds models never step past the target by
+  // more than their last step. dt = 0 changes nothing.
+  void advance(double dt);
+
+  virtual double time() const = 0;
+  virtual std::uint64_t steps() const = 0;
+  virtual const Parameters& parameters() const = 0;
+
+  // The terrain as it is now (float view of the fixed-point state) and as it started.
+  virtual Heightmap terrain() = 0;
+  virtual const Heightmap& initial_terrain() const = 0;
+  virtual MassBalance mass_balance() = 0;
+  // Water the model has rained onto the terrain so far, m³ (0 for models without rain).
+  virtual double rain_volume() = 0;
+
+  // The whole state for an exact restart, and back; restore() expects a model built from the
+  // checkpoint's parameters and initial terrain (make_model_from_checkpoint does both).
+  virtual CheckpointData checkpoint() = 0;
+  virtual void restore(const CheckpointData& data) = 0;
+
+  // The model's own entries for metrics.json (counters, effective settings).
+  virtual JsonObject diagnostics() = 0;
+  // A short fragment for the progress line ("12,000 particles").
+  virtual std::string status() = 0;
+  // The work of the latest step in `work_unit()`s (particles, cells or droplet moves), for the
+  // throughput in metrics.json.
+  virtual double step_work() = 0;
+  virtual const char* work_unit() const = 0;  // "particle_steps", "cell_steps", "droplet_steps"
+};
+
+}  // namespace runnel

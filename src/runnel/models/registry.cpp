@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/models/registry.hpp"
+
+#include "runnel/core/error.hpp"
+#include "runnel/models/droplet_model.hpp"
+#include "runnel/models/olsen_model.hpp"
+#include "runnel/models/pipe_model.hpp"
+#include "runnel/models/sph_model.hpp"
+#include "runnel/models/thermal_model.hpp"
+#include "runnel/sim/scenario.hpp"
+
+namespace runnel {
+namespace {
+
+template <typename M>
+ModelEntry entry() {
+  return {&M::model_info,
+          [](ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
+              -> std::unique_ptr<Model> { return std::make_unique<M>(compute, params, terrain); }};
+}
+
+}  // namespace
+
+const std::vector<ModelEntry>& model_registry() {
+  static const std::vector<ModelEntry> registry = {entry<SphModel>(), entry<DropletModel>(),
+                                                   entry<PipeModel>(), entry<OlsenModel>(),
+                                                   entry<ThermalModel>()};
+  return registry;
+}
+
+std::vector<std::string> model_names() {
+  std::vector<std::string> names;
+  for (const ModelEntry& e : model_registry()) names.push_back(e.info().name);
+  return names;
+}
+
+const ModelEntry& model_entry(const std::string& name) {
+  std::string known;
+  for (const ModelEntry& e : model_registry()) {
+    if (e.info().name == name) return e;
+    known += (known.empty() ? "" : ", ") + e.info().name;
+  }
+  throw input_error("model '" + name + "' is unknown; the models are " + known);
+}
+
+std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& params,
+                                  const Heightmap& terrain) {
+  return model_entry(params.text("run.model")).make(compute, params, terrain);
+}
+
+std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute,
+                                                  const CheckpointData& d) {
+  if (d.model == "sph") return std::make_unique<SphModel>(Simulation::from_checkpoint(compute, d));
+  Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
+  params.set("run.model", d.model);
+  Heightmap initial = d.terrain;
+  for (std::size_t k = 0; k < initial.size(); ++k)
+    initial.h[k] = static_cast<float>(static_cast<double>(d.initial_fixed[k]) * d.height_quantum);
+  std::unique_ptr<Model> model = model_entry(d.model).make(compute, params, initial);
+  model->restore(d);
+  return model;
+}
+
+}  // namespace runnel

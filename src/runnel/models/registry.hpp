@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runnel/compute/context.hpp"
+#include "runnel/io/checkpoint.hpp"
+#include "runnel/models/model.hpp"
+
+namespace runnel {
+
+// Every erosion model, registered in one place (registry.cpp) under its short name.
+struct ModelEntry {
+  const ModelInfo& (*info)();
+  std::unique_ptr<Model> (*make)(ComputeContext& compute, const Parameters& params,
+                                 const Heightmap& terrain);
+};
+
+const std::vector<ModelEntry>& model_registry();
+std::vector<std::string> model_names();
+// The entry of `name`; throws an input error (exit 2) listing the names for an unknown one.
+const ModelEntry& model_entry(const std::string& name);
+
+// The model run.model names, on `terrain`, with `params`.
+std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& params,
+                                  const Heightmap& terrain);
+// The model a checkpoint holds, in the state it was saved in.
+std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute,
+                                                  const CheckpointData& data);
+
+}  // namespace runnel

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/models/sph_model.hpp"
+
+namespace runnel {
+
+const ModelInfo& SphModel::model_info() {
+  static const ModelInfo info{
+      "sph",
+      "Erosion_Runnel",
+      "runnel's SPH rain erosion (docs/sph.md, docs/erosion.md); weakly compressible SPH after "
+      "Monaghan 1994 with delta-SPH (Antuono et al. 2010), erosion after Kristof et al. 2009",
+      "sph",
+      ModelClock::kSeconds,
+      true,
+      {{kTopographicElevation, FieldIntent::kInOut},
+       {"particle__position", FieldIntent::kOut},
+       {"particle__velocity", FieldIntent::kOut},
+       {"particle__density", FieldIntent::kOut},
+       {"particle__sediment", FieldIntent::kOut},
+       {"particle__age", FieldIntent::kOut},
+       {"particle__lifespan", FieldIntent::kOut},
+       {"particle__contacts", FieldIntent::kOut},
+       {"particle__id", FieldIntent::kOut}}};
+  return info;
+}
+
+SphModel::SphModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
+    : sim_(std::make_unique<Simulation>(compute, params, terrain)) {}
+
+SphModel::SphModel(std::unique_ptr<Simulation> simulation) : sim_(std::move(simulation)) {}
+
+double SphModel::step() {
+  const double before = sim_->time();
+  sim_->step();
+  return sim_->time() - before;
+}
+
+double SphModel::rain_volume() {
+  const double spacing = sim_->solver().settings().spacing;
+  return static_cast<double>(sim_->rain().spawned()) * spacing * spacing * spacing;
+}
+
+JsonObject SphModel::diagnostics() {
+  const SphCounters c = sim_->counters();
+  return JsonObject()
+      .add("particles_spawned", static_cast<long long>(sim_->rain().spawned()))
+      .add("particles_alive", static_cast<long long>(sim_->particles()))
+      .add("particles_evaporated", c.evaporated_particles)
+      .add("particles_outflow", c.outflow_particles)
+      .add("below_surface_projections", c.surface_projections)
+      .add("collisions", c.collisions)
+      .add("effective", sim_->effective_settings());
+}
+
+std::string SphModel::status() {
+  return std::to_string(sim_->particles()) + " particles";
+}
+
+}  // namespace runnel

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <memory>
+
+#include "runnel/models/model.hpp"
+#include "runnel/sim/simulation.hpp"
+
+namespace runnel {
+
+// Erosion_Runnel: runnel's own SPH rain erosion (physics.md), the Simulation behind the common
+// model interface. Its particle fields are those of ParticleStore (particle__* in the dictionary).
+class SphModel final : public Model {
+ public:
+  static const ModelInfo& model_info();
+  SphModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
+  explicit SphModel(std::unique_ptr<Simulation> simulation);
+  const ModelInfo& info() const override { return model_info(); }
+
+  double step() override;
+  double time() const override { return sim_->time(); }
+  std::uint64_t steps() const override { return sim_->steps(); }
+  const Parameters& parameters() const override { return sim_->parameters(); }
+  Heightmap terrain() override { return sim_->terrain(); }
+  const Heightmap& initial_terrain() const override { return sim_->initial_terrain(); }
+  MassBalance mass_balance() override { return sim_->mass_balance(); }
+  double rain_volume() override;
+  CheckpointData checkpoint() override { return sim_->checkpoint(); }
+  void restore(const CheckpointData& data) override { sim_->restore(data); }
+  JsonObject diagnostics() override;
+  std::string status() override;
+  double step_work() override { return static_cast<double>(sim_->particles()); }
+  const char* work_unit() const override { return "particle_steps"; }
+
+  Simulation& simulation() { return *sim_; }
+
+ private:
+  std::unique_ptr<Simulation> sim_;
+};
+
+}  // namespace runnel
