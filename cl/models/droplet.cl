@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Particle droplets (Beyer 2015; models.md "droplet"). One work-item runs one droplet for its whole
-// lifetime over the terrain as it was when the batch started (height, m); its erosion and deposition
-// go into the fixed-point deltas (counts of the height quantum) with 64-bit integer atomics, so a
-// batch's result does not depend on the order of the droplets. Sediment is carried as quanta too:
+// Particle droplets (Beyer 2015; models.md "droplet"). A batch of droplets moves in lockstep: one
+// launch moves every droplet of the batch one cell over the terrain as the previous step left it
+// (height, m), and the host applies the step's erosion and deposition before the next. Changes go
+// into the fixed-point deltas (counts of the height quantum) with 64-bit integer atomics, so a
+// step's result does not depend on the order of the droplets. Sediment is carried as quanta too:
 // what a droplet erodes, it deposits (or carries out of the map, booked as outflow) exactly.
+// (Running each droplet's whole lifetime on the terrain of the batch start let the droplets that
+// met in one pit each fill it to the brim; the spikes that made grew without bound.)
 // Per step, with cell coordinates and bilinear height and gradient:
 //   dir = dir·inertia − grad·(1 − inertia), normalised; move one cell; Δh = h_new − h_old
 //   capacity = max(−Δh · speed · water · capacity_factor, min_capacity)
@@ -56,7 +59,8 @@ inline void erode_brush(volatile __global long* delta, int nx, int ny, float x, 
     for (int di = -r; di <= r + 1; ++di) {
       const int a = ci + di, b = cj + dj;
       float w = 0.0f;
-      if (a >= 0 && b >= 0 && a < nx && b < ny) w = fmax(0.0f, DROPLET_RADIUS - hypot((float)a - x, (float)b - z));
+      const float dx = (float)a - x, dz = (float)b - z;  // sqrt, not hypot: far faster on CPUs
+      if (a >= 0 && b >= 0 && a < nx && b < ny) w = fmax(0.0f, DROPLET_RADIUS - sqrt(dx * dx + dz * dz));
       weight[(dj + r) * BRUSH_SIDE + (di + r)] = w;
       total += w;
     }
@@ -81,53 +85,77 @@ inline void erode_brush(volatile __global long* delta, int nx, int ny, float x, 
   if (quanta - taken > 0 && best >= 0) atom_add(&delta[best], -(quanta - taken));
 }
 
-__kernel void droplet_batch(const __global float* height, volatile __global long* delta, const int nx, const int ny,
-                            const float quantum, const ulong seed, const ulong first_droplet, const uint count,
-                            volatile __global long* counters) {
+// Droplet state between steps: (x, z, dir_x, dir_z, speed, water) in cell units; water < 0 marks
+// a droplet that has finished.
+__kernel void droplet_step(const __global float* height, volatile __global long* delta, const int nx, const int ny,
+                           const float quantum, const ulong seed, const ulong first_droplet, const uint count,
+                           const int step, __global float* state, __global long* load,
+                           volatile __global long* counters) {
   const uint d = get_global_id(0);
   if (d >= count) return;
-  const ulong id = first_droplet + d;
-  float x = rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1);
-  float z = rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1);
-  x = fmin(x, (float)(nx - 1) - 1e-3f);
-  z = fmin(z, (float)(ny - 1) - 1e-3f);
-  float dir_x = 0.0f, dir_z = 0.0f, speed = DROPLET_INITIAL_SPEED, water = DROPLET_INITIAL_WATER;
-  long sediment = 0;  // quanta of height
-  for (int step = 0; step < DROPLET_LIFETIME; ++step) {
-    float gx, gz;
-    const float h_old = height_at(height, nx, x, z, &gx, &gz);
-    dir_x = dir_x * DROPLET_INERTIA - gx * (1.0f - DROPLET_INERTIA);
-    dir_z = dir_z * DROPLET_INERTIA - gz * (1.0f - DROPLET_INERTIA);
-    const float len = sqrt(dir_x * dir_x + dir_z * dir_z);
-    if (len == 0.0f) break;  // flat: the droplet stops and deposits below
-    dir_x /= len;
-    dir_z /= len;
-    const float nx_pos = x + dir_x, nz_pos = z + dir_z;
-    if (nx_pos < 0.0f || nz_pos < 0.0f || nx_pos >= (float)(nx - 1) || nz_pos >= (float)(ny - 1)) {
-      atom_add(&counters[1], sediment);  // carried out of the map
-      atom_inc(&counters[0]);
-      return;
-    }
-    float gx2, gz2;
-    const float h_new = height_at(height, nx, nx_pos, nz_pos, &gx2, &gz2);
-    const float dh = h_new - h_old;  // m
-    const float capacity = fmax(-dh * speed * water * DROPLET_CAPACITY, DROPLET_MIN_CAPACITY);  // m of height
-    const float carried = (float)sediment * quantum;
-    if (dh > 0.0f || carried > capacity) {
-      const float amount = dh > 0.0f ? fmin(dh, carried) : (carried - capacity) * DROPLET_DEPOSIT;
-      const long q = min(sediment, (long)floor(amount / quantum));
-      deposit_bilinear(delta, nx, x, z, q);
-      sediment -= q;
-    } else {
-      const float amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
-      const long q = (long)floor(amount / quantum);
-      erode_brush(delta, nx, ny, x, z, q);
-      sediment += q;
-    }
-    speed = sqrt(fmax(0.0f, speed * speed - dh * DROPLET_GRAVITY));
-    water *= 1.0f - DROPLET_EVAPORATE;
-    x = nx_pos;
-    z = nz_pos;
+  __global float* s = state + 6 * d;
+  if (step == 0) {
+    const ulong id = first_droplet + d;
+    s[0] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1), (float)(nx - 1) - 1e-3f);
+    s[1] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1), (float)(ny - 1) - 1e-3f);
+    s[2] = 0.0f;
+    s[3] = 0.0f;
+    s[4] = DROPLET_INITIAL_SPEED;
+    s[5] = DROPLET_INITIAL_WATER;
+    load[d] = 0;
   }
-  deposit_bilinear(delta, nx, x, z, sediment);  // what the droplet still carries when it dies
+  if (s[5] < 0.0f) return;
+  float x = s[0], z = s[1], speed = s[4], water = s[5];
+  long sediment = load[d];  // quanta of height
+  float gx, gz;
+  const float h_old = height_at(height, nx, x, z, &gx, &gz);
+  float dir_x = s[2] * DROPLET_INERTIA - gx * (1.0f - DROPLET_INERTIA);
+  float dir_z = s[3] * DROPLET_INERTIA - gz * (1.0f - DROPLET_INERTIA);
+  const float len = sqrt(dir_x * dir_x + dir_z * dir_z);
+  if (len == 0.0f) {  // flat: the droplet stops and deposits what it carries
+    deposit_bilinear(delta, nx, x, z, sediment);
+    load[d] = 0;
+    s[5] = -1.0f;
+    return;
+  }
+  dir_x /= len;
+  dir_z /= len;
+  const float nx_pos = x + dir_x, nz_pos = z + dir_z;
+  if (nx_pos < 0.0f || nz_pos < 0.0f || nx_pos >= (float)(nx - 1) || nz_pos >= (float)(ny - 1)) {
+    atom_add(&counters[1], sediment);  // carried out of the map
+    atom_inc(&counters[0]);
+    load[d] = 0;
+    s[5] = -1.0f;
+    return;
+  }
+  float gx2, gz2;
+  const float h_new = height_at(height, nx, nx_pos, nz_pos, &gx2, &gz2);
+  const float dh = h_new - h_old;  // m
+  const float capacity = fmax(-dh * speed * water * DROPLET_CAPACITY, DROPLET_MIN_CAPACITY);  // m of height
+  const float carried = (float)sediment * quantum;
+  if (dh > 0.0f || carried > capacity) {
+    const float amount = dh > 0.0f ? fmin(dh, carried) : (carried - capacity) * DROPLET_DEPOSIT;
+    const long q = min(sediment, (long)floor(amount / quantum));
+    deposit_bilinear(delta, nx, x, z, q);
+    sediment -= q;
+  } else {
+    const float amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
+    const long q = (long)floor(amount / quantum);
+    erode_brush(delta, nx, ny, x, z, q);
+    sediment += q;
+  }
+  speed = sqrt(fmax(0.0f, speed * speed - dh * DROPLET_GRAVITY));
+  water *= 1.0f - DROPLET_EVAPORATE;
+  if (step == DROPLET_LIFETIME - 1) {  // the end of its life: it deposits what it still carries
+    deposit_bilinear(delta, nx, nx_pos, nz_pos, sediment);
+    sediment = 0;
+    water = -1.0f;
+  }
+  s[0] = nx_pos;
+  s[1] = nz_pos;
+  s[2] = dir_x;
+  s[3] = dir_z;
+  s[4] = speed;
+  s[5] = water;
+  load[d] = sediment;
 }

@@ -20,6 +20,7 @@ void add_bench_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_resume_command(CLI::App& app);
 void add_export_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 // Flags shared by `run` and `resume`: checkpoints and the heightmap series.
 struct OutputFlags {

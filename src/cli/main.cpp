@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   runnel::cli::add_run_command(app);
   runnel::cli::add_resume_command(app);
+  runnel::cli::add_compare_command(app);
   runnel::cli::add_export_command(app);
   runnel::cli::add_devices_command(app);
   runnel::cli::add_generate_command(app);

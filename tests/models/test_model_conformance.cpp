@@ -122,7 +122,9 @@ TEST_P(ModelConformance, AdvanceMovesTheClockByDt) {
   const double dt = seconds ? 0.05 : 7.0;
   model->advance(dt);
   EXPECT_GE(model->time(), dt * (1 - 1e-9));
-  if (!seconds) EXPECT_EQ(model->steps(), 7u);
+  if (!seconds) {
+    EXPECT_EQ(model->steps(), 7u);
+  }
 }
 
 TEST_P(ModelConformance, ConservesVolumeExactlyOnAClosedDomain) {

@@ -30,6 +30,10 @@ struct Heightmap {
   double volume() const;
 };
 
+// Every `factor`-th vertex in each direction (the cell grows by `factor`): a preview of a large
+// terrain for pictures.
+Heightmap subsample(const Heightmap& t, int factor);
+
 // Hard limits on the size of a terrain, so a corrupt header cannot make us allocate terabytes.
 inline constexpr int kMaxSide = 32768;                // vertices per side
 inline constexpr long long kMaxVertices = 1LL << 28;  // 268,435,456 vertices (1 GiB of floats)

@@ -307,29 +307,39 @@ double erosion_flow_correlation(const Heightmap& before, const Heightmap& after)
   return spearman(eroded, log_area);
 }
 
-JsonObject terrain_metrics(const Heightmap& before, const Heightmap& after) {
+std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
+                                                                  const Heightmap& after) {
   const std::vector<double> area = flow_accumulation(after);
   // Channels: vertices draining at least 1 % of the terrain (and at least 20 cells).
   const double total = (after.nx - 1) * after.cell * (after.ny - 1) * after.cell;
   const double threshold = std::max(0.01 * total, 20.0 * after.cell * after.cell);
+  return {{"hypsometric_integral", hypsometric_integral(after)},
+          {"hypsometric_integral_initial", hypsometric_integral(before)},
+          {"erosion_score", erosion_score(after)},
+          {"erosion_score_initial", erosion_score(before)},
+          {"mean_slope_deg", mean_slope_degrees(after)},
+          {"channel_threshold_m2", threshold},
+          {"drainage_density_per_m", drainage_density(after, area, threshold)},
+          {"concavity_theta", concavity(after, area, threshold)},
+          {"spectral_slope", spectral_slope(after)},
+          {"erosion_flow_correlation", erosion_flow_correlation(before, after)}};
+}
+
+JsonObject terrain_metrics_json(const std::vector<std::pair<std::string, double>>& values,
+                                const Heightmap& after) {
   std::string histogram = "[";
   const auto hist = slope_histogram(after);
   for (std::size_t k = 0; k < hist.size(); ++k)
     histogram += (k ? ", " : "") + std::to_string(hist[k]);
   histogram += "]";
   JsonObject o;
-  o.add("hypsometric_integral", hypsometric_integral(after))
-      .add("hypsometric_integral_initial", hypsometric_integral(before))
-      .add("erosion_score", erosion_score(after))
-      .add("erosion_score_initial", erosion_score(before))
-      .add("mean_slope_deg", mean_slope_degrees(after))
-      .raw("slope_histogram_5deg", histogram)
-      .add("channel_threshold_m2", threshold)
-      .add("drainage_density_per_m", drainage_density(after, area, threshold))
-      .add("concavity_theta", concavity(after, area, threshold))
-      .add("spectral_slope", spectral_slope(after))
-      .add("erosion_flow_correlation", erosion_flow_correlation(before, after));
+  for (auto& [name, value] : values) o.add(name, value);
+  o.raw("slope_histogram_5deg", histogram);
   return o;
+}
+
+JsonObject terrain_metrics(const Heightmap& before, const Heightmap& after) {
+  return terrain_metrics_json(terrain_metric_values(before, after), after);
 }
 
 }  // namespace runnel::metrics

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "runnel/core/heightmap.hpp"
@@ -43,7 +45,13 @@ double spectral_slope(const Heightmap& t);
 // Spearman rank correlation of eroded depth (h0 − h, eroded vertices only) with log drainage area.
 double erosion_flow_correlation(const Heightmap& before, const Heightmap& after);
 
-// Every metric above for a terrain (and its initial state), for metrics.json.
+// Every scalar metric above for a terrain (and its initial state), by name, in a fixed order (the
+// columns of runnel compare's metrics.csv).
+std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
+                                                                  const Heightmap& after);
+// Those values plus the slope histogram, for metrics.json.
+JsonObject terrain_metrics_json(const std::vector<std::pair<std::string, double>>& values,
+                                const Heightmap& after);
 JsonObject terrain_metrics(const Heightmap& before, const Heightmap& after);
 
 }  // namespace runnel::metrics

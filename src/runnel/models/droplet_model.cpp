@@ -62,8 +62,12 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       settings_(DropletSettings::from(params)),
       seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
       kernel_(compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings_.build_options()),
-              "droplet_batch"),
-      counters_(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long)) {
+              "droplet_step"),
+      counters_(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long)),
+      droplet_state_(compute.context(), CL_MEM_READ_WRITE,
+                     static_cast<std::size_t>(batch_size()) * 6 * sizeof(float)),
+      droplet_load_(compute.context(), CL_MEM_READ_WRITE,
+                    static_cast<std::size_t>(batch_size()) * sizeof(cl_long)) {
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 2 * sizeof(cl_long));
 }
 
@@ -83,11 +87,15 @@ double DropletModel::droplet_volume() const {
 double DropletModel::take_step() {
   DeviceTerrain& terrain = state_.terrain();
   const cl_uint count = static_cast<cl_uint>(batch_size());
-  set_args(kernel_, terrain.height(), terrain.delta(), terrain.nx(), terrain.ny(),
-           static_cast<float>(terrain.quantum()), static_cast<cl_ulong>(seed_),
-           static_cast<cl_ulong>(droplets_), count, counters_);
-  compute_.profiler().launch(kernel_, round_up_work(count), "droplet_batch");
-  terrain.apply();
+  // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl).
+  for (int step = 0; step < settings_.lifetime; ++step) {
+    set_args(kernel_, terrain.height(), terrain.delta(), terrain.nx(), terrain.ny(),
+             static_cast<float>(terrain.quantum()), static_cast<cl_ulong>(seed_),
+             static_cast<cl_ulong>(droplets_), count, static_cast<cl_int>(step), droplet_state_,
+             droplet_load_, counters_);
+    compute_.profiler().launch(kernel_, round_up_work(count), "droplet_step");
+    terrain.apply(step + 1 == settings_.lifetime);  // droplets do not use the normals
+  }
   droplets_ += count;
   return 1.0;
 }

@@ -26,8 +26,9 @@ struct DropletSettings {
 };
 
 // Erosion_Beyer2015: particle droplets (Beyer 2015), host side of cl/models/droplet.cl. Each step
-// runs one batch of droplets in parallel and applies their fixed-point changes once, exactly
-// conserving volume: what leaves the map is counted as outflow.
+// runs one batch of droplets in parallel, in lockstep: every droplet step is one launch whose
+// fixed-point changes are applied before the next, exactly conserving volume: what leaves the map
+// is counted as outflow.
 class DropletModel final : public GridModel {
  public:
   static const ModelInfo& model_info();
@@ -58,7 +59,8 @@ class DropletModel final : public GridModel {
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;
   cl::Kernel kernel_;
-  cl::Buffer counters_;  // {droplets out, outflow quanta}
+  cl::Buffer counters_;                      // {droplets out, outflow quanta}
+  cl::Buffer droplet_state_, droplet_load_;  // per droplet of a batch, between its steps
 };
 
 }  // namespace runnel

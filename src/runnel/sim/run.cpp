@@ -179,6 +179,8 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   s.sim_time = model.time();
   s.wall_seconds = wall;
   s.balance = m;
+  s.rain_volume = model.rain_volume();
+  s.terrain_values = metrics::terrain_metric_values(initial, final_terrain);
   s.metrics.add("runnel_version", kVersion)
       .add("source_revision", kRevision)
       .add("device", compute.info().name)
@@ -191,7 +193,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       .add("wall_seconds", wall)
       .add(std::string(model.work_unit()) + "_per_second", work / std::max(wall, 1e-9))
       .add("resumed_from_step", static_cast<long long>(first_step))
-      .add("rain_volume", model.rain_volume())
+      .add("rain_volume", s.rain_volume)
       .add("eroded_volume", m.eroded)
       .add("deposited_volume", m.deposited)
       .add("outflow_volume", m.outflow)
@@ -207,7 +209,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                           .add("cell", initial.cell)
                           .add("min_height", initial.min_height())
                           .add("max_height", initial.max_height()))
-      .add("terrain_metrics", metrics::terrain_metrics(initial, final_terrain))
+      .add("terrain_metrics", metrics::terrain_metrics_json(s.terrain_values, final_terrain))
       .add("kernel_seconds", kernel_seconds)
       .add("parameters", parameters_json(params))
       .add("mass_balance_reports", reports);

@@ -26,7 +26,9 @@ struct RunSummary {
   double sim_time = 0;
   double wall_seconds = 0;
   MassBalance balance;
-  JsonObject metrics;  // what metrics.json holds
+  double rain_volume = 0;                                      // m³
+  std::vector<std::pair<std::string, double>> terrain_values;  // metrics::terrain_metric_values
+  JsonObject metrics;                                          // what metrics.json holds
 };
 
 // Advances `model` to the target, reporting the mass balance every report_every steps, writing

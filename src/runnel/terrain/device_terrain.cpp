@@ -40,15 +40,15 @@ void DeviceTerrain::upload_fixed(const std::vector<std::int64_t>& fixed) {
   refresh_view();
 }
 
-void DeviceTerrain::apply() {
-  refresh_view();
+void DeviceTerrain::apply(bool refresh_normals) {
+  refresh_view(refresh_normals);
 }
 
-void DeviceTerrain::refresh_view() {
+void DeviceTerrain::refresh_view(bool refresh_normals) {
   const cl_uint n = static_cast<cl_uint>(nx_) * ny_;
   runnel::set_args(apply_, height_fixed_, delta_, height_, n, static_cast<float>(quantum_));
   compute_.profiler().launch(apply_, round_up_work(n), "terrain_apply");
-  normals_.enqueue(height_, normal_, nx_, ny_, cell_);
+  if (refresh_normals) normals_.enqueue(height_, normal_, nx_, ny_, cell_);
 }
 
 Heightmap DeviceTerrain::download() {

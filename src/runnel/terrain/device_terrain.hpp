@@ -20,9 +20,9 @@ class DeviceTerrain {
   // Replaces the heights (same size): rounds them to the quantum, refreshes the view and normals.
   void upload(const Heightmap& terrain);
   void upload_fixed(const std::vector<std::int64_t>& fixed);
-  // Adds the accumulated deltas to the fixed-point heights, clears them, refreshes view and
-  // normals.
-  void apply();
+  // Adds the accumulated deltas to the fixed-point heights, clears them, refreshes the view and
+  // (unless told not to, for a caller that does not read them before the next apply) the normals.
+  void apply(bool refresh_normals = true);
   // The float view as a heightmap, and the exact fixed-point state.
   Heightmap download();
   std::vector<std::int64_t> download_fixed();
@@ -43,7 +43,7 @@ class DeviceTerrain {
   double extent_z() const { return (ny_ - 1) * static_cast<double>(cell_); }
 
  private:
-  void refresh_view();
+  void refresh_view(bool refresh_normals = true);
   ComputeContext& compute_;
   TerrainNormals normals_;
   int nx_, ny_;

@@ -1,0 +1,170 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/compare/compare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/models/registry.hpp"
+#include "runnel/models/sph_model.hpp"
+#include "runnel/sim/run.hpp"
+
+namespace runnel::compare {
+
+RainBudget rain_budget(ComputeContext& compute, const Parameters& params,
+                       const Heightmap& terrain) {
+  Parameters sph = params;
+  sph.set("run.model", std::string("sph"), "compare");
+  // The SPH model resolves its automatic rain (rate from the particle budget and lifespan,
+  // spacing from the cell) exactly as its run will.
+  SphModel model(compute, sph, terrain);
+  Simulation& sim = model.simulation();
+  RainBudget b;
+  const double spacing = sim.solver().settings().spacing;
+  b.particle_volume = spacing * spacing * spacing;
+  b.duration = params.real("run.sim_time");
+  b.sph_rate = sim.rain().settings().enabled ? sim.rain().settings().rate : 0.0;
+  b.volume = b.sph_rate * b.particle_volume * b.duration;
+  return b;
+}
+
+Parameters model_parameters(const Parameters& scenario, const std::string& model,
+                            const RainBudget& budget, const Heightmap& terrain) {
+  Parameters p = scenario;
+  p.set("run.model", model, "compare");
+  const double area = static_cast<double>(terrain.size()) * terrain.cell * terrain.cell;
+  if (model == "pipe") {
+    p.set("pipe.rain", budget.volume / (area * budget.duration), "compare");
+  } else if (model == "olsen") {
+    const double iterations = static_cast<double>(p.integer("run.iterations"));
+    p.set("olsen.rain", budget.volume / (area * iterations), "compare");
+  } else if (model == "droplet") {
+    const long long droplets =
+        std::max<long long>(1, std::llround(budget.volume / budget.particle_volume));
+    const long long automatic = std::max<long long>(1, static_cast<long long>(terrain.size()) / 64);
+    const long long batch = p.integer("droplet.batch") > 0 ? p.integer("droplet.batch") : automatic;
+    const long long iterations = (droplets + batch - 1) / batch;
+    p.set("droplet.volume", budget.particle_volume, "compare");
+    p.set("droplet.batch", static_cast<std::int64_t>((droplets + iterations - 1) / iterations),
+          "compare");
+    p.set("run.iterations", static_cast<std::int64_t>(iterations), "compare");
+  }
+  return p;
+}
+
+namespace {
+
+std::vector<Parameters> checked_parameters(ComputeContext& compute, const Parameters& scenario,
+                                           const Heightmap& terrain, const Options& options,
+                                           RainBudget& budget) {
+  if (options.models.empty()) throw input_error("--models: name at least one model");
+  std::set<std::string> seen;
+  for (const std::string& m : options.models) {
+    model_entry(m);  // an unknown name: exit 2, listing the models
+    if (!seen.insert(m).second) throw input_error("--models: " + m + " is listed twice");
+  }
+  if (scenario.integer("run.steps") > 0) {
+    throw input_error(
+        "run.steps: runnel compare runs every model for run.sim_time seconds (iteration models "
+        "for run.iterations); set run.steps to 0");
+  }
+  if (!(scenario.real("run.sim_time") > 0))
+    throw input_error("run.sim_time: must be positive for runnel compare");
+  budget = rain_budget(compute, scenario, terrain);
+  if (!(budget.volume > 0))
+    throw input_error("rain.enabled: runnel compare needs rain (the budget is 0 m3)");
+  std::vector<Parameters> out;
+  for (const std::string& m : options.models) {
+    out.push_back(model_parameters(scenario, m, budget, terrain));
+    require_run_length(out.back(), model_entry(m).info().clock);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& scenario,
+                                     const Heightmap& terrain, const Options& options) {
+  namespace fs = std::filesystem;
+  RainBudget budget;
+  const std::vector<Parameters> params =
+      checked_parameters(compute, scenario, terrain, options, budget);
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  if (ec || !fs::is_directory(options.out_dir))
+    throw input_error("--out " + options.out_dir + ": cannot create the output folder");
+
+  std::vector<ModelResult> results;
+  Heightmap initial;
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    const std::string& name = options.models[k];
+    if (!options.quiet)
+      std::cerr << "compare: model " << k + 1 << "/" << params.size() << ": " << name << "\n";
+    const std::unique_ptr<Model> model = make_model(compute, params[k], terrain);
+    RunOptions run = run_options_from(params[k], model->info().clock);
+    run.out_dir = (fs::path(options.out_dir) / name).string();
+    run.quiet = options.quiet;
+    const RunSummary s = run_model(compute, *model, run);
+    ModelResult r;
+    r.model = name;
+    r.class_name = model->info().class_name;
+    r.clock = model->info().clock == ModelClock::kSeconds ? "s" : "iterations";
+    r.folder = name;
+    r.steps = s.steps;
+    r.time = s.sim_time;
+    r.wall_seconds = s.wall_seconds;
+    r.rain_volume = s.rain_volume;
+    r.balance = s.balance;
+    r.terrain_values = s.terrain_values;
+    r.final_terrain = model->terrain();
+    initial = model->initial_terrain();  // the same for every model: the input rounded to q
+    results.push_back(std::move(r));
+  }
+  const fs::path out(options.out_dir);
+  const std::string csv = metrics_csv(results);
+  write_file_atomically((out / "metrics.csv").string(),
+                        [&](std::FILE* f) { std::fwrite(csv.data(), 1, csv.size(), f); });
+  write_compare_png((out / "compare.png").string(), initial, results);
+  const std::string report = report_markdown(results, budget, initial, options);
+  write_file_atomically((out / "report.md").string(),
+                        [&](std::FILE* f) { std::fwrite(report.data(), 1, report.size(), f); });
+  return results;
+}
+
+namespace {
+
+std::string number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string metrics_csv(const std::vector<ModelResult>& results) {
+  std::string out =
+      "model,class,clock,steps,time,wall_seconds,rain_volume_m3,eroded_volume_m3,"
+      "deposited_volume_m3,outflow_volume_m3,suspended_volume_m3,lost_volume_m3,"
+      "mass_balance_abs_m3,mass_balance_rel";
+  if (!results.empty())
+    for (auto& [name, value] : results.front().terrain_values) out.append(",").append(name);
+  out += "\n";
+  for (const ModelResult& r : results) {
+    const MassBalance& m = r.balance;
+    out += r.model + "," + r.class_name + "," + r.clock + "," + std::to_string(r.steps) + "," +
+           number(r.time) + "," + number(r.wall_seconds) + "," + number(r.rain_volume) + "," +
+           number(m.eroded) + "," + number(m.deposited) + "," + number(m.outflow) + "," +
+           number(m.suspended) + "," + number(m.lost) + "," + number(m.residual) + "," +
+           number(m.relative);
+    for (auto& [name, value] : r.terrain_values) out.append(",").append(number(value));
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace runnel::compare

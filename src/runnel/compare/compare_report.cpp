@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+// compare.png and report.md of runnel compare.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+#include "runnel/compare/compare.hpp"
+#include "runnel/io/images.hpp"
+
+namespace runnel::compare {
+namespace {
+
+constexpr int kTileVertices = 257;  // larger terrains are subsampled for the figure
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string format(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+double metric(const ModelResult& r, const std::string& name) {
+  for (auto& [key, value] : r.terrain_values)
+    if (key == name) return value;
+  return std::nan("");
+}
+
+}  // namespace
+
+void write_compare_png(const std::string& path, const Heightmap& initial,
+                       const std::vector<ModelResult>& results) {
+  const int factor = std::max(1, (std::max(initial.nx, initial.ny) - 2) / (kTileVertices - 1) + 1);
+  const Heightmap before = subsample(initial, factor);
+  float lo = before.min_height(), hi = before.max_height();
+  double scale = 0;  // one Δh scale for every model: the largest of their robust scales
+  std::vector<Heightmap> after;
+  for (const ModelResult& r : results) {
+    after.push_back(subsample(r.final_terrain, factor));
+    lo = std::min(lo, after.back().min_height());
+    hi = std::max(hi, after.back().max_height());
+    scale = std::max(scale, erosion_scale(before, after.back()));
+  }
+  std::vector<RgbImage> top, bottom;
+  top.push_back(with_title(terrain_picture(before, lo, hi), "initial terrain"));
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const std::string name = lower(results[k].model);
+    top.push_back(with_title(terrain_picture(after[k], lo, hi), name + ": final"));
+    bottom.push_back(with_title(erosion_picture(before, after[k], scale), name + ": erosion"));
+  }
+  int tile_w = 0, top_h = 0, bottom_h = 0;
+  for (auto& t : top) tile_w = std::max(tile_w, t.width), top_h = std::max(top_h, t.height);
+  for (auto& b : bottom)
+    tile_w = std::max(tile_w, b.width), bottom_h = std::max(bottom_h, b.height);
+  const int gap = 8, columns = static_cast<int>(top.size());
+  RgbImage grid(columns * (tile_w + gap) + gap, top_h + bottom_h + 3 * gap);
+  for (int c = 0; c < columns; ++c) {
+    grid.paste(top[static_cast<std::size_t>(c)], gap + c * (tile_w + gap), gap);
+    if (c > 0)
+      grid.paste(bottom[static_cast<std::size_t>(c - 1)], gap + c * (tile_w + gap),
+                 top_h + 2 * gap);
+  }
+  // Under the initial terrain: what the colours mean.
+  const int x = gap + 4, y = top_h + 2 * gap + 8;
+  draw_text(grid, x, y, "one scale for all:", 2);
+  draw_text(grid, x, y + 24, "dh +-" + format("%.3g", scale) + " m", 2);
+  draw_text(grid, x, y + 48, "red: eroded", 2, 180, 30, 30);
+  draw_text(grid, x, y + 72, "blue: deposited", 2, 30, 60, 180);
+  draw_text(grid, x, y + 96, "heights " + format("%.4g", lo) + " to", 2);
+  draw_text(grid, x, y + 120, format("%.4g", hi) + " m", 2);
+  write_png_rgb(path, with_title(grid, "runnel compare: " + std::to_string(results.size()) +
+                                           " models, one terrain, one rain budget"));
+}
+
+std::string report_markdown(const std::vector<ModelResult>& results, const RainBudget& budget,
+                            const Heightmap& initial, const Options& options) {
+  std::string md = "# runnel compare: " + options.scenario_name + "\n\n";
+  md += "Terrain " + std::to_string(initial.nx) + " × " + std::to_string(initial.ny) +
+        " vertices, cell " + format("%.6g", initial.cell) + " m, heights " +
+        format("%.4g", initial.min_height()) + " to " + format("%.4g", initial.max_height()) +
+        " m. Rain budget " + format("%.6g", budget.volume) +
+        " m³ (the SPH rain: " + format("%.6g", budget.sph_rate) + " particles/s of " +
+        format("%.4g", budget.particle_volume) + " m³ for " + format("%.6g", budget.duration) +
+        " s); pipe and olsen rain it evenly on every cell, the droplet model as one droplet per "
+        "particle volume; thermal has no rain. See docs/models.md.\n\n";
+  md +=
+      "![initial terrain, then each model's final terrain above its erosion map](compare.png)\n\n";
+  md +=
+      "| model | class | steps | time | rain m³ | eroded m³ | deposited m³ | outflow m³ | balance "
+      "(rel) | hypsometric integral | erosion score | mean slope ° | drainage density 1/m | "
+      "concavity θ | spectral slope | erosion–flow ρ |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const ModelResult& r : results) {
+    md += "| [" + r.model + "](" + r.folder + "/metrics.json) | " + r.class_name + " | " +
+          std::to_string(r.steps) + " | " + format("%.4g", r.time) + (r.clock == "s" ? " s" : "") +
+          " | " + format("%.4g", r.rain_volume) + " | " + format("%.4g", r.balance.eroded) + " | " +
+          format("%.4g", r.balance.deposited) + " | " + format("%.4g", r.balance.outflow) + " | " +
+          format("%.1e", r.balance.relative) + " | " +
+          format("%.4f", metric(r, "hypsometric_integral")) + " | " +
+          format("%.4f", metric(r, "erosion_score")) + " | " +
+          format("%.2f", metric(r, "mean_slope_deg")) + " | " +
+          format("%.4g", metric(r, "drainage_density_per_m")) + " | " +
+          format("%.3f", metric(r, "concavity_theta")) + " | " +
+          format("%.3f", metric(r, "spectral_slope")) + " | " +
+          format("%.3f", metric(r, "erosion_flow_correlation")) + " |\n";
+  }
+  md +=
+      "\nInitial terrain: hypsometric integral " +
+      format("%.4f",
+             results.empty() ? std::nan("") : metric(results[0], "hypsometric_integral_initial")) +
+      ", erosion score " +
+      format("%.4f", results.empty() ? std::nan("") : metric(results[0], "erosion_score_initial")) +
+      ". Every column for every model is in metrics.csv; each model's folder holds its pictures, "
+      "final terrain (ASC, NPY, HDF5) and metrics.json.\n";
+  return md;
+}
+
+}  // namespace runnel::compare
