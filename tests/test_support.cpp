@@ -80,4 +80,10 @@ ComputeContext& compute() {
   return context;
 }
 
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return -1e300;
+  return std::stod(json.substr(at + key.size() + 4));
+}
+
 }  // namespace runnel::test

@@ -39,4 +39,7 @@ CliResult run_cli(const std::vector<std::string>& args, const std::string& env =
 
 std::string source_dir();
 
+// The number after "KEY": in a JSON text (the first occurrence); -1e300 if the key is absent.
+double json_number(const std::string& json, const std::string& key);
+
 }  // namespace runnel::test

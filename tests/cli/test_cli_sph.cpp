@@ -9,14 +9,9 @@
 namespace runnel {
 namespace {
 
+using test::json_number;
 using test::run_cli;
 using test::ScratchDir;
-
-double json_number(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\": ");
-  if (at == std::string::npos) return -1e300;
-  return std::stod(json.substr(at + key.size() + 4));
-}
 
 TEST(CliSph, ValidateDambreakWritesFrontCsvAndJson) {
   ScratchDir dir;

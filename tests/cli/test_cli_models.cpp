@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+// The comparison models through the command line: `runnel run --model`, scenario files choosing
+// a model, resuming a grid model exactly, and `runnel compare` with its table, figure and report.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::json_number;
+using test::run_cli;
+using test::ScratchDir;
+
+const std::vector<std::string> kSmallTerrain = {"--generate",      "fbm",   "--set",
+                                                "terrain.size=49", "--set", "terrain.cell=2"};
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+TEST(CliModels, RunEveryGridModelWithItsMetrics) {
+  ScratchDir dir;
+  for (const char* model : {"droplet", "pipe", "olsen", "thermal"}) {
+    const std::string out = dir.path(model);
+    const auto r = run_cli(
+        with({"run", "--model", model, "--steps", "20", "--out", out, "--quiet"}, kSmallTerrain));
+    ASSERT_EQ(r.exit_code, 0) << model << ": " << r.err;
+    const std::string m = test::read_text(out + "/metrics.json");
+    EXPECT_NE(m.find(std::string("\"model\": \"") + model + "\""), std::string::npos) << model;
+    EXPECT_EQ(json_number(m, "steps"), 20.0) << model;
+    EXPECT_EQ(json_number(m, "mass_balance_abs"), 0.0) << model;
+    EXPECT_GT(json_number(m, "eroded_volume"), 0.0) << model;
+    EXPECT_NE(m.find("\"hypsometric_integral\""), std::string::npos) << model;
+    EXPECT_NE(m.find("\"kernel_seconds\""), std::string::npos) << model;
+    for (const char* f : {"erosion.png", "final.h5", "final.npy"})
+      EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << model << " " << f;
+  }
+}
+
+TEST(CliModels, ScenarioFileChoosesTheModelAndItsClock) {
+  ScratchDir dir;
+  test::write_text(dir.path("olsen.toml"),
+                   "[terrain]\ngenerator = \"fbm\"\nsize = 33\n[run]\nmodel = \"olsen\"\n"
+                   "iterations = 12\n");
+  const auto r = run_cli({"run", dir.path("olsen.toml"), "--out", dir.path("o"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string m = test::read_text(dir.path("o/metrics.json"));
+  EXPECT_NE(m.find("\"model\": \"olsen\""), std::string::npos);
+  EXPECT_EQ(json_number(m, "steps"), 12.0) << "olsen counts run.iterations";
+  EXPECT_NE(m.find("\"clock\": \"iterations\""), std::string::npos);
+}
+
+TEST(CliModels, ResumedPipeRunEqualsTheUninterruptedOne) {
+  ScratchDir dir;
+  const auto base = with({"--model", "pipe", "--quiet"}, kSmallTerrain);
+  ASSERT_EQ(run_cli(with({"run", "--steps", "60", "--out", dir.path("straight")}, base)).exit_code,
+            0);
+  ASSERT_EQ(run_cli(with({"run", "--steps", "30", "--out", dir.path("first")}, base)).exit_code, 0);
+  const auto r = run_cli({"resume", dir.path("first/final.h5"), "--steps", "30", "--out",
+                          dir.path("second"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::read_text(dir.path("straight/final.npy")),
+            test::read_text(dir.path("second/final.npy")));
+  const std::string m = test::read_text(dir.path("second/metrics.json"));
+  EXPECT_NE(m.find("\"model\": \"pipe\""), std::string::npos);
+  EXPECT_EQ(json_number(m, "resumed_from_step"), 30.0);
+}
+
+TEST(CliModels, UnknownModelExitsWithTwo) {
+  ScratchDir dir;
+  const auto r = run_cli(
+      with({"run", "--model", "lava", "--steps", "5", "--out", dir.path("x")}, kSmallTerrain));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("lava"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("x")));
+}
+
+// metrics.csv as rows of cells.
+std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(test::read_text(path));
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream l(line);
+    for (std::string c; std::getline(l, c, ',');) cells.push_back(c);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST(CliModels, CompareWritesTableFigureAndReportWithOneRainBudget) {
+  ScratchDir dir;
+  test::write_text(dir.path("small.toml"),
+                   "[terrain]\ngenerator = \"fbm\"\nsize = 49\ncell = 2.0\n[run]\nsim_time = 2.0\n"
+                   "iterations = 20\n[rain]\nrate = 300.0\nmax_particles = 2000\n");
+  const auto r = run_cli({"compare", dir.path("small.toml"), "--models",
+                          "sph,droplet,pipe,olsen,thermal", "--out", dir.path("cmp"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = read_csv(dir.path("cmp/metrics.csv"));
+  ASSERT_EQ(rows.size(), 6u) << "a header and a row per model";
+  const auto& header = rows[0];
+  auto column = [&](const std::string& name) {
+    for (std::size_t k = 0; k < header.size(); ++k)
+      if (header[k] == name) return k;
+    ADD_FAILURE() << "no column " << name;
+    return std::size_t{0};
+  };
+  const std::size_t rain = column("rain_volume_m3"), balance = column("mass_balance_abs_m3"),
+                    eroded = column("eroded_volume_m3");
+  column("hypsometric_integral");
+  column("spectral_slope");
+  column("erosion_flow_correlation");
+  // The budget: 300 particles/s of (2 m)³ for 2 s.
+  const double budget = 300.0 * 8.0 * 2.0;
+  const char* models[] = {"sph", "droplet", "pipe", "olsen", "thermal"};
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), header.size());
+    EXPECT_EQ(rows[k][0], models[k - 1]);
+    EXPECT_EQ(std::stod(rows[k][balance]), 0.0) << rows[k][0];
+    EXPECT_GT(std::stod(rows[k][eroded]), 0.0) << rows[k][0];
+    const double v = std::stod(rows[k][rain]);
+    if (rows[k][0] == "thermal")
+      EXPECT_EQ(v, 0.0);
+    else
+      EXPECT_NEAR(v, budget, 0.03 * budget) << rows[k][0] << " receives the same rain";
+    EXPECT_TRUE(std::filesystem::exists(dir.path("cmp/" + rows[k][0] + "/metrics.json")));
+  }
+  const std::string png = test::read_text(dir.path("cmp/compare.png"));
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  const std::string report = test::read_text(dir.path("cmp/report.md"));
+  EXPECT_NE(report.find("!["), std::string::npos);
+  EXPECT_NE(report.find("(compare.png)"), std::string::npos);
+  for (const char* m : models)
+    EXPECT_NE(report.find(std::string("| [") + m + "]"), std::string::npos) << m;
+}
+
+TEST(CliModels, CompareRefusesBadModelListsBeforeWritingAnything) {
+  ScratchDir dir;
+  for (const char* list : {"sph,lava", "pipe,pipe", "pipe,,olsen"}) {
+    const auto r = run_cli(
+        {"compare", "--models", list, "--set", "terrain.size=17", "--out", dir.path("cmp")});
+    EXPECT_EQ(r.exit_code, 2) << list;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("cmp"))) << list;
+  }
+  const auto steps = run_cli({"compare", "--models", "pipe", "--set", "terrain.size=17", "--set",
+                              "run.steps=10", "--out", dir.path("cmp")});
+  EXPECT_EQ(steps.exit_code, 2);
+  EXPECT_NE(steps.err.find("run.steps"), std::string::npos) << steps.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("cmp")));
+}
+
+}  // namespace
+}  // namespace runnel
