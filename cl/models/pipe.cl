@@ -127,6 +127,27 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
   sediment_next[k] = s;
 }
 
+// The option pipe.transport = "semi-lagrangian" (Mei 2007's advection) instead of pipe_transport:
+// s_new(x) = s(x − v·Δt), bilinear, clamped to the map. It does not conserve mass; what it loses
+// (or gains) is the exact sum of s_old − s_new, booked in `lost`.
+__kernel void pipe_advect(const __global long* sediment, __global long* sediment_next, const __global float* velocity,
+                          const int nx, const int ny, const float cell, const float dt, volatile __global long* lost) {
+  const int k = get_global_id(0);
+  if (k >= nx * ny) return;
+  const int i = k % nx, j = k / nx;
+  const float x = clamp((float)i - velocity[2 * k] * dt / cell, 0.0f, (float)(nx - 1));
+  const float z = clamp((float)j - velocity[2 * k + 1] * dt / cell, 0.0f, (float)(ny - 1));
+  const int i0 = min((int)x, nx - 2), j0 = min((int)z, ny - 2);
+  const float u = x - (float)i0, v = z - (float)j0;
+  const int m = j0 * nx + i0;
+  const float s = (1.0f - u) * (1.0f - v) * (float)sediment[m] + u * (1.0f - v) * (float)sediment[m + 1] +
+                  (1.0f - u) * v * (float)sediment[m + nx] + u * v * (float)sediment[m + nx + 1];
+  const long next = (long)floor(s);
+  sediment_next[k] = next;
+  const long change = sediment[k] - next;
+  if (change != 0) atom_add(lost, change);
+}
+
 // Largest depth and speed per block of cells, for the adaptive time step. A speed counts only
 // where the water is at least PIPE_CFL_DEPTH deep and the flux limit K did not act (the cell kept
 // some of its water): a limited cell's 'velocity' is its whole volume leaving in one step, about

@@ -35,7 +35,7 @@ long long GridModel::suspended_quanta() {
 
 MassBalance GridModel::mass_balance() {
   return mass_balance_of(state_.initial_fixed(), state_.terrain().download_fixed(),
-                         suspended_quanta(), outflow_quanta(), 0,
+                         suspended_quanta(), outflow_quanta(), lost_quanta(),
                          state_.terrain().volume_quantum());
 }
 

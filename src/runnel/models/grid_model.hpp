@@ -36,6 +36,8 @@ class GridModel : public Model {
   GridState& state() { return state_; }
   // Height quanta that left the map (outflow edges), and that the model has in suspension.
   virtual long long outflow_quanta() { return 0; }
+  // Height quanta a documented non-conserving option destroyed (negative: created).
+  virtual long long lost_quanta() { return 0; }
   virtual long long suspended_quanta();
 
  protected:

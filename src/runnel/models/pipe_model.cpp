@@ -27,6 +27,7 @@ PipeSettings PipeSettings::from(const Parameters& p) {
   s.cfl_depth = p.real("pipe.cfl_depth");
   s.dt_max = p.real("pipe.dt_max");
   s.closed = p.text("pipe.edges") == "closed";
+  s.semi_lagrangian = p.text("pipe.transport") == "semi-lagrangian";
   return s;
 }
 
@@ -70,12 +71,15 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   sediment_next_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_long));
   stats_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * kStatBlocks * sizeof(float));
   outflow_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
+  lost_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(outflow_, cl_long{0}, 0, sizeof(cl_long));
+  compute.queue().enqueueFillBuffer(lost_, cl_long{0}, 0, sizeof(cl_long));
   cl::Program& program = compute.program({"cl/models/pipe.cl"}, settings_.build_options());
   flux_kernel_ = cl::Kernel(program, "pipe_flux");
   water_kernel_ = cl::Kernel(program, "pipe_water");
   erode_kernel_ = cl::Kernel(program, "pipe_erode");
   transport_kernel_ = cl::Kernel(program, "pipe_transport");
+  advect_kernel_ = cl::Kernel(program, "pipe_advect");
   stats_kernel_ = cl::Kernel(program, "pipe_stats");
 }
 
@@ -95,9 +99,14 @@ double PipeModel::take_step() {
   set_args(erode_kernel_, terrain.height_fixed(), terrain.height(), sediment, depth, velocity, nx,
            ny, q, cell, dt);
   prof.launch(erode_kernel_, work, "pipe_erode");
-  set_args(transport_kernel_, sediment, sediment_next_, flux, previous_depth_, nx, ny, cell, dt,
-           outflow_);
-  prof.launch(transport_kernel_, work, "pipe_transport");
+  if (settings_.semi_lagrangian) {
+    set_args(advect_kernel_, sediment, sediment_next_, velocity, nx, ny, cell, dt, lost_);
+    prof.launch(advect_kernel_, work, "pipe_advect");
+  } else {
+    set_args(transport_kernel_, sediment, sediment_next_, flux, previous_depth_, nx, ny, cell, dt,
+             outflow_);
+    prof.launch(transport_kernel_, work, "pipe_transport");
+  }
   std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment
   terrain.apply();
   const double taken = dt_;
@@ -136,13 +145,21 @@ long long PipeModel::outflow_quanta() {
   return v;
 }
 
+long long PipeModel::lost_quanta() {
+  cl_long v = 0;
+  compute_.queue().enqueueReadBuffer(lost_, CL_TRUE, 0, sizeof(v), &v);
+  return v;
+}
+
 std::vector<std::pair<std::string, std::int64_t>> PipeModel::counters() {
-  return {{"outflow_quanta", outflow_quanta()}};
+  return {{"outflow_quanta", outflow_quanta()}, {"lost_quanta", lost_quanta()}};
 }
 
 void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) {
-  const cl_long outflow = counter_value(c, "outflow_quanta");
+  const cl_long outflow = counter_value(c, "outflow_quanta"),
+                lost = counter_value(c, "lost_quanta");
   compute_.queue().enqueueWriteBuffer(outflow_, CL_TRUE, 0, sizeof(outflow), &outflow);
+  compute_.queue().enqueueWriteBuffer(lost_, CL_TRUE, 0, sizeof(lost), &lost);
 }
 
 double PipeModel::rain_volume() {
@@ -158,7 +175,8 @@ JsonObject PipeModel::diagnostics() {
   return JsonObject()
       .add("next_dt_s", dt_)
       .add("water_volume_m3", water * cell * cell)
-      .add("edges", settings_.closed ? "closed" : "outflow");
+      .add("edges", settings_.closed ? "closed" : "outflow")
+      .add("transport", settings_.semi_lagrangian ? "semi-lagrangian" : "upwind");
 }
 
 }  // namespace runnel

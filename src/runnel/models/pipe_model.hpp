@@ -17,9 +17,10 @@ struct PipeSettings {
   double evaporation = 0.05;  // K_e, 1/s
   double min_tilt = 0.05;     // smallest sin α in the capacity
   double cfl = 0.25;
-  double cfl_depth = 0.01;  // m: thinner water does not limit the step
-  double dt_max = 0.05;     // s
-  bool closed = false;      // closed edges; default outflow
+  double cfl_depth = 0.01;       // m: thinner water does not limit the step
+  double dt_max = 0.05;          // s
+  bool closed = false;           // closed edges; default outflow
+  bool semi_lagrangian = false;  // Mei's advection (not conserving; the loss is reported)
   static PipeSettings from(const Parameters& params);
   std::string build_options() const;
 };
@@ -37,6 +38,7 @@ class PipeModel final : public GridModel {
   double dt() const { return dt_; }
   std::vector<float> depth() { return state_.download_float(kSurfaceWaterDepth); }
   long long outflow_quanta() override;
+  long long lost_quanta() override;
   double rain_volume() override;
   JsonObject diagnostics() override;
 
@@ -52,8 +54,9 @@ class PipeModel final : public GridModel {
   PipeSettings settings_;
   double dt_ = 0;
   int depth_, flux_, velocity_, sediment_;  // GridState handles
-  cl::Buffer previous_depth_, sediment_next_, stats_, outflow_;
-  cl::Kernel flux_kernel_, water_kernel_, erode_kernel_, transport_kernel_, stats_kernel_;
+  cl::Buffer previous_depth_, sediment_next_, stats_, outflow_, lost_;
+  cl::Kernel flux_kernel_, water_kernel_, erode_kernel_, transport_kernel_, advect_kernel_,
+      stats_kernel_;
 };
 
 }  // namespace runnel

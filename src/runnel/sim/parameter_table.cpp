@@ -102,6 +102,7 @@ const std::vector<ParamSpec>& parameter_table() {
       {"pipe.cfl", T::kReal, "0.25", "1", 0.01, 1, {}, "Δt ≤ cfl · l / (sqrt(g d_max) + |v|_max)"},
       {"pipe.cfl_depth", T::kReal, "0.01", "m", 0, 1e3, {}, "water thinner than this does not count in the CFL limit (a thin film's flux over its depth is not a wave speed; the flux limit keeps it non-negative)"},
       {"pipe.dt_max", T::kReal, "0.05", "s", 1e-9, 100, {}, "largest time step"},
+      {"pipe.transport", T::kString, "\"upwind\"", "", 0, 0, {"upwind", "semi-lagrangian"}, "sediment transport: upwind (mass-conserving, sediment leaves with the water) or semi-lagrangian (Mei 2007's advection; not conserving, the loss is reported as lost_volume)"},
       {"pipe.edges", T::kString, "\"outflow\"", "", 0, 0, {"outflow", "closed"}, "outflow (outside cells have b = d = 0) or closed"},
       // run: the simulation as a whole
       {"run.model", T::kString, "\"sph\"", "", 0, 0, {"sph", "droplet", "pipe", "olsen", "thermal"}, "erosion model (docs/models.md): sph (runnel's own), droplet (Beyer 2015), pipe (Mei 2007), olsen (Olsen 2004), thermal (talus)"},

@@ -220,8 +220,9 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   char buf[200];
   std::snprintf(
       buf, sizeof buf,
-      "%llu steps, t = %.3g s, eroded %.4g m3, deposited %.4g m3, mass balance %.2e m3 (rel %.1e)",
-      static_cast<unsigned long long>(s.steps), s.sim_time, m.eroded, m.deposited, m.residual,
+      "%llu steps, t = %.3g%s, eroded %.4g m3, deposited %.4g m3, mass balance %.2e m3 (rel %.1e)",
+      static_cast<unsigned long long>(s.steps), s.sim_time,
+      model.info().clock == ModelClock::kSeconds ? " s" : "", m.eroded, m.deposited, m.residual,
       m.relative);
   progress.finish(buf);
   return s;
