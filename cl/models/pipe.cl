@@ -101,17 +101,26 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   depth[k] *= fmax(0.0f, 1.0f - PIPE_EVAPORATION * dt);
 }
 
+// The share of its sediment a cell sends through pipe d: its outflow over the water it had, at most
+// all of it. Sender and receiver evaluate this same function on the same values, so what leaves
+// one cell arrives in the other to the quantum.
+inline long pipe_sent(long sediment, float outflux, float share) {
+  return (long)floor((float)sediment * fmin(1.0f, outflux * share));
+}
+
 __kernel void pipe_transport(const __global long* sediment, __global long* sediment_next, const __global float* flux,
                              const __global float* previous_depth, const int nx, const int ny, const float cell,
                              const float dt, volatile __global long* outflow) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
   const int i = k % nx, j = k / nx;
+  const float cell2 = cell * cell;
+  // share = Δt / (d1·l²): the fraction of the cell's water one unit of flux carries away in a step.
+  const float volume = previous_depth[k] * cell2;
+  const float share = volume > 0.0f ? dt / volume : 0.0f;
   long s = sediment[k];
   for (int d = 0; d < 4; ++d) {
-    // What this cell sends to neighbour d (the same expression the neighbour evaluates below).
-    const float volume = previous_depth[k] * cell * cell;
-    const long sent = volume > 0.0f ? (long)floor((float)sediment[k] * fmin(1.0f, flux[4 * k + d] * dt / volume)) : 0;
+    const long sent = pipe_sent(sediment[k], flux[4 * k + d], share);
     s -= sent;
     const int x = i + kPipeNeighbour[d].x, z = j + kPipeNeighbour[d].y;
     if (!pipe_inside(x, z, nx, ny)) {
@@ -119,10 +128,9 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
       continue;
     }
     const int m = z * nx + x;
-    const float volume_m = previous_depth[m] * cell * cell;
-    const long received =
-        volume_m > 0.0f ? (long)floor((float)sediment[m] * fmin(1.0f, flux[4 * m + (d ^ 1)] * dt / volume_m)) : 0;
-    s += received;
+    const float volume_m = previous_depth[m] * cell2;
+    const float share_m = volume_m > 0.0f ? dt / volume_m : 0.0f;
+    s += pipe_sent(sediment[m], flux[4 * m + (d ^ 1)], share_m);
   }
   sediment_next[k] = s;
 }

@@ -94,7 +94,7 @@ double DropletModel::take_step() {
              static_cast<cl_ulong>(droplets_), count, static_cast<cl_int>(step), droplet_state_,
              droplet_load_, counters_);
     compute_.profiler().launch(kernel_, round_up_work(count), "droplet_step");
-    terrain.apply(step + 1 == settings_.lifetime);  // droplets do not use the normals
+    terrain.apply();
   }
   droplets_ += count;
   return 1.0;

@@ -40,15 +40,21 @@ void DeviceTerrain::upload_fixed(const std::vector<std::int64_t>& fixed) {
   refresh_view();
 }
 
-void DeviceTerrain::apply(bool refresh_normals) {
-  refresh_view(refresh_normals);
+void DeviceTerrain::apply() {
+  refresh_view();
 }
 
-void DeviceTerrain::refresh_view(bool refresh_normals) {
+cl::Buffer& DeviceTerrain::normal() {
+  if (normals_stale_) normals_.enqueue(height_, normal_, nx_, ny_, cell_);
+  normals_stale_ = false;
+  return normal_;
+}
+
+void DeviceTerrain::refresh_view() {
   const cl_uint n = static_cast<cl_uint>(nx_) * ny_;
   runnel::set_args(apply_, height_fixed_, delta_, height_, n, static_cast<float>(quantum_));
   compute_.profiler().launch(apply_, round_up_work(n), "terrain_apply");
-  if (refresh_normals) normals_.enqueue(height_, normal_, nx_, ny_, cell_);
+  normals_stale_ = true;
 }
 
 Heightmap DeviceTerrain::download() {
@@ -66,9 +72,9 @@ std::vector<std::int64_t> DeviceTerrain::download_fixed() {
   return fixed;
 }
 
-void DeviceTerrain::set_args(cl::Kernel& k, cl_uint i) const {
+void DeviceTerrain::set_args(cl::Kernel& k, cl_uint i) {
   k.setArg(i + 0, height_);
-  k.setArg(i + 1, normal_);
+  k.setArg(i + 1, normal());
   k.setArg(i + 2, nx_);
   k.setArg(i + 3, ny_);
   k.setArg(i + 4, cell_);

@@ -20,17 +20,18 @@ class DeviceTerrain {
   // Replaces the heights (same size): rounds them to the quantum, refreshes the view and normals.
   void upload(const Heightmap& terrain);
   void upload_fixed(const std::vector<std::int64_t>& fixed);
-  // Adds the accumulated deltas to the fixed-point heights, clears them, refreshes the view and
-  // (unless told not to, for a caller that does not read them before the next apply) the normals.
-  void apply(bool refresh_normals = true);
+  // Adds the accumulated deltas to the fixed-point heights, clears them and refreshes the view.
+  // The normals are refreshed when next asked for (normal(), set_args()): the grid models never
+  // read them, and recomputing them every step cost the pipe model a sixth of its time.
+  void apply();
   // The float view as a heightmap, and the exact fixed-point state.
   Heightmap download();
   std::vector<std::int64_t> download_fixed();
 
   // (height, normal, nx, ny, cell): the five kernel arguments every terrain-aware kernel takes.
-  void set_args(cl::Kernel& kernel, cl_uint first_index) const;
+  void set_args(cl::Kernel& kernel, cl_uint first_index);
   cl::Buffer& height() { return height_; }
-  cl::Buffer& normal() { return normal_; }
+  cl::Buffer& normal();
   cl::Buffer& delta() { return delta_; }
   cl::Buffer& height_fixed() { return height_fixed_; }
   int nx() const { return nx_; }
@@ -43,7 +44,7 @@ class DeviceTerrain {
   double extent_z() const { return (ny_ - 1) * static_cast<double>(cell_); }
 
  private:
-  void refresh_view(bool refresh_normals = true);
+  void refresh_view();
   ComputeContext& compute_;
   TerrainNormals normals_;
   int nx_, ny_;
@@ -51,6 +52,7 @@ class DeviceTerrain {
   double quantum_;
   double origin_x_, origin_z_;
   cl::Buffer height_fixed_, delta_, height_, normal_;
+  bool normals_stale_ = true;
   cl::Kernel apply_;
 };
 
