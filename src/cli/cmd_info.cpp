@@ -14,8 +14,15 @@ namespace {
 
 void print_checkpoint_info(const std::string& file, bool json) {
   const CheckpointData d = read_checkpoint(file);
+  // Suspended sediment: on the particles (sph), or the grid field (pipe, olsen).
   double suspended = 0;
   for (auto s : d.particles.sediment) suspended += s;
+  std::string fields;
+  for (const StoredField& f : d.fields) {
+    fields += (fields.empty() ? "" : ", ") + f.name;
+    if (f.name == "sediment__suspended")
+      for (auto s : f.i64) suspended += static_cast<double>(s);
+  }
   suspended *= d.height_quantum * d.terrain.cell * d.terrain.cell;
   double eroded = 0, deposited = 0;
   for (std::size_t k = 0; k < d.height_fixed.size(); ++k) {
@@ -41,6 +48,7 @@ void print_checkpoint_info(const std::string& file, bool json) {
                      .add("eroded_volume", eroded * q)
                      .add("deposited_volume", deposited * q)
                      .add("suspended_volume", suspended)
+                     .add("fields", fields)
                      .str()
               << "\n";
     return;
@@ -50,9 +58,15 @@ void print_checkpoint_info(const std::string& file, bool json) {
               d.runnel_version.c_str(), d.source_revision.c_str());
   std::printf("  terrain %d x %d vertices, cell %g m, heights %.3f .. %.3f m\n", d.terrain.nx,
               d.terrain.ny, d.terrain.cell, d.terrain.min_height(), d.terrain.max_height());
-  std::printf("  step %llu, t = %.6g s, dt = %.3g s, %zu particles, seed %lld\n",
-              static_cast<unsigned long long>(d.steps), d.time, d.dt, d.particles.size(),
-              static_cast<long long>(d.seed));
+  if (d.model == "sph") {
+    std::printf("  step %llu, t = %.6g s, dt = %.3g s, %zu particles, seed %lld\n",
+                static_cast<unsigned long long>(d.steps), d.time, d.dt, d.particles.size(),
+                static_cast<long long>(d.seed));
+  } else {
+    std::printf("  step %llu, model time %.6g, fields: %s, seed %lld\n",
+                static_cast<unsigned long long>(d.steps), d.time,
+                fields.empty() ? "none" : fields.c_str(), static_cast<long long>(d.seed));
+  }
   std::printf("  eroded %.6g m^3, deposited %.6g m^3, suspended %.6g m^3\n", eroded * q,
               deposited * q, suspended);
 }

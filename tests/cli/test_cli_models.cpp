@@ -70,6 +70,14 @@ TEST(CliModels, ResumedPipeRunEqualsTheUninterruptedOne) {
   const std::string m = test::read_text(dir.path("second/metrics.json"));
   EXPECT_NE(m.find("\"model\": \"pipe\""), std::string::npos);
   EXPECT_EQ(json_number(m, "resumed_from_step"), 30.0);
+  // runnel info reads a grid model's checkpoint: its fields and the sediment they carry.
+  const auto info = run_cli({"info", dir.path("first/final.h5"), "--json"});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("\"model\": \"pipe\""), std::string::npos);
+  EXPECT_NE(info.out.find("sediment__suspended"), std::string::npos) << info.out;
+  EXPECT_NEAR(json_number(info.out, "suspended_volume"),
+              json_number(test::read_text(dir.path("first/metrics.json")), "suspended_volume"),
+              1e-9);
 }
 
 TEST(CliModels, UnknownModelExitsWithTwo) {

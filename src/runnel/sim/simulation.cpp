@@ -131,6 +131,9 @@ void Simulation::restore(const CheckpointData& d) {
 
 std::unique_ptr<Simulation> Simulation::from_checkpoint(ComputeContext& compute,
                                                         const CheckpointData& d) {
+  if (d.model != "sph")
+    throw input_error("checkpoint: it holds the " + d.model +
+                      " model; only the SPH model runs here (runnel resume runs every model)");
   const Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
   Heightmap initial = d.terrain;
   for (std::size_t k = 0; k < initial.size(); ++k) {
