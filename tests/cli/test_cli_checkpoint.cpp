@@ -118,6 +118,19 @@ TEST(CliCheckpoint, PythonReadsTheCheckpointWithH5py) {
   const std::string out = test::read_text(dir.path("py.txt"));
   EXPECT_NE(out.find("terrain 49 x 49"), std::string::npos) << out;
   EXPECT_NE(out.find("step 40"), std::string::npos) << out;
+  // A grid model's checkpoint: its fields, with their shapes.
+  ASSERT_EQ(run_cli(with({"run", "--model", "pipe", "--steps", "20", "--out", dir.path("pipe")},
+                         kSmallRun))
+                .exit_code,
+            0);
+  const std::string pipe_cmd = "/usr/bin/python3 " + test::source_dir() +
+                               "/docs/python/read_checkpoint.py " + dir.path("pipe/final.h5") +
+                               " > " + dir.path("pipe.txt") + " 2>&1";
+  ASSERT_EQ(std::system(pipe_cmd.c_str()), 0) << test::read_text(dir.path("pipe.txt"));
+  const std::string pipe = test::read_text(dir.path("pipe.txt"));
+  EXPECT_NE(pipe.find("model pipe"), std::string::npos) << pipe;
+  EXPECT_NE(pipe.find("field surface_water__outflux: shape (49, 49, 4)"), std::string::npos)
+      << pipe;
 }
 
 }  // namespace

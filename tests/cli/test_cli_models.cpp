@@ -147,6 +147,7 @@ TEST(CliModels, CompareWritesTableFigureAndReportWithOneRainBudget) {
   EXPECT_NE(report.find("(compare.png)"), std::string::npos);
   for (const char* m : models)
     EXPECT_NE(report.find(std::string("| [") + m + "]"), std::string::npos) << m;
+  EXPECT_NE(report.find("- pipe: pipe.rain = "), std::string::npos) << "how pipe got its rain";
 }
 
 TEST(CliModels, CompareRefusesBadModelListsBeforeWritingAnything) {

@@ -59,6 +59,18 @@ Parameters model_parameters(const Parameters& scenario, const std::string& model
 
 namespace {
 
+// The keys model_parameters may set, as "key = value, ..." where they differ from the scenario.
+std::string setup_text(const Parameters& scenario, const Parameters& p) {
+  std::string out;
+  for (const char* key :
+       {"pipe.rain", "olsen.rain", "droplet.volume", "droplet.batch", "run.iterations"}) {
+    const std::string value = Parameters::to_text(p.values().at(key));
+    if (value != Parameters::to_text(scenario.values().at(key)))
+      out += (out.empty() ? "" : ", ") + std::string(key) + " = " + value;
+  }
+  return out;
+}
+
 std::vector<Parameters> checked_parameters(ComputeContext& compute, const Parameters& scenario,
                                            const Heightmap& terrain, const Options& options,
                                            RainBudget& budget) {
@@ -115,6 +127,7 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
     r.class_name = model->info().class_name;
     r.clock = model->info().clock == ModelClock::kSeconds ? "s" : "iterations";
     r.folder = name;
+    r.setup = setup_text(scenario, params[k]);
     r.steps = s.steps;
     r.time = s.sim_time;
     r.wall_seconds = s.wall_seconds;

@@ -108,6 +108,9 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
           format("%.3f", metric(r, "spectral_slope")) + " | " +
           format("%.3f", metric(r, "erosion_flow_correlation")) + " |\n";
   }
+  md += "\nHow each model received the budget (parameters set by runnel compare):\n\n";
+  for (const ModelResult& r : results)
+    md += "- " + r.model + ": " + (r.setup.empty() ? "the scenario as it is" : r.setup) + "\n";
   md +=
       "\nInitial terrain: hypsometric integral " +
       format("%.4f",
