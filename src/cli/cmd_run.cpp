@@ -62,6 +62,10 @@ void add_run_command(CLI::App& app) {
     apply_overrides(params, opt->sets);
     if (!opt->model.empty()) params.set("run.model", opt->model, "--model");
     const ModelClock clock = model_entry(params.text("run.model")).info().clock;
+    if (opt->sim_time >= 0 && clock == ModelClock::kIterations) {
+      throw input_error("--sim-time: the " + params.text("run.model") +
+                        " model counts iterations, not seconds; use --steps or run.iterations");
+    }
     require_run_length(params, clock);
     const Heightmap terrain = load_terrain(params);
     ComputeContext compute(opt->device);

@@ -80,12 +80,17 @@ TEST(CliModels, ResumedPipeRunEqualsTheUninterruptedOne) {
               1e-9);
 }
 
-TEST(CliModels, UnknownModelExitsWithTwo) {
+TEST(CliModels, UnknownModelOrWrongClockExitsWithTwo) {
   ScratchDir dir;
   const auto r = run_cli(
       with({"run", "--model", "lava", "--steps", "5", "--out", dir.path("x")}, kSmallTerrain));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("lava"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("x")));
+  const auto seconds = run_cli(
+      with({"run", "--model", "olsen", "--sim-time", "5", "--out", dir.path("x")}, kSmallTerrain));
+  EXPECT_EQ(seconds.exit_code, 2);
+  EXPECT_NE(seconds.err.find("--sim-time"), std::string::npos) << seconds.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path("x")));
 }
 
