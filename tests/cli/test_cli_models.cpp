@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/terrain/terrain_io.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -38,9 +40,36 @@ TEST(CliModels, RunEveryGridModelWithItsMetrics) {
     EXPECT_GT(json_number(m, "eroded_volume"), 0.0) << model;
     EXPECT_NE(m.find("\"hypsometric_integral\""), std::string::npos) << model;
     EXPECT_NE(m.find("\"kernel_seconds\""), std::string::npos) << model;
-    for (const char* f : {"erosion.png", "final.h5", "final.npy"})
+    for (const char* f : {"erosion.png", "final.h5", "final.npy", "drainage_area.npy"})
       EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << model << " " << f;
   }
+}
+
+TEST(CliModels, DrainageAreaMapIsTheFinalTerrainsFlowAccumulation) {
+  ScratchDir dir;
+  ASSERT_EQ(
+      run_cli(with({"run", "--model", "thermal", "--steps", "5", "--out", dir.path("t"), "--quiet"},
+                   kSmallTerrain))
+          .exit_code,
+      0);
+  Heightmap final_terrain = read_terrain(dir.path("t/final.npy"));  // the exact float heights
+  final_terrain.cell = 2.0;                                         // NPY has no cell size
+  const Heightmap area = read_terrain(dir.path("t/drainage_area.npy"));
+  ASSERT_EQ(area.size(), final_terrain.size());
+  // Every vertex drains at least its own cell; the border outlets together drain the whole map.
+  const double cell2 = 2.0 * 2.0;
+  double outlets = 0;
+  for (int j = 0; j < area.ny; ++j) {
+    for (int i = 0; i < area.nx; ++i) {
+      EXPECT_GE(area.at(i, j), cell2 * (1 - 1e-6));
+      if (i == 0 || j == 0 || i == area.nx - 1 || j == area.ny - 1) outlets += area.at(i, j);
+    }
+  }
+  // Border vertices may also drain into one another, so their sum is at least the map's area.
+  EXPECT_GE(outlets, area.size() * cell2 * (1 - 1e-6));
+  const std::vector<double> reference = metrics::flow_accumulation(final_terrain);
+  for (std::size_t k = 0; k < reference.size(); ++k)
+    ASSERT_FLOAT_EQ(area.h[k], static_cast<float>(reference[k])) << k;
 }
 
 TEST(CliModels, ScenarioFileChoosesTheModelAndItsClock) {

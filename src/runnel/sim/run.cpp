@@ -173,6 +173,11 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                  "erosion and deposition"));
   write_terrain((out / "final.asc").string(), final_terrain);
   write_terrain((out / "final.npy").string(), final_terrain);
+  // The D8 drainage area of the final terrain (m², docs/metrics.md), as a map for analysis.
+  Heightmap drainage(final_terrain.nx, final_terrain.ny, final_terrain.cell);
+  const std::vector<double> area = metrics::flow_accumulation(final_terrain);
+  for (std::size_t k = 0; k < area.size(); ++k) drainage.h[k] = static_cast<float>(area[k]);
+  write_terrain((out / "drainage_area.npy").string(), drainage);
 
   RunSummary s;
   s.steps = model.steps();
