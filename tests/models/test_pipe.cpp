@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "runnel/core/error.hpp"
 #include "runnel/models/pipe_model.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
@@ -48,6 +49,22 @@ TEST(PipeModel, IsDeterministic) {
     results.push_back(model.state().terrain().download_fixed());
   }
   EXPECT_EQ(results[0], results[1]);
+}
+
+// A collapsing time step stops the run with an error naming the step, never carries on.
+TEST(PipeModel, TimeStepCollapseStopsTheRun) {
+  Parameters p;
+  p.set("pipe.rain", 0.5);
+  p.set("pipe.dt_min", 0.045);  // absurdly large, so that the CFL step falls below it
+  PipeModel model(compute(), p,
+                  generate_terrain("diamond-square", 33, 33, 1.0, 4, {{"relief", 0.5}}));
+  try {
+    for (int k = 0; k < 2000; ++k) model.step();
+    FAIL() << "the step never fell below pipe.dt_min";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("time step collapsed"), std::string::npos) << e.what();
+    EXPECT_EQ(e.code(), ExitCode::kRuntime);
+  }
 }
 
 // Mei's semi-Lagrangian advection does not conserve sediment: the option reports what it loses, so

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
@@ -26,6 +27,7 @@ PipeSettings PipeSettings::from(const Parameters& p) {
   s.cfl = p.real("pipe.cfl");
   s.cfl_depth = p.real("pipe.cfl_depth");
   s.dt_max = p.real("pipe.dt_max");
+  s.dt_min = p.real("pipe.dt_min");
   s.closed = p.text("pipe.edges") == "closed";
   s.semi_lagrangian = p.text("pipe.transport") == "semi-lagrangian";
   return s;
@@ -137,6 +139,15 @@ void PipeModel::choose_next_dt() {
   }
   dt_ = std::min(settings_.dt_max, settings_.cfl * state_.terrain().cell() /
                                        (std::sqrt(settings_.gravity * d_max) + v_max + 1e-9));
+  if (dt_ < settings_.dt_min) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "pipe model at step %llu, t = %.6g s: the time step collapsed to %.3g s "
+                  "(pipe.dt_min %.3g s; depth up to %.3g m, speed up to %.3g m/s)",
+                  static_cast<unsigned long long>(steps() + 1), time() + dt_, dt_, settings_.dt_min,
+                  d_max, v_max);
+    throw runtime_error(buf);
+  }
 }
 
 long long PipeModel::outflow_quanta() {

@@ -18,6 +18,7 @@ struct PipeSettings {
   double min_tilt = 0.05;     // smallest sin α in the capacity
   double cfl = 0.25;
   double cfl_depth = 0.01;       // m: thinner water does not limit the step
+  double dt_min = 1e-6;          // s: a shorter step stops the run
   double dt_max = 0.05;          // s
   bool closed = false;           // closed edges; default outflow
   bool semi_lagrangian = false;  // Mei's advection (not conserving; the loss is reported)

@@ -101,6 +101,7 @@ const std::vector<ParamSpec>& parameter_table() {
       {"pipe.min_tilt", T::kReal, "0.05", "1", 0, 1, {}, "smallest sin α in the capacity"},
       {"pipe.cfl", T::kReal, "0.25", "1", 0.01, 1, {}, "Δt ≤ cfl · l / (sqrt(g d_max) + |v|_max)"},
       {"pipe.cfl_depth", T::kReal, "0.01", "m", 0, 1e3, {}, "water thinner than this does not count in the CFL limit (a thin film's flux over its depth is not a wave speed; the flux limit keeps it non-negative)"},
+      {"pipe.dt_min", T::kReal, "1e-6", "s", 0, 100, {}, "smallest time step: a step the CFL limit would make shorter stops the run with an error (a collapsing step means the flow has blown up)"},
       {"pipe.dt_max", T::kReal, "0.05", "s", 1e-9, 100, {}, "largest time step"},
       {"pipe.transport", T::kString, "\"upwind\"", "", 0, 0, {"upwind", "semi-lagrangian"}, "sediment transport: upwind (mass-conserving, sediment leaves with the water) or semi-lagrangian (Mei 2007's advection; not conserving, the loss is reported as lost_volume)"},
       {"pipe.edges", T::kString, "\"outflow\"", "", 0, 0, {"outflow", "closed"}, "outflow (outside cells have b = d = 0) or closed"},
