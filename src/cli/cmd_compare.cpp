@@ -4,7 +4,6 @@
 
 #include "cli/commands.hpp"
 #include "runnel/compare/compare.hpp"
-#include "runnel/core/error.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/scenario.hpp"
 
@@ -55,11 +54,7 @@ void add_compare_command(CLI::App& app) {
     if (!opt->terrain.empty()) params.set("terrain.file", opt->terrain, "--terrain");
     apply_overrides(params, opt->sets);
     compare::Options options;
-    options.models = split_list(opt->models);
-    for (const std::string& m : options.models) {
-      if (m.empty()) throw input_error("--models: an empty name in '" + opt->models + "'");
-      model_entry(m);
-    }
+    options.models = split_list(opt->models);  // names checked by run_compare
     options.out_dir = opt->out;
     options.quiet = opt->quiet;
     options.scenario_name = opt->scenario.empty() ? "built-in defaults" : opt->scenario;

@@ -77,6 +77,7 @@ std::vector<Parameters> checked_parameters(ComputeContext& compute, const Parame
   if (options.models.empty()) throw input_error("--models: name at least one model");
   std::set<std::string> seen;
   for (const std::string& m : options.models) {
+    if (m.empty()) throw input_error("--models: an empty name in the list");
     model_entry(m);  // an unknown name: exit 2, listing the models
     if (!seen.insert(m).second) throw input_error("--models: " + m + " is listed twice");
   }

@@ -66,6 +66,13 @@ void read_model_state(const H5File& f, const std::string& path, const std::vecto
 
 }  // namespace
 
+Heightmap CheckpointData::initial_terrain() const {
+  Heightmap initial = terrain;
+  for (std::size_t k = 0; k < initial.size(); ++k)
+    initial.h[k] = static_cast<float>(static_cast<double>(initial_fixed[k]) * height_quantum);
+  return initial;
+}
+
 std::string parameters_toml(const Parameters& params) {
   // Group keys by their table: "a.b" → [a] b, "terrain.set.x" → [terrain.set] x.
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> tables;

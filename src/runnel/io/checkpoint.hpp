@@ -48,6 +48,10 @@ struct CheckpointData {
   // Grid models (model != "sph"): their vertex fields and named integer counters.
   std::vector<StoredField> fields;
   std::vector<std::pair<std::string, std::int64_t>> model_counters;
+
+  // The run's initial terrain (initial_fixed in metres, on the terrain's grid): what a model is
+  // rebuilt on before restore().
+  Heightmap initial_terrain() const;
 };
 
 // Writes atomically (temporary file, sync, rename): an interrupted write leaves the old file

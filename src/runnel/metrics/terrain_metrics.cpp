@@ -295,7 +295,11 @@ double spectral_slope(const Heightmap& t) {
 }
 
 double erosion_flow_correlation(const Heightmap& before, const Heightmap& after) {
-  const std::vector<double> area = flow_accumulation(after);
+  return erosion_flow_correlation(before, after, flow_accumulation(after));
+}
+
+double erosion_flow_correlation(const Heightmap& before, const Heightmap& after,
+                                const std::vector<double>& area) {
   std::vector<double> eroded, log_area;
   for (std::size_t k = 0; k < after.size(); ++k) {
     const double e = double(before.h[k]) - after.h[k];
@@ -309,7 +313,12 @@ double erosion_flow_correlation(const Heightmap& before, const Heightmap& after)
 
 std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
                                                                   const Heightmap& after) {
-  const std::vector<double> area = flow_accumulation(after);
+  return terrain_metric_values(before, after, flow_accumulation(after));
+}
+
+std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
+                                                                  const Heightmap& after,
+                                                                  const std::vector<double>& area) {
   // Channels: vertices draining at least 1 % of the terrain (and at least 20 cells).
   const double total = (after.nx - 1) * after.cell * (after.ny - 1) * after.cell;
   const double threshold = std::max(0.01 * total, 20.0 * after.cell * after.cell);
@@ -322,7 +331,7 @@ std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightma
           {"drainage_density_per_m", drainage_density(after, area, threshold)},
           {"concavity_theta", concavity(after, area, threshold)},
           {"spectral_slope", spectral_slope(after)},
-          {"erosion_flow_correlation", erosion_flow_correlation(before, after)}};
+          {"erosion_flow_correlation", erosion_flow_correlation(before, after, area)}};
 }
 
 JsonObject terrain_metrics_json(const std::vector<std::pair<std::string, double>>& values,

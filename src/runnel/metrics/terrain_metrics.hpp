@@ -44,11 +44,18 @@ double spectral_slope(const Heightmap& t);
 
 // Spearman rank correlation of eroded depth (h0 − h, eroded vertices only) with log drainage area.
 double erosion_flow_correlation(const Heightmap& before, const Heightmap& after);
+// The same with the drainage area of `after` already computed (flow_accumulation(after)).
+double erosion_flow_correlation(const Heightmap& before, const Heightmap& after,
+                                const std::vector<double>& area);
 
 // Every scalar metric above for a terrain (and its initial state), by name, in a fixed order (the
 // columns of runnel compare's metrics.csv).
 std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
                                                                   const Heightmap& after);
+// The same with the drainage area of `after` already computed (flow_accumulation(after)).
+std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
+                                                                  const Heightmap& after,
+                                                                  const std::vector<double>& area);
 // Those values plus the slope histogram, for metrics.json.
 JsonObject terrain_metrics_json(const std::vector<std::pair<std::string, double>>& values,
                                 const Heightmap& after);

@@ -100,16 +100,18 @@ double DropletModel::take_step() {
   return 1.0;
 }
 
+std::array<cl_long, 2> DropletModel::read_counters() {
+  std::array<cl_long, 2> c{};
+  compute_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof(c), c.data());
+  return c;
+}
+
 long long DropletModel::outflow_quanta() {
-  cl_long c[2];
-  compute_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof(c), c);
-  return c[1];
+  return read_counters()[1];
 }
 
 long long DropletModel::droplets_out() {
-  cl_long c[2];
-  compute_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof(c), c);
-  return c[0];
+  return read_counters()[0];
 }
 
 std::vector<std::pair<std::string, std::int64_t>> DropletModel::counters() {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -55,6 +56,7 @@ class DropletModel final : public GridModel {
   void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
 
  private:
+  std::array<cl_long, 2> read_counters();  // {droplets out, outflow quanta}
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;

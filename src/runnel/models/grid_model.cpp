@@ -33,6 +33,13 @@ long long GridModel::suspended_quanta() {
   return std::accumulate(s.begin(), s.end(), 0LL);
 }
 
+double GridModel::water_volume() {
+  double depth = 0;
+  for (float d : state_.download_float(kSurfaceWaterDepth)) depth += d;
+  const double cell = state_.terrain().cell();
+  return depth * cell * cell;
+}
+
 MassBalance GridModel::mass_balance() {
   return mass_balance_of(state_.initial_fixed(), state_.terrain().download_fixed(),
                          suspended_quanta(), outflow_quanta(), lost_quanta(),

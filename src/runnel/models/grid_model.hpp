@@ -43,6 +43,8 @@ class GridModel : public Model {
  protected:
   // One step of the numerics; returns its length in clock units.
   virtual double take_step() = 0;
+  // m³ of water standing on the terrain (surface_water__depth × cell²).
+  double water_volume();
   // Integer counters an exact restart needs, by name.
   virtual std::vector<std::pair<std::string, std::int64_t>> counters() { return {}; }
   virtual void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>&) {}

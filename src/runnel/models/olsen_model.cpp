@@ -74,11 +74,7 @@ double OlsenModel::rain_volume() {
 }
 
 JsonObject OlsenModel::diagnostics() {
-  const std::vector<float> w = water();
-  double total = 0;
-  for (float v : w) total += v;
-  const double cell = state_.terrain().cell();
-  return JsonObject().add("water_volume_m3", total * cell * cell);
+  return JsonObject().add("water_volume_m3", water_volume());
 }
 
 }  // namespace runnel

@@ -179,13 +179,9 @@ double PipeModel::rain_volume() {
 }
 
 JsonObject PipeModel::diagnostics() {
-  const std::vector<float> d = depth();
-  double water = 0;
-  for (float v : d) water += v;
-  const double cell = state_.terrain().cell();
   return JsonObject()
       .add("next_dt_s", dt_)
-      .add("water_volume_m3", water * cell * cell)
+      .add("water_volume_m3", water_volume())
       .add("edges", settings_.closed ? "closed" : "outflow")
       .add("transport", settings_.semi_lagrangian ? "semi-lagrangian" : "upwind");
 }

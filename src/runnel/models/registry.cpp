@@ -53,10 +53,7 @@ std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute,
   if (d.model == "sph") return std::make_unique<SphModel>(Simulation::from_checkpoint(compute, d));
   Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
   params.set("run.model", d.model);
-  Heightmap initial = d.terrain;
-  for (std::size_t k = 0; k < initial.size(); ++k)
-    initial.h[k] = static_cast<float>(static_cast<double>(d.initial_fixed[k]) * d.height_quantum);
-  std::unique_ptr<Model> model = model_entry(d.model).make(compute, params, initial);
+  std::unique_ptr<Model> model = model_entry(d.model).make(compute, params, d.initial_terrain());
   model->restore(d);
   return model;
 }

@@ -185,7 +185,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   s.wall_seconds = wall;
   s.balance = m;
   s.rain_volume = model.rain_volume();
-  s.terrain_values = metrics::terrain_metric_values(initial, final_terrain);
+  s.terrain_values = metrics::terrain_metric_values(initial, final_terrain, area);
   s.metrics.add("runnel_version", kVersion)
       .add("source_revision", kRevision)
       .add("device", compute.info().name)

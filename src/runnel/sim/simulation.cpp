@@ -135,11 +135,7 @@ std::unique_ptr<Simulation> Simulation::from_checkpoint(ComputeContext& compute,
     throw input_error("checkpoint: it holds the " + d.model +
                       " model; only the SPH model runs here (runnel resume runs every model)");
   const Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
-  Heightmap initial = d.terrain;
-  for (std::size_t k = 0; k < initial.size(); ++k) {
-    initial.h[k] = static_cast<float>(static_cast<double>(d.initial_fixed[k]) * d.height_quantum);
-  }
-  auto sim = std::make_unique<Simulation>(compute, params, initial);
+  auto sim = std::make_unique<Simulation>(compute, params, d.initial_terrain());
   sim->restore(d);
   return sim;
 }
