@@ -4,11 +4,11 @@
 
 __kernel void collide_probe(const __global float* segments, const uint n, const __global float* terrain_height,
                             const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
-                            __global float* result) {
+                            const float radius, __global float* result) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float3 o = vload3(2 * i, segments), d = vload3(2 * i + 1, segments);
-  const TerrainHit hit = collide_segment(terrain_height, terrain_normal, tnx, tny, tcell, o, d);
+  const TerrainHit hit = collide_segment(terrain_height, terrain_normal, tnx, tny, tcell, radius, o, d);
   result[4 * i] = hit.t;
   result[4 * i + 1] = hit.normal.x;
   result[4 * i + 2] = hit.normal.y;

@@ -104,7 +104,7 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
     }
   }
 #else
-  if (contacts[i] < EROSION_CAPACITY_CONTACTS) {
+  if ((contacts[i] & ~TOUCHING_FLAG) < EROSION_CAPACITY_CONTACTS) {
     const float amount = fmin(EROSION_ACIDITY * tcell * tcell, limit);
     const long q = (long)floor(amount / quantum);
     if (q > 0 && carried + q < 0x7fffffffL) {

@@ -6,7 +6,8 @@
 // the candidate count of the boundary cells grows.
 
 #define EMPTY_CELL 0xFFFFFFFFu
-#define DEAD_FLAG 0x80000000u
+#define DEAD_FLAG 0x80000000u      // in id: the particle is removed at the next sort
+#define TOUCHING_FLAG 0x80000000u  // in contacts: it touched the terrain at the end of its last step
 
 typedef struct {
   float3 origin;   // m, corner of cell (0,0,0)

@@ -1,35 +1,91 @@
 // SPDX-License-Identifier: MIT
-// Kick-drift-kick leapfrog (physics.md §2), density integrated like position:
-//   kick_drift: v += a·dt/2, ρ += (dρ/dt)·dt/2, x += v·dt, age += dt, then the boundary response
-//   kick:       v += a·dt/2, ρ += (dρ/dt)·dt/2   (with the rates at the new positions)
-// Boundaries after the drift: vertical walls at the domain edges reflect a particle, or, without
-// walls, a particle that leaves the domain is marked dead (removed at the next sort) and its
-// sediment booked as outflow. Then the step's segment is tested against the terrain triangles
-// (collide.cl); a particle still below the surface (the terrain rose under it) is projected up.
+// Kick-drift-kick leapfrog (physics.md §2) with the density integrated like the position:
+//   kick:   v += a·dt/2                   (a from the last force pass)
+//   drift:  x_new = x + v·dt, age += dt   (then the walls and the terrain contact, below)
+//   ρ:      ρ += (dρ/dt)·dt               (sph_continuity.cl, with the drift's actual displacements)
+//   kick:   v += a·dt/2                   (a at the new x, ρ: sph_forces.cl)
+// so the force pass sees x and ρ of the same instant, and ρ changes exactly as the particles
+// actually moved, also where the contact stopped them.
+//
+// After the drift: vertical walls at the domain edges reflect a particle, or, without walls, a
+// particle that leaves the domain is marked dead (removed at the next sort) and its sediment
+// booked as outflow. Then the step's segment is tested against the contact surface (collide.cl):
+// at a hit the particle's velocity into the surface reverses, scaled by the restitution, and it
+// moves on along the surface for the rest of the step (tested once more); a particle resting on the
+// surface (within ε) is in contact from the start of the step. A particle found below the surface
+// without a contact (the terrain rose under it) is put back on it and counted as a projection.
+// A particle touching the ground (in contact this step, or within ε of the contact surface) feels
+// bed friction, Manning's law for the shear stress of a flow of depth D on the bed:
+//   τ_b = ρ g n² |u|² / D^(1/3),   du/dt = −τ_b / (ρ dx) · u/|u|   (stress over the particle's
+//   footprint dx², mass ρ dx³), applied implicitly (u ← u / (1 + dt g n² |u| / (D^(1/3) dx))), so
+// it only ever slows the flow. D is the local flow depth: dx times the number of particle layers,
+// from the neighbour count (a particle in one flat layer has LAYER_NEIGHBOURS neighbours).
 // Units: m, s. Compile-time constants (host -D): SPH_WALLS, SPH_SURFACE_EPS, SPH_RESTITUTION,
-// SPH_FRICTION.
+// SPH_CONTACT_RADIUS, SPH_SPACING, SPH_MANNING_G_N2 (g n², m^(1/3)), SPH_LAYER_NEIGHBOURS,
+// SPH_GRAVITY.
 
-__kernel void kick_drift(__global float* x, __global float* y, __global float* z, __global float* vx,
-                         __global float* vy, __global float* vz, __global float* rho, __global float* age,
-                         __global int* sediment, __global uint* id, const __global float* ax,
-                         const __global float* ay, const __global float* az, const __global float* drho,
-                         const uint n, const float dt, const __global float* terrain_height,
-                         const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
-                         const float domain_x, const float domain_z, volatile __global long* counters) {
+__kernel void kick(__global float* vx, __global float* vy, __global float* vz, const __global float* ax,
+                   const __global float* ay, const __global float* az, const uint n, const float half_dt) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  const float half_dt = 0.5f * dt;
-  float3 v = (float3)(vx[i] + ax[i] * half_dt, vy[i] + ay[i] * half_dt, vz[i] + az[i] * half_dt);
-  rho[i] += drho[i] * half_dt;
+  vx[i] += ax[i] * half_dt;
+  vy[i] += ay[i] * half_dt;
+  vz[i] += az[i] * half_dt;
+}
+
+// Bed friction on the velocity tangential to the surface of normal n.
+inline float3 bed_friction(float3 v, float3 n, float neighbours, float dt) {
+  const float vn = dot(v, n);
+  const float3 vt = v - vn * n;
+  const float layers = fmax(1.0f, (neighbours + 1.0f) / (SPH_LAYER_NEIGHBOURS + 1.0f));
+  const float k = SPH_MANNING_G_N2 / (cbrt(layers * SPH_SPACING) * SPH_SPACING);  // 1/m
+  return vn * n + vt / (1.0f + dt * k * length(vt));
+}
+
+// The contact at fraction t of a drift of length dt, for a particle drifting at v under the
+// acceleration a (the leapfrog applies a as kicks at both ends of the step). The impact velocity is
+// the one at the hit, v + a·dt·(t − ½); it rebounds (contact_response); if the rebound cannot lift
+// it clear of the surface before the step ends, the particle stays on the surface and only the
+// tangential part of a acts for the rest of the step. Returns the displacement from the hit over
+// the rest of the step and sets v to the drift velocity that the step's closing half kick turns
+// into the velocity at the step's end. Timing the rebound this way makes a bounce lose or gain
+// energy only at O(dt²), whatever the fraction t (reflecting the drift velocity instead gains or
+// loses g·|v|·dt·(1 − 2t) per bounce).
+inline float3 rebound(float3* v, float3 a, float3 n, float t, float dt) {
+  const float3 impact = *v + a * (dt * (t - 0.5f));
+  float3 out = contact_response(impact, n);
+  const float remaining = (1.0f - t) * dt;
+  float3 a_rest = a;
+  const float an = dot(a, n), vn = dot(out, n);
+  if (an < 0.0f && vn + an * remaining < 0.0f) {  // cannot leave the surface: it holds the particle
+    a_rest = a - an * n;
+    out -= vn * n;
+  }
+  *v = out + a_rest * (dt * (0.5f - t));
+  return out * remaining + a_rest * (0.5f * remaining * remaining);
+}
+
+__kernel void drift(const __global float* x, const __global float* y, const __global float* z, __global float* vx,
+                    __global float* vy, __global float* vz, __global float* age, __global int* sediment,
+                    __global uint* contacts, __global uint* id, const __global float* ax, const __global float* ay, const __global float* az,
+                    const __global float* neighbours, __global float* x_new, __global float* y_new,
+                    __global float* z_new, const uint n,
+                    const float dt, const __global float* terrain_height, const __global float* terrain_normal,
+                    const int tnx, const int tny, const float tcell, const float domain_x, const float domain_z,
+                    volatile __global long* counters) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  float3 v = (float3)(vx[i], vy[i], vz[i]);
   const float3 start = (float3)(x[i], y[i], z[i]);
   float3 p = start + v * dt;
   age[i] += dt;
 
+  const float wall = SPH_CONTACT_RADIUS;
 #if SPH_WALLS
-  if (p.x < SPH_SURFACE_EPS) { p.x = SPH_SURFACE_EPS; v.x = fabs(v.x) * SPH_RESTITUTION; }
-  if (p.x > domain_x - SPH_SURFACE_EPS) { p.x = domain_x - SPH_SURFACE_EPS; v.x = -fabs(v.x) * SPH_RESTITUTION; }
-  if (p.z < SPH_SURFACE_EPS) { p.z = SPH_SURFACE_EPS; v.z = fabs(v.z) * SPH_RESTITUTION; }
-  if (p.z > domain_z - SPH_SURFACE_EPS) { p.z = domain_z - SPH_SURFACE_EPS; v.z = -fabs(v.z) * SPH_RESTITUTION; }
+  if (p.x < wall) { p.x = wall; v.x = fabs(v.x) * SPH_RESTITUTION; }
+  if (p.x > domain_x - wall) { p.x = domain_x - wall; v.x = -fabs(v.x) * SPH_RESTITUTION; }
+  if (p.z < wall) { p.z = wall; v.z = fabs(v.z) * SPH_RESTITUTION; }
+  if (p.z > domain_z - wall) { p.z = domain_z - wall; v.z = -fabs(v.z) * SPH_RESTITUTION; }
 #else
   if (p.x < 0.0f || p.x > domain_x || p.z < 0.0f || p.z > domain_z) {
     // Outflow: the particle leaves with its sediment, which the mass balance books as outflow.
@@ -37,39 +93,66 @@ __kernel void kick_drift(__global float* x, __global float* y, __global float* z
     atom_inc(&counters[COUNTER_OUTFLOW_PARTICLES]);
     atom_add(&counters[COUNTER_OUTFLOW_SEDIMENT], (long)sediment[i]);
     sediment[i] = 0;
+    x_new[i] = p.x;
+    y_new[i] = p.y;
+    z_new[i] = p.z;
+    return;
   }
 #endif
-  // Continuous collision along the step, then a guard for particles the terrain rose under.
-  const TerrainHit hit = collide_segment(terrain_height, terrain_normal, tnx, tny, tcell, start, p - start);
-  if (hit.t >= 0.0f) {
-    p = hit.point + SPH_SURFACE_EPS * hit.normal;
-    v = contact_response(v, hit.normal);
-    atom_inc(&counters[COUNTER_COLLISIONS]);
+  // Contact with the terrain. A particle that starts the step on the contact surface (within ε)
+  // and moves into it is in contact from t = 0 (resting, sliding); otherwise the step's segment is
+  // tested for the first crossing. After a hit the particle moves on along the surface for the rest
+  // of the step, tested once more for the next face.
+  const float3 a = (float3)(ax[i], ay[i], az[i]);
+  bool touching = false;
+  const SurfacePoint s0 =
+      offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, start.x, start.z);
+  const SurfacePoint s1 =
+      offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, p.x, p.z);
+  // On the surface at the start, and moving into it (along the interpolated normal, or ending the
+  // step below the surface: the faces under a particle tilt away from that normal).
+  if (start.y - s0.height <= SPH_SURFACE_EPS && (dot(v, s0.normal) < 0.0f || p.y < s1.height)) {
+    touching = true;
+    p = start + rebound(&v, a, s0.normal, 0.0f, dt);
+  } else {
+    const TerrainHit hit =
+        collide_segment(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, start, p - start);
+    if (hit.t >= 0.0f) {
+      touching = true;
+      p = hit.point + rebound(&v, a, hit.normal, hit.t, dt);
+      const TerrainHit again = collide_segment(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS,
+                                               hit.point + SPH_SURFACE_EPS * hit.normal, p - hit.point);
+      if (again.t >= 0.0f) {
+        v = contact_response(v, again.normal);
+        p = again.point;
+      }
+    }
   }
-  const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, p.x, p.z);
-  if (p.y < s.height + SPH_SURFACE_EPS) {
-    p.y = s.height + SPH_SURFACE_EPS;
+  const SurfacePoint s =
+      offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, p.x, p.z);
+  if (p.y < s.height) {
+    // In contact, a particle ends on the surface (a slide over a bend, rounding). Otherwise it is
+    // below without having crossed it: the terrain rose under it. Either way it goes back up, but
+    // only the second case is a projection, counted: the contact should leave none.
+    if (!touching && s.height - p.y > SPH_SURFACE_EPS) atom_inc(&counters[COUNTER_PROJECTIONS]);
+    p.y = s.height;
     v = contact_response(v, s.normal);
-    atom_inc(&counters[COUNTER_PROJECTIONS]);
+    touching = true;
   }
-  x[i] = p.x;
-  y[i] = p.y;
-  z[i] = p.z;
+  // Bed friction on a particle touching the ground: in contact this step, or resting within ε.
+  touching = touching || p.y - s.height <= SPH_SURFACE_EPS;
+  if (touching) v = bed_friction(v, s.normal, neighbours[i], dt);
+  // A collision is an arrival: touching now, not at the end of the last step (a particle that
+  // rests or slides on the ground stays in one contact).
+  const uint flags = contacts[i];
+  if (touching && !(flags & TOUCHING_FLAG)) atom_inc(&counters[COUNTER_COLLISIONS]);
+  contacts[i] = touching ? (flags | TOUCHING_FLAG) : (flags & ~TOUCHING_FLAG);
+  x_new[i] = p.x;
+  y_new[i] = p.y;
+  z_new[i] = p.z;
   vx[i] = v.x;
   vy[i] = v.y;
   vz[i] = v.z;
-}
-
-__kernel void kick(__global float* vx, __global float* vy, __global float* vz, __global float* rho,
-                   const __global float* ax, const __global float* ay, const __global float* az,
-                   const __global float* drho, const uint n, const float dt) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  const float half_dt = 0.5f * dt;
-  vx[i] += ax[i] * half_dt;
-  vy[i] += ay[i] * half_dt;
-  vz[i] += az[i] * half_dt;
-  rho[i] += drho[i] * half_dt;
 }
 
 // Health and time-step statistics, one row of 6 floats per block of particles:
@@ -105,20 +188,22 @@ __kernel void step_stats(const __global float* vx, const __global float* vy, con
   row[5] = drmax;
 }
 
-// After the terrain changed under the particles (deposition, talus), puts back on the surface any
-// particle now below it, so no particle ever ends a step below the terrain.
+// After the terrain changed under the particles (deposition, talus), puts back on the contact
+// surface any particle now below it, so no particle ever ends a step below the terrain. A particle
+// resting on the surface rides up with it; one that ends more than ε below is counted.
 __kernel void project_to_surface(__global float* x, __global float* y, __global float* z, __global float* vx,
                                  __global float* vy, __global float* vz, const uint n,
                                  const __global float* terrain_height, const __global float* terrain_normal,
                                  const int tnx, const int tny, const float tcell, volatile __global long* counters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, x[i], z[i]);
-  if (y[i] >= s.height + SPH_SURFACE_EPS) return;
-  y[i] = s.height + SPH_SURFACE_EPS;
+  const SurfacePoint s =
+      offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, x[i], z[i]);
+  if (y[i] >= s.height) return;
+  if (s.height - y[i] > SPH_SURFACE_EPS) atom_inc(&counters[COUNTER_PROJECTIONS]);
+  y[i] = s.height;
   const float3 v = contact_response((float3)(vx[i], vy[i], vz[i]), s.normal);
   vx[i] = v.x;
   vy[i] = v.y;
   vz[i] = v.z;
-  atom_inc(&counters[COUNTER_PROJECTIONS]);
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Rain emitter (physics.md §4): `count` new particles written at the end of the particle arrays,
-// at uniformly random (x, z) in the rain region, `spawn_height` above the terrain, falling at
-// `speed`. Slot k draws from the counter first_counter + k of the run's seed: the same particles
+// at uniformly random (x, z) in the rain region, `spawn_height` above the terrain (never below the
+// contact surface, `contact_radius` above it, where the particle would be inside the ground),
+// falling at `speed`. Slot k draws from the counter first_counter + k of the run's seed: the same particles
 // whatever the thread count, and a resumed run draws what an uninterrupted one would.
 // Regions: 0 the whole terrain, 1 a rectangle [a, b] × [c, d] (x, z), 2 a disc at (a, c) of radius b.
 
@@ -12,7 +13,8 @@ __kernel void rain_emit(__global float* x, __global float* y, __global float* z,
                         __global float* age, __global float* lifespan, __global uint* contacts, __global uint* id,
                         const uint first_index, const uint count, const ulong seed, const ulong first_counter,
                         const uint first_id, const int region, const float a, const float b, const float c,
-                        const float d, const float spawn_height, const float speed, const float rho0,
+                        const float d, const float spawn_height, const float contact_radius,
+                        const float surface_eps, const float speed, const float rho0,
                         const float lifespan_mean, const float lifespan_jitter,
                         const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
                         const int tny, const float tcell) {
@@ -38,9 +40,10 @@ __kernel void rain_emit(__global float* x, __global float* y, __global float* z,
   px = clamp(px, 0.0f, extent_x);
   pz = clamp(pz, 0.0f, extent_z);
   const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, px, pz);
+  const SurfacePoint contact = offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, contact_radius, px, pz);
   const uint i = first_index + k;
   x[i] = px;
-  y[i] = s.height + spawn_height;
+  y[i] = fmax(s.height + spawn_height, contact.height + surface_eps);
   z[i] = pz;
   vx[i] = 0.0f;
   vy[i] = -speed;

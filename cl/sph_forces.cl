@@ -1,25 +1,13 @@
 // SPDX-License-Identifier: MIT
-// SPH interactions (physics.md §2): in one pass over each particle's neighbours, the continuity
-// equation with δ-SPH density diffusion and the momentum equation with Tait pressure and Monaghan
-// artificial viscosity. Both rates depend only on the current (x, v, ρ), so one neighbour loop
-// serves both (the density is integrated, not summed).
-//   dρ_i/dt = Σ_j m v_ij·∇_iW_ij + 2δ h c0 Σ_j (m/ρ_j)(ρ_ij − ρ^H_ij) x_ij·∇_iW_ij / (|x_ij|² + 0.01h²)
-//   with ρ_ij = ρ_i − ρ_j and its hydrostatic part ρ^H_ij = ρ0 g (y_j − y_i) / c0²
+// SPH momentum (physics.md §2) at the drifted state (x, ρ at step n+1; v at n+½): Tait pressure and
+// Monaghan artificial viscosity,
 //   dv_i/dt = −Σ_j m (p_i/ρ_i² + p_j/ρ_j² + Π_ij) ∇_iW_ij + g
 //   p = B((ρ/ρ0)^7 − 1), B = c0² ρ0 / 7;  Π_ij = −α c0 μ_ij / ρ̄_ij when v_ij·x_ij < 0,
 //   μ_ij = h v_ij·x_ij / (|x_ij|² + 0.01h²)
-// Boundaries (the floor, and the vertical walls when enabled) act as planar mirrors: the missing
-// half-space of particles, integrated analytically (sph_kernel.cl), with the particle's pressure
-// and density plus the hydrostatic gradient (as Adami et al. 2012 extrapolate wall pressure):
-//   a += 2 p_i G(d)/ρ_i n − M(d)·g⃗          (pressure mirror, hydrostatic support)
-//   dρ/dt += −2 ρ_i (v_i·n) G(d)             (mirrored normal velocity; the mirror's density
-//                                             differs only hydrostatically, which δ-SPH ignores)
+// The density is integrated separately (sph_continuity.cl), with the drift. The terrain and the
+// tank walls act through sph_boundary.cl, in pairs with their continuity terms.
 // Units: m, s, kg. Compile-time constants (host -D): SPH_H, SPH_MASS, SPH_RHO0, SPH_C0, SPH_B,
-// SPH_ALPHA_VISC, SPH_DELTA, SPH_GRAVITY, SPH_CLAMP_NEGATIVE_PRESSURE, SPH_WALLS.
-
-#ifndef WALL_TANGENT_SUPPORT
-#define WALL_TANGENT_SUPPORT 1.0f
-#endif
+// SPH_ALPHA_VISC, SPH_GRAVITY, SPH_CLAMP_NEGATIVE_PRESSURE, SPH_WALLS.
 
 inline float tait_pressure(float rho) {
   const float r = rho * (1.0f / SPH_RHO0);
@@ -32,14 +20,36 @@ inline float tait_pressure(float rho) {
 #endif
 }
 
-// A planar boundary at distance d along the unit normal n (pointing into the fluid).
-inline void wall_response(float d, float3 n, float3 v, float rho, float p, float3* acc, float* drho) {
+// The terrain's completion of the kernel (sph_boundary.cl) for a particle at distance d along the
+// unit normal n: the mirror of its pressure, 2 p G(d)/ρ n, and the support of the pressure gradient
+// extrapolated beyond, −M(d)·∇p/ρ with ∇p = (I − M(d))⁻¹·gp (gp measured over the rest of the
+// kernel; both matrices have n as an eigenvector: a on n, b across).
+inline float3 wall_force(float d, float3 n, float p_over_rho, float3 gp_over_rho) {
   const float g = wall_integral(d);
-  if (g == 0.0f) return;
-  const float3 up = (float3)(0.0f, 1.0f, 0.0f);
+  if (g == 0.0f) return (float3)(0.0f, 0.0f, 0.0f);
   const float a = wall_moment_normal(d), b = wall_moment_tangent(d);
-  *acc += n * (2.0f * p * g / rho) + SPH_GRAVITY * (a * n.y * n + WALL_TANGENT_SUPPORT * b * (up - n.y * n));
-  *drho -= 2.0f * rho * dot(v, n) * g;
+  const float gn = dot(gp_over_rho, n);
+  const float3 gt = gp_over_rho - gn * n;
+  return n * (2.0f * p_over_rho * g) - (a / (1.0f - a) * gn) * n - (b / (1.0f - b)) * gt;
+}
+
+// One neighbour's (or ghost's) contribution: pressure and viscosity to acc, its pressure difference
+// to the gradient sum gp = Σ_j V_j (p_j − p_i) ∇_iW_ij, its kernel to the Shepard sum.
+inline void pair_force(float3 xij, float3 vij, float rhoi, float pres_i, float pi_over_rho2, float rhoj,
+                       float pres_j, float3* acc, float3* gp, float* shepard) {
+  const float r2 = dot(xij, xij);
+  const float r = sqrt(r2);
+  const float f = wendland_grad_factor(r);
+  const float vdotx = dot(vij, xij);
+  const float eta2 = 0.01f * SPH_H * SPH_H;
+  float visc = 0.0f;
+  if (vdotx < 0.0f) {
+    const float mu = SPH_H * vdotx / (r2 + eta2);
+    visc = -SPH_ALPHA_VISC * SPH_C0 * mu / (0.5f * (rhoi + rhoj));
+  }
+  *acc -= (SPH_MASS * (pi_over_rho2 + pres_j / (rhoj * rhoj) + visc) * f) * xij;
+  *gp += (SPH_MASS / rhoj * (pres_j - pres_i) * f) * xij;
+  *shepard += SPH_MASS / rhoj * wendland_w(r);
 }
 
 __kernel void sph_forces(const __global float* x, const __global float* y, const __global float* z,
@@ -50,7 +60,7 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
                          const __global float* terrain_height, const __global float* terrain_normal,
                          const int tnx, const int tny, const float tcell, const float domain_x,
                          const float domain_z, __global float* ax, __global float* ay, __global float* az,
-                         __global float* drho, __global float* neighbours) {
+                         __global float* neighbours) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
@@ -59,51 +69,43 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
   const float rhoi = rho[i];
   const float pres_i = tait_pressure(rhoi);
   const float pi_over_rho2 = pres_i / (rhoi * rhoi);
-  const float eta2 = 0.01f * SPH_H * SPH_H;
-  const float diffusion = 2.0f * SPH_DELTA * SPH_H * SPH_C0;
   const float support2 = 4.0f * SPH_H * SPH_H;
-  const float hydrostatic_gradient = SPH_RHO0 * SPH_GRAVITY / (SPH_C0 * SPH_C0);  // kg/m⁴
+#if SPH_WALLS
+  const TankWalls walls = tank_walls(pi, domain_x, domain_z);
+#endif
 
-  float3 acc = (float3)(0.0f, 0.0f, 0.0f);
-  float drho_i = 0.0f;
+  float3 acc = (float3)(0.0f, 0.0f, 0.0f), acc_ghosts = (float3)(0.0f, 0.0f, 0.0f);
+  float3 gp = (float3)(0.0f, 0.0f, 0.0f);  // Σ_j V_j (p_j − p_i) ∇_iW_ij, ghosts included
+  float shepard = 0.0f;                    // Σ_{j≠i} V_j W_ij, ghosts included
   int count = 0;
   NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end)
-  const float3 xij = pi - (float3)(x[j], y[j], z[j]);
-  const float r2 = dot(xij, xij);
-  if (r2 < support2 && j != i) {
-    const float r = sqrt(r2);
-    const float f = wendland_grad_factor(r);
-    ++count;
-    const float3 vij = vi - (float3)(vx[j], vy[j], vz[j]);
+  const float3 pj = (float3)(x[j], y[j], z[j]);
+  const float3 xij = pi - pj;
+  if (dot(xij, xij) < support2) {
+    const float3 vj = (float3)(vx[j], vy[j], vz[j]);
     const float rhoj = rho[j];
-    const float vdotx = dot(vij, xij);
-    // δ-SPH diffuses only the dynamic part of the density difference: the hydrostatic part
-    // ρ0 g (y_j − y_i)/c0² is subtracted (Fourtakas et al. 2019), so a fluid at rest stays at rest
-    // near the free surface and the walls, where the kernel is truncated.
-    const float rho_dynamic = (rhoi - rhoj) + hydrostatic_gradient * xij.y;
-    drho_i += SPH_MASS * vdotx * f + diffusion * (SPH_MASS / rhoj) * rho_dynamic * (r2 * f) / (r2 + eta2);
-    float visc = 0.0f;
-    if (vdotx < 0.0f) {
-      const float mu = SPH_H * vdotx / (r2 + eta2);
-      visc = -SPH_ALPHA_VISC * SPH_C0 * mu / (0.5f * (rhoi + rhoj));
-    }
     const float pres_j = tait_pressure(rhoj);
-    acc -= (SPH_MASS * (pi_over_rho2 + pres_j / (rhoj * rhoj) + visc) * f) * xij;
+    if (j != i) {
+      ++count;
+      pair_force(xij, vi - vj, rhoi, pres_i, pi_over_rho2, rhoj, pres_j, &acc, &gp, &shepard);
+    }
+#if SPH_WALLS
+    GHOST_LOOP_BEGIN(walls, pj, vj)
+    const float3 xig = pi - ghost_;
+    if (dot(xig, xig) < support2)
+      pair_force(xig, vi - ghost_v_, rhoi, pres_i, pi_over_rho2, rhoj, pres_j, &acc_ghosts, &gp, &shepard);
+    GHOST_LOOP_END
+#endif
   }
   NEIGHBOUR_LOOP_END
 
-  // The floor: the terrain's tangent plane under the particle.
+  // The terrain under the particle and the tank walls, scaled by the fluid fullness θ.
   const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);
-  wall_response((pi.y - floor.height) * floor.normal.y, floor.normal, vi, rhoi, pres_i, &acc, &drho_i);
-#if SPH_WALLS
-  wall_response(pi.x, (float3)(1.0f, 0.0f, 0.0f), vi, rhoi, pres_i, &acc, &drho_i);
-  wall_response(domain_x - pi.x, (float3)(-1.0f, 0.0f, 0.0f), vi, rhoi, pres_i, &acc, &drho_i);
-  wall_response(pi.z, (float3)(0.0f, 0.0f, 1.0f), vi, rhoi, pres_i, &acc, &drho_i);
-  wall_response(domain_z - pi.z, (float3)(0.0f, 0.0f, -1.0f), vi, rhoi, pres_i, &acc, &drho_i);
-#endif
+  const float d = (pi.y - floor.height) * floor.normal.y;
+  const float theta = fluid_fullness(shepard, d, rhoi);
+  acc += theta * (acc_ghosts + wall_force(d, floor.normal, pres_i / rhoi, gp / rhoi));
   ax[i] = acc.x;
   ay[i] = acc.y - SPH_GRAVITY;
   az[i] = acc.z;
-  drho[i] = drho_i;
   neighbours[i] = (float)count;
 }

@@ -53,3 +53,15 @@ inline float wall_moment_tangent(float d) {
   const float q2 = q * q;
   return 0.5f - 0.75f * q + q2 * q * (0.4375f + q2 * (-0.328125f + q * (0.21875f + q * (-0.05859375f + q * 0.005859375f))));
 }
+
+// Γ(d) = ∫_{beyond a wall at distance d} W dV = ∫_d^{2h} G(s) ds: the share of the kernel the wall
+// removes (1/2 at the wall, 0 from 2h):
+//   Γ = (21/8) [A(2)(2 − q) − B(2) + B(q)],  B(q) = q³/6 − q⁵/8 + q⁶/12 − 5q⁷/224 + q⁸/448,
+//   B(2) = 8/21.
+inline float wall_volume(float d) {
+  const float q = max(d, 0.0f) * (1.0f / SPH_H);
+  if (q >= 2.0f) return 0.0f;
+  const float q2 = q * q;
+  const float b = q2 * q * ((1.0f / 6.0f) + q2 * (-0.125f + q * ((1.0f / 12.0f) + q * (-5.0f / 224.0f + q * (1.0f / 448.0f)))));
+  return 2.625f * ((2.0f / 7.0f) * (2.0f - q) - (8.0f / 21.0f) + b);
+}

@@ -17,7 +17,7 @@ def text(value):
 
 def main(path):
     with h5py.File(path, "r") as f:
-        assert f.attrs["schema_version"] in (1, 2), "this script reads schema versions 1 and 2"
+        assert f.attrs["schema_version"] == 3, "this script reads schema version 3"
         terrain = f["terrain"]
         height = terrain["height"][()]  # (ny, nx) float32, metres
         cell = terrain.attrs["cell"]
@@ -35,7 +35,7 @@ def main(path):
         print(f"step {state.attrs['steps']}, t = {state.attrs['time']:.6g} s, {len(xyz)} particles")
         if len(xyz):
             print(f"mean speed {speed.mean():.4g} m/s, suspended sediment {sediment_m3.sum():.6g} m3")
-        if "fields" in f:  # grid models (schema 2): water depth, suspended sediment, ...
+        if "fields" in f:  # grid models: water depth, suspended sediment, ...
             for name, field in f["fields"].items():
                 print(f"field {name}: shape {field.shape}, sum {field[()].sum():.6g}")
         params = text(f.attrs["parameters_toml"])

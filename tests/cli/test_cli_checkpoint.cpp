@@ -60,7 +60,7 @@ TEST(CliCheckpoint, InfoAndExportEveryFormat) {
   auto r = run_cli({"info", h5, "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\"steps\": 50"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\"schema_version\": 2"), std::string::npos);
+  EXPECT_NE(r.out.find("\"schema_version\": 3"), std::string::npos);
   r = run_cli({"info", h5});
   EXPECT_NE(r.out.find("runnel checkpoint"), std::string::npos);
   const Heightmap reference = read_terrain(dir.path("run/final.npy"));

@@ -16,7 +16,7 @@ namespace {
 constexpr double kH = 0.12;  // m, h = 1.2 dx with dx = 0.1
 
 struct Probe {
-  std::vector<float> w, grad, g, a, b;
+  std::vector<float> w, grad, g, a, b, v;
 };
 
 Probe probe(const std::vector<float>& r, double h = kH) {
@@ -30,12 +30,12 @@ Probe probe(const std::vector<float>& r, double h = kH) {
   auto& ctx = compute.context();
   cl::Buffer rb(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * 4, const_cast<float*>(r.data()));
   std::vector<cl::Buffer> out;
-  for (int f = 0; f < 5; ++f) out.emplace_back(ctx, CL_MEM_WRITE_ONLY, n * 4);
-  set_args(k, rb, static_cast<cl_uint>(n), out[0], out[1], out[2], out[3], out[4]);
+  for (int f = 0; f < 6; ++f) out.emplace_back(ctx, CL_MEM_WRITE_ONLY, n * 4);
+  set_args(k, rb, static_cast<cl_uint>(n), out[0], out[1], out[2], out[3], out[4], out[5]);
   compute.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
   Probe p;
-  std::vector<float>* fields[] = {&p.w, &p.grad, &p.g, &p.a, &p.b};
-  for (int f = 0; f < 5; ++f) {
+  std::vector<float>* fields[] = {&p.w, &p.grad, &p.g, &p.a, &p.b, &p.v};
+  for (int f = 0; f < 6; ++f) {
     fields[f]->resize(n);
     compute.queue().enqueueReadBuffer(out[f], CL_TRUE, 0, n * 4, fields[f]->data());
   }
@@ -95,9 +95,11 @@ TEST(SphKernel, DeviceMatchesReferenceAndVanishesAtSupport) {
     ASSERT_NEAR(p.g[k], sph_reference::wall_integral(r[k], kH), 1e-4 / kH) << r[k];
     ASSERT_NEAR(p.a[k], sph_reference::wall_moment_normal(r[k], kH), 1e-5) << r[k];
     ASSERT_NEAR(p.b[k], sph_reference::wall_moment_tangent(r[k], kH), 1e-5) << r[k];
+    ASSERT_NEAR(p.v[k], sph_reference::wall_volume(r[k], kH), 1e-5) << r[k];
     if (r[k] >= 2 * kH) {
       ASSERT_EQ(p.w[k], 0.0f);
       ASSERT_EQ(p.g[k], 0.0f);
+      ASSERT_EQ(p.v[k], 0.0f);
     }
   }
   // The kernel's derivative is the gradient factor times r (finite difference).
@@ -110,10 +112,14 @@ TEST(SphKernel, DeviceMatchesReferenceAndVanishesAtSupport) {
 }
 
 TEST(SphKernel, WallIntegralsEqualALatticeSumOverTheHalfSpace) {
-  // G(d) = Σ_{beyond the wall} |∇W|·n V, a(d) = Σ |F| Δn² V, b(d) = Σ |F| Δt² V on a fine lattice.
+  // G(d) = Σ_{beyond the wall} |∇W|·n V, a(d) = Σ |F| Δn² V, b(d) = Σ |F| Δt² V and
+  // Γ(d) = Σ W V on a fine lattice.
   const double h = 1.0, step = h / 24;
   for (double d : {0.0, 0.3, 0.8, 1.5}) {
-    double g = 0, a = 0, b = 0;
+    if (d == 0.0) {
+      EXPECT_NEAR(sph_reference::wall_volume(d, h), 0.5, 1e-12);  // half the kernel
+    }
+    double g = 0, a = 0, b = 0, vol = 0;
     const int m = static_cast<int>(2 * h / step) + 1;
     for (int i = -m; i <= m; ++i) {
       for (int j = -m; j <= m; ++j) {
@@ -125,12 +131,14 @@ TEST(SphKernel, WallIntegralsEqualALatticeSumOverTheHalfSpace) {
           g += f * dn * v;
           a += f * dn * dn * v;
           b += f * tx * tx * v;
+          vol += sph_reference::wendland_w(r, h) * v;
         }
       }
     }
     EXPECT_NEAR(g, sph_reference::wall_integral(d, h), 2e-3) << d;
     EXPECT_NEAR(a, sph_reference::wall_moment_normal(d, h), 2e-3) << d;
     EXPECT_NEAR(b, sph_reference::wall_moment_tangent(d, h), 2e-3) << d;
+    EXPECT_NEAR(vol, sph_reference::wall_volume(d, h), 2e-3) << d;
   }
 }
 

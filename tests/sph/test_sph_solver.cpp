@@ -44,26 +44,73 @@ HostParticles blob(int per_side, std::uint32_t seed, double speed) {
   return p;
 }
 
-TEST(SphSolver, RatesMatchTheCppReference) {
+// A jittered block of water on a flat floor in the corner of a small tank, with a few lone drops
+// above it: every boundary term (floor completion, wall ghosts, corners, the fullness ramp) acts.
+HostParticles block_on_floor(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> jitter(-0.01f, 0.01f), vel(-0.3f, 0.3f),
+      rho(998.0f, 1012.0f);
+  HostParticles p;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      for (int k = 0; k < 5; ++k) {
+        p.push(0.05f + 0.1f * i + jitter(rng), 0.05f + 0.1f * j + std::fabs(jitter(rng)),
+               0.05f + 0.1f * k + jitter(rng), vel(rng), vel(rng), vel(rng), rho(rng), 1e30f);
+      }
+    }
+  }
+  for (int d = 0; d < 4; ++d)  // lone drops: no neighbours, no wall
+    p.push(0.9f + 0.35f * d, 0.3f + 0.3f * d, 0.9f, vel(rng), -1.0f, vel(rng), 1000.0f, 1e30f);
+  return p;
+}
+
+TEST(SphSolver, AccelerationsMatchTheCppReference) {
   const SphSettings s = settings();
-  SphSolver solver(compute(), s, flat_floor(1, 1, 4.0), 4.0);
-  solver.add(blob(7, 1, 0.5));
+  SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);  // a 2 m × 2 m tank
+  solver.add(block_on_floor(1));
   solver.prepare();
   const HostParticles p = solver.particles().download();
   const auto ax = solver.particles().read_field(kAx), ay = solver.particles().read_field(kAy),
-             az = solver.particles().read_field(kAz), drho = solver.particles().read_field(kDrho);
-  const auto ref = sph_reference::interaction_rates(p, s);
-  double a_scale = 0, d_scale = 0;
+             az = solver.particles().read_field(kAz);
+  const auto ref = sph_reference::accelerations(p, s, {0.0, 2.0, 2.0});
+  double scale = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    scale = std::max(scale, std::hypot(ref.ax[i], ref.ay[i] + s.gravity, ref.az[i]));
+  ASSERT_GT(scale, 1.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    a_scale = std::max(a_scale, std::hypot(ref.ax[i], ref.ay[i] + s.gravity, ref.az[i]));
-    d_scale = std::max(d_scale, std::fabs(ref.drho[i]));
+    ASSERT_NEAR(ax[i], ref.ax[i], 2e-4 * scale) << i;
+    ASSERT_NEAR(ay[i], ref.ay[i], 2e-4 * scale) << i;
+    ASSERT_NEAR(az[i], ref.az[i], 2e-4 * scale) << i;
   }
-  ASSERT_GT(a_scale, 1.0);
+  // The lone drops feel gravity and nothing else: no water column under them.
+  int lone = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    ASSERT_NEAR(ax[i], ref.ax[i], 2e-4 * a_scale) << i;
-    ASSERT_NEAR(ay[i], ref.ay[i], 2e-4 * a_scale) << i;
-    ASSERT_NEAR(az[i], ref.az[i], 2e-4 * a_scale) << i;
-    ASSERT_NEAR(drho[i], ref.drho[i], 2e-4 * d_scale) << i;
+    if (p.f[kX][i] < 0.8f) continue;
+    ++lone;
+    EXPECT_EQ(ax[i], 0.0f);
+    EXPECT_FLOAT_EQ(ay[i], static_cast<float>(-s.gravity));
+  }
+  EXPECT_EQ(lone, 4);
+}
+
+TEST(SphSolver, ContinuityMatchesTheCppReferenceForTheDrift) {
+  const SphSettings s = settings();
+  SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);
+  solver.add(block_on_floor(2));
+  solver.prepare();
+  const HostParticles before = solver.particles().download();
+  const double dt = solver.dt();
+  solver.drift();  // the order does not change until the next hash build
+  const HostParticles after = solver.particles().download();
+  const auto drho = solver.particles().read_field(kDrho);
+  const auto ref = sph_reference::continuity_rates(before, after, dt, s, {0.0, 2.0, 2.0});
+  double scale = 0;
+  for (double d : ref) scale = std::max(scale, std::fabs(d));
+  ASSERT_GT(scale, 10.0);
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    ASSERT_NEAR(drho[i], ref[i], 2e-4 * scale) << i;
+    // ρ advanced with the drift, by exactly this rate.
+    ASSERT_NEAR(after.f[kRho][i], before.f[kRho][i] + dt * drho[i], 1e-3) << i;
   }
 }
 
@@ -196,11 +243,17 @@ TEST(SphSolver, ParticlesLeavingAnOpenDomainAreRemovedAndCounted) {
 }
 
 TEST(SphValidation, HydrostaticPressureAtCoarseResolution) {
+  // 8 layers, a uniform start, the run's own viscosity, 3 s to settle: every particle measured.
   ValidationOptions options;
-  options.resolution = 10;
+  options.resolution = 8;
+  options.settle_time = 3.0;
   const ValidationResult r = validate_hydrostatic(compute(), options);
-  EXPECT_GT(r.particles, 500);
-  EXPECT_LT(r.relative_error, 0.05) << r.summary_json();
+  EXPECT_EQ(r.particles, 800);
+  const std::string json = r.summary_json();
+  EXPECT_LT(test::json_number(json, "mean_relative_error"), 0.03) << json;
+  EXPECT_LT(test::json_number(json, "worst_layer_below_surface_relative_error"), 0.04) << json;
+  // The free-surface layer carries the largest error at this resolution (docs/sph.md).
+  EXPECT_LT(r.relative_error, 0.25) << json;
 }
 
 TEST(SphValidation, ReferenceCurveEqualsTheShippedCsv) {

@@ -195,10 +195,15 @@ CheckpointData read_checkpoint(const std::string& path) {
     throw input_error(path + ": not a runnel checkpoint (no /terrain or /particles)");
   }
   const std::int64_t version = f.read_int_attribute("/", "schema_version");
-  if (version != kCheckpointSchemaVersion && version != 1) {
+  if (version == 1 || version == 2) {
     throw input_error(path + ": checkpoint schema version " + std::to_string(version) +
-                      ", this runnel reads versions 1 and " +
-                      std::to_string(kCheckpointSchemaVersion));
+                      " was written before the SPH time integration and terrain contact changed "
+                      "(schema 3): it cannot continue exactly here; resume it with the runnel that "
+                      "wrote it, or start the run again");
+  }
+  if (version != kCheckpointSchemaVersion) {
+    throw input_error(path + ": checkpoint schema version " + std::to_string(version) +
+                      ", this runnel reads version " + std::to_string(kCheckpointSchemaVersion));
   }
   CheckpointData d;
   d.model = f.read_string_attribute("/", "model");
@@ -253,7 +258,7 @@ CheckpointData read_checkpoint(const std::string& path) {
   d.seed = f.read_int_attribute("/state", "seed");
   const auto c = f.read_int64("/state/counters", {6});
   d.counters = {c[0], c[1], c[2], c[3], c[4], c[5]};
-  if (version >= 2) read_model_state(f, path, grid, d);
+  read_model_state(f, path, grid, d);
   return d;
 }
 

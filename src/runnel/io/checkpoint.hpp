@@ -12,9 +12,10 @@
 namespace runnel {
 
 // docs/hdf5-schema.md. Bump on any incompatible change; readers refuse other versions.
-// Version 2 added /fields and /state@counters for the grid models; version 1 files (SPH only) are
-// still read.
-inline constexpr std::int64_t kCheckpointSchemaVersion = 2;
+// Version 3: the SPH density advances with the drift and particles touch a contact surface one
+// radius above the terrain (the contacts field carries the contact state); versions 1 and 2 are
+// refused with that reason.
+inline constexpr std::int64_t kCheckpointSchemaVersion = 3;
 
 // One vertex field of a grid model, as stored under /fields (float32 or int64 values, ny × nx ×
 // components).

@@ -30,8 +30,9 @@ const std::vector<ParamSpec>& parameter_table() {
       {"sph.clamp_negative_pressure", T::kBool, "true", "", 0, 0, {}, "clamp negative pressure to 0 (free-surface rain: no tensile attraction between droplets)"},
       {"sph.walls", T::kBool, "false", "", 0, 0, {}, "vertical walls at the domain edges; false: open edges, particles that leave are removed as outflow"},
       {"sph.restitution", T::kReal, "0", "1", 0, 1, {}, "restitution e of the terrain and wall contact"},
-      {"sph.friction", T::kReal, "0.0", "1", 0, 1, {}, "friction μ_f: fraction of tangential speed lost on contact"},
-      {"sph.surface_eps", T::kReal, "0.01", "1", 0, 0.5, {}, "ε, the distance (in dx) a particle put back on the surface is placed above it"},
+      {"sph.manning_n", T::kReal, "0.03", "s/m^(1/3)", 0, 1, {}, "Manning's roughness n of the terrain: bed shear stress ρ g n² |u|²/D^(1/3) on particles touching it (D the local flow depth); 0: frictionless"},
+      {"sph.contact_radius", T::kReal, "0.5", "dx", 0, 2, {}, "particle radius for the terrain contact: a resting particle's centre sits this far above the terrain along the normal (0.5: the particle of volume dx³ rests on its lowest point)"},
+      {"sph.surface_eps", T::kReal, "0.01", "dx", 0, 0.5, {}, "ε, how far above the contact surface a particle is put after a hit"},
       {"sph.density_min", T::kReal, "0.1", "1", 0.001, 1, {}, "smallest sane density as a fraction of ρ0: below it the run stops (rain drops that leave the ground expand; with clamped pressure that is harmless)"},
       {"sph.density_max", T::kReal, "1.5", "1", 1, 100, {}, "largest sane density as a fraction of ρ0: above it the run stops"},
       // rain: the emitter (physics.md §4)

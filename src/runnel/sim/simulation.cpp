@@ -57,12 +57,12 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
 
 void Simulation::step() {
   SphSolver& s = *solver_;
-  rain_->emit(s, s.dt());         // rain.emit: this step's drops at the spawn height
-  s.drift();                      // integrate.kick_drift, collide.terrain, outflow
+  s.drift();  // integrate.kick, sph.continuity, integrate.drift (+ collide.terrain, outflow)
   erosion_->exchange(s, s.dt());  // erode.exchange and evaporation → fixed-point deltas
   s.terrain().apply();            // terrain.apply: deltas → heights, normals
   if (thermal_ && (s.steps() + 1) % thermal_every_ == 0) thermal_->relax();  // thermal.relax
   s.project_to_surface();  // no particle stays below a terrain that rose
+  rain_->emit(s, s.dt());  // rain.emit: this step's drops at the spawn height
   s.complete_step();       // hash, sph_forces, kick, next dt
 }
 

@@ -24,8 +24,8 @@ class Simulation {
  public:
   Simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
 
-  // One step: rain.emit → kick_drift + collide → erode.exchange → terrain.apply → (thermal) →
-  // hash → sph_forces → kick.
+  // One step: kick → sph_continuity → drift + collide → erode.exchange → terrain.apply →
+  // (thermal) → rain.emit → hash → sph_forces → kick.
   void step();
 
   MassBalance mass_balance();

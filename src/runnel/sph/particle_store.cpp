@@ -101,6 +101,10 @@ void ParticleStore::swap_scratch() {
   for (int k = 0; k < kPersistentFieldCount; ++k) std::swap(current_[k], scratch_[k]);
 }
 
+void ParticleStore::swap_scratch(std::initializer_list<ParticleField> fields) {
+  for (ParticleField f : fields) std::swap(current_[f], scratch_[f]);
+}
+
 void ParticleStore::truncate(std::size_t n) {
   size_ = std::min(size_, n);
 }

@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 #include "runnel/compute/context.hpp"
@@ -18,7 +19,8 @@ enum ParticleField : int {
   kSediment,         // carried sediment, int32 count of volume quanta (erosion.height_quantum · cell²)
   kAge,              // s
   kLifespan,         // s; the particle evaporates when age exceeds it
-  kContacts,         // uint32: erosion events so far (the acidity model's budget)
+  kContacts,         // uint32: erosion events so far (the acidity model's budget); top bit: touching
+                     // the terrain at the end of the last step
   kId,               // stable id (uint32; the top bit marks a dead particle)
   kPersistentFieldCount,
   kAx = kPersistentFieldCount, kAy, kAz,  // acceleration, m/s²
@@ -35,7 +37,8 @@ struct ParticleFieldInfo {
 };
 const ParticleFieldInfo& particle_field_info(ParticleField f);
 
-inline constexpr std::uint32_t kDeadFlag = 0x80000000u;
+inline constexpr std::uint32_t kDeadFlag = 0x80000000u;      // in id: removed at the next sort
+inline constexpr std::uint32_t kTouchingFlag = 0x80000000u;  // in contacts: on the terrain
 
 // Particles on the host, structure of arrays. Float fields in f[field]; the integer fields have
 // their own vectors (f[kSediment], f[kContacts], f[kId] stay empty).
@@ -66,6 +69,8 @@ class ParticleStore {
   cl::Buffer& scratch(ParticleField f) { return scratch_[f]; }
   // After the hash has gathered every persistent field into scratch: scratch becomes current.
   void swap_scratch();
+  // After a kernel wrote the new values of some fields into scratch: they become current.
+  void swap_scratch(std::initializer_list<ParticleField> fields);
   // Drops the particles past n (dead ones, sorted to the end).
   void truncate(std::size_t n);
 

@@ -106,8 +106,9 @@ std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
   k.setArg(a++, static_cast<cl_ulong>(spawned_));
   k.setArg(a++, first_id);
   k.setArg(a++, static_cast<cl_int>(settings_.region));
-  for (double v : {settings_.a, settings_.b, settings_.c, settings_.d, settings_.spawn_height,
-                   settings_.speed}) {
+  for (double v :
+       {settings_.a, settings_.b, settings_.c, settings_.d, settings_.spawn_height,
+        solver.settings().contact_radius, solver.settings().surface_eps, settings_.speed}) {
     k.setArg(a++, static_cast<float>(v));
   }
   k.setArg(a++, rest_density_);

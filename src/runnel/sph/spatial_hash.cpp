@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/sph/spatial_hash.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "runnel/compute/launch.hpp"
@@ -97,18 +98,21 @@ void SpatialHash::build(ParticleStore& store) {
   hash_keys_.setArg(14, dead_key_);
   prof.launch(hash_keys_, round_up_work(n), "hash_keys");
 
-  // 2. Stable LSD radix sort of (key, index), 8 bits per pass.
-  const cl_uint chunk = (n + kRadixBlocks - 1) / kRadixBlocks;
+  // 2. Stable LSD radix sort of (key, index), 8 bits per pass. The blocks' count follows n (about
+  // 512 keys each, at most kRadixBlocks): a handful of particles must not pay for 256 histograms.
+  // The permutation does not depend on it (a stable sort has one result).
+  const cl_uint blocks = std::clamp<cl_uint>((n + 511) / 512, 1, kRadixBlocks);
+  const cl_uint chunk = (n + blocks - 1) / blocks;
   int in = 0;
   for (int pass = 0; pass < passes_; ++pass) {
     const cl_uint shift = 8 * pass;
     set_args(histogram_, keys_[in], n, shift, chunk, hist_);
-    prof.launch(histogram_, kRadixBlocks, "radix_histogram");
-    set_args(scan_, hist_, static_cast<cl_uint>(256 * kRadixBlocks));
+    prof.launch(histogram_, blocks, "radix_histogram");
+    set_args(scan_, hist_, static_cast<cl_uint>(256 * blocks));
     prof.launch(scan_, 1, "radix_scan");
     set_args(scatter_, keys_[in], values_[in], keys_[1 - in], values_[1 - in], hist_, n, shift,
              chunk);
-    prof.launch(scatter_, kRadixBlocks, "radix_scatter");
+    prof.launch(scatter_, blocks, "radix_scatter");
     in = 1 - in;
   }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/sph/sph_settings.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "runnel/compute/build_options.hpp"
@@ -25,13 +26,19 @@ SphSettings SphSettings::from(const Parameters& p, double default_spacing, doubl
   if (s.dt_min >= s.dt_max) throw input_error("sph.dt_min: must be smaller than sph.dt_max");
   s.gravity = p.real("sph.gravity");
   s.restitution = p.real("sph.restitution");
-  s.friction = p.real("sph.friction");
+  s.manning_n = p.real("sph.manning_n");
+  s.contact_radius = p.real("sph.contact_radius") * s.spacing;
   s.surface_eps = p.real("sph.surface_eps") * s.spacing;
   s.density_min = p.real("sph.density_min");
   s.density_max = p.real("sph.density_max");
   s.clamp_negative_pressure = p.boolean("sph.clamp_negative_pressure");
   s.walls = p.boolean("sph.walls");
   return s;
+}
+
+double SphSettings::layer_neighbours() const {
+  const double support = 2.0 * h / spacing;
+  return M_PI * support * support - 1.0;
 }
 
 std::string SphSettings::build_options() const {
@@ -45,7 +52,10 @@ std::string SphSettings::build_options() const {
   o += float_define("SPH_DELTA", delta);
   o += float_define("SPH_GRAVITY", gravity);
   o += float_define("SPH_RESTITUTION", restitution);
-  o += float_define("SPH_FRICTION", friction);
+  o += float_define("SPH_MANNING_G_N2", gravity * manning_n * manning_n);
+  o += float_define("SPH_CONTACT_RADIUS", contact_radius);
+  o += float_define("SPH_SPACING", spacing);
+  o += float_define("SPH_LAYER_NEIGHBOURS", layer_neighbours());
   o += float_define("SPH_SURFACE_EPS", surface_eps);
   o += std::string(" -DSPH_CLAMP_NEGATIVE_PRESSURE=") + (clamp_negative_pressure ? "1" : "0");
   o += std::string(" -DSPH_WALLS=") + (walls ? "1" : "0");

@@ -19,15 +19,19 @@ struct SphSettings {
   double dt_max = 1e-2;   // s
   double gravity = 9.81;  // m/s²
   double restitution = 0.0;
-  double friction = 0.0;
-  double surface_eps = 0.001;  // m
-  double density_min = 0.5;    // × ρ0
-  double density_max = 1.5;    // × ρ0
+  double manning_n = 0.03;       // s/m^(1/3), bed friction of the terrain contact
+  double contact_radius = 0.05;  // m: a particle touches the terrain with its lowest point
+  double surface_eps = 0.001;    // m
+  double density_min = 0.5;      // × ρ0
+  double density_max = 1.5;      // × ρ0
   bool clamp_negative_pressure = true;
   bool walls = false;
 
   double mass() const { return rho0 * spacing * spacing * spacing; }  // kg
   double tait_b() const { return c0 * c0 * rho0 / 7.0; }              // Pa
+  // Neighbours within 2h of a particle in one flat layer of the lattice of spacing dx: π(2h/dx)²
+  // − 1.
+  double layer_neighbours() const;
 
   // `default_spacing` and `reference_speed` fill sph.spacing = 0 and sph.c0 = 0 (c0 = 10 v_ref).
   static SphSettings from(const Parameters& params, double default_spacing, double reference_speed);

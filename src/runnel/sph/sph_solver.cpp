@@ -12,8 +12,9 @@ namespace runnel {
 namespace {
 
 const std::vector<std::string> kSphSources = {
-    "cl/common.cl",         "cl/counters.cl", "cl/grid.cl",       "cl/sph_kernel.cl",
-    "cl/terrain_sample.cl", "cl/collide.cl",  "cl/sph_forces.cl", "cl/integrate.cl"};
+    "cl/common.cl",         "cl/counters.cl",     "cl/grid.cl",    "cl/sph_kernel.cl",
+    "cl/terrain_sample.cl", "cl/sph_boundary.cl", "cl/collide.cl", "cl/sph_forces.cl",
+    "cl/sph_continuity.cl", "cl/integrate.cl"};
 constexpr cl_uint kStatBlocks = 256;
 constexpr int kStatColumns = 6;
 
@@ -37,7 +38,8 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
       hash_(compute, fluid_grid(settings, floor, top)) {
   cl::Program& program = compute.program(kSphSources, settings.build_options());
   forces_ = cl::Kernel(program, "sph_forces");
-  kick_drift_ = cl::Kernel(program, "kick_drift");
+  continuity_ = cl::Kernel(program, "sph_continuity");
+  drift_ = cl::Kernel(program, "drift");
   kick_ = cl::Kernel(program, "kick");
   stats_ = cl::Kernel(program, "step_stats");
   project_ = cl::Kernel(program, "project_to_surface");
@@ -57,7 +59,7 @@ void SphSolver::add(HostParticles particles) {
 
 void SphSolver::prepare() {
   build_hash();
-  compute_rates();
+  compute_forces();
   choose_next_dt();
   rates_ready_ = true;
 }
@@ -70,25 +72,30 @@ void SphSolver::step() {
 
 void SphSolver::drift() {
   if (!rates_ready_) prepare();
-  kick_drift();  // v, ρ += rates·dt/2; x += v·dt; walls, outflow, terrain collision
+  if (hash_stale_) build_hash();  // a restored state: same order, cell tables rebuilt
+  kick();                         // v(n+½) = v(n) + a(n)·dt/2
+  drift_and_collide();  // x(n+1) into scratch: walls, outflow, terrain contact, bed friction
+  integrate_density();  // ρ(n+1) = ρ(n) + dt·dρ/dt at x(n) with the actual displacements
+  store_.swap_scratch({kX, kY, kZ, kRho});  // x(n+1), ρ(n+1) become the state
 }
 
 void SphSolver::complete_step() {
-  build_hash();     // sort by cell, reorder, drop dead particles, cell tables
-  compute_rates();  // dρ/dt and dv/dt at the new positions
-  kick();           // v, ρ += rates·dt/2
+  build_hash();      // sort by cell, reorder, drop dead particles, cell tables
+  compute_forces();  // a(n+1) at x(n+1), ρ(n+1)
+  kick();            // v(n+1) = v(n+½) + a(n+1)·dt/2
   time_ += dt_;
   ++steps_;
   choose_next_dt();  // CFL and acceleration limits; stops on NaN or a collapsing step
 }
 
-void SphSolver::kick_drift() {
+void SphSolver::drift_and_collide() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
-  auto& k = kick_drift_;
-  const ParticleField fields[] = {kX,   kY,        kZ,  kVx, kVy, kVz, kRho,
-                                  kAge, kSediment, kId, kAx, kAy, kAz, kDrho};
+  auto& k = drift_;
   cl_uint a = 0;
-  for (ParticleField f : fields) k.setArg(a++, store_.buffer(f));
+  for (ParticleField f :
+       {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kNeighbours})
+    k.setArg(a++, store_.buffer(f));
+  for (ParticleField f : {kX, kY, kZ}) k.setArg(a++, store_.scratch(f));
   k.setArg(a++, n);
   k.setArg(a++, static_cast<float>(dt_));
   terrain_.set_args(k, a);
@@ -96,11 +103,12 @@ void SphSolver::kick_drift() {
   k.setArg(a++, static_cast<float>(terrain_.extent_x()));
   k.setArg(a++, static_cast<float>(terrain_.extent_z()));
   k.setArg(a++, counters_buffer_);
-  compute_.profiler().launch(k, round_up_work(n), "kick_drift");
+  compute_.profiler().launch(k, round_up_work(n), "drift");
 }
 
 void SphSolver::build_hash() {
   hash_.build(store_);
+  hash_stale_ = false;
 }
 
 void SphSolver::project_to_surface() {
@@ -113,7 +121,29 @@ void SphSolver::project_to_surface() {
   compute_.profiler().launch(project_, round_up_work(n), "project_to_surface");
 }
 
-void SphSolver::compute_rates() {
+void SphSolver::integrate_density() {
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  auto& k = continuity_;
+  cl_uint a = 0;
+  for (ParticleField f : {kX, kY, kZ}) k.setArg(a++, store_.buffer(f));
+  for (ParticleField f : {kX, kY, kZ}) k.setArg(a++, store_.scratch(f));
+  k.setArg(a++, store_.buffer(kRho));
+  k.setArg(a++, n);
+  k.setArg(a++, static_cast<float>(dt_));
+  hash_.set_grid_args(k, a);
+  a += 7;
+  k.setArg(a++, hash_.cell_start());
+  k.setArg(a++, hash_.cell_end());
+  terrain_.set_args(k, a);
+  a += 5;
+  k.setArg(a++, static_cast<float>(terrain_.extent_x()));
+  k.setArg(a++, static_cast<float>(terrain_.extent_z()));
+  k.setArg(a++, store_.buffer(kDrho));
+  k.setArg(a++, store_.scratch(kRho));
+  compute_.profiler().launch(k, round_up_work(n), "sph_continuity");
+}
+
+void SphSolver::compute_forces() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   auto& k = forces_;
   cl_uint a = 0;
@@ -127,15 +157,14 @@ void SphSolver::compute_rates() {
   a += 5;
   k.setArg(a++, static_cast<float>(terrain_.extent_x()));
   k.setArg(a++, static_cast<float>(terrain_.extent_z()));
-  for (ParticleField f : {kAx, kAy, kAz, kDrho, kNeighbours}) k.setArg(a++, store_.buffer(f));
+  for (ParticleField f : {kAx, kAy, kAz, kNeighbours}) k.setArg(a++, store_.buffer(f));
   compute_.profiler().launch(k, round_up_work(n), "sph_forces");
 }
 
 void SphSolver::kick() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
-  set_args(kick_, store_.buffer(kVx), store_.buffer(kVy), store_.buffer(kVz), store_.buffer(kRho),
-           store_.buffer(kAx), store_.buffer(kAy), store_.buffer(kAz), store_.buffer(kDrho), n,
-           static_cast<float>(dt_));
+  set_args(kick_, store_.buffer(kVx), store_.buffer(kVy), store_.buffer(kVz), store_.buffer(kAx),
+           store_.buffer(kAy), store_.buffer(kAz), n, static_cast<float>(0.5 * dt_));
   compute_.profiler().launch(kick_, round_up_work(n), "kick");
 }
 
@@ -194,7 +223,8 @@ void SphSolver::restore_clock(double time, double dt, std::uint64_t steps) {
   time_ = time;
   dt_ = dt;
   steps_ = steps;
-  rates_ready_ = true;  // the restored rates belong to the restored state
+  rates_ready_ = true;  // the restored accelerations belong to the restored state
+  hash_stale_ = true;   // but the cell tables must be rebuilt before the next continuity pass
 }
 
 SphCounters SphSolver::counters() {

@@ -25,7 +25,7 @@ struct SphHealth {
 struct SphCounters {
   long long surface_projections = 0;   // particles found below the terrain and put back on it
   long long outflow_particles = 0;     // particles that left an open domain edge
-  long long collisions = 0;            // Möller–Trumbore hits with the terrain
+  long long collisions = 0;            // arrivals on the terrain (contact events)
   long long outflow_sediment = 0;      // sediment quanta carried out through open edges
   long long evaporated_particles = 0;  // particles removed at the end of their lifespan
   long long lost_sediment = 0;         // quanta not deposited on evaporation (deposit_fraction < 1)
@@ -33,7 +33,8 @@ struct SphCounters {
 inline constexpr int kCounterCount = 6;
 
 // The weakly compressible SPH solver (physics.md §2) on a terrain floor, with kick-drift-kick
-// leapfrog and an adaptive time step. Host code of cl/sph_forces.cl and cl/integrate.cl.
+// leapfrog and an adaptive time step. Host code of cl/sph_continuity.cl, cl/sph_forces.cl and
+// cl/integrate.cl (with cl/collide.cl).
 class SphSolver {
  public:
   // `top` is the highest y the fluid is expected to reach (m): the hash grid spans the terrain's
@@ -54,14 +55,15 @@ class SphSolver {
   // One adaptive time step: drift() then complete_step(). Throws runnel::Error naming the step and
   // the cause on NaN/inf, a density outside the sane range, or a time step below dt_min.
   void step();
-  // The two halves of a step, for callers that act between them (erosion, terrain changes):
-  // drift() kicks, drifts and resolves terrain contact; complete_step() rebuilds the hash, computes
-  // the rates, kicks again, advances the clock and chooses the next dt.
+  // The two halves of a step, for callers that act between them (erosion, terrain changes, rain):
+  // drift() kicks, integrates the continuity equation and the positions over dt and resolves
+  // terrain contact; complete_step() rebuilds the hash, computes the accelerations, kicks again,
+  // advances the clock and chooses the next dt.
   void drift();
   void complete_step();
   // Puts particles the terrain rose under back on its surface (after erosion and talus).
   void project_to_surface();
-  // Computes the rates and the next time step for the current state without advancing.
+  // Computes the accelerations and the next time step for the current state without advancing.
   void prepare();
 
   double time() const { return time_; }
@@ -74,9 +76,10 @@ class SphSolver {
   cl::Buffer& counters_buffer() { return counters_buffer_; }
 
  private:
-  void kick_drift();
+  void drift_and_collide();
   void build_hash();
-  void compute_rates();
+  void integrate_density();
+  void compute_forces();
   void kick();
   void choose_next_dt();
 
@@ -85,9 +88,10 @@ class SphSolver {
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  cl::Kernel forces_, kick_drift_, kick_, stats_, project_;
+  cl::Kernel forces_, continuity_, drift_, kick_, stats_, project_;
   cl::Buffer stats_buffer_, counters_buffer_;
   bool rates_ready_ = false;
+  bool hash_stale_ = true;
   double time_ = 0.0;
   double dt_ = 0.0;
   std::uint64_t steps_ = 0;
