@@ -15,19 +15,25 @@ void add_validate_command(CLI::App& app) {
   struct Options {
     std::string which, out, device;
     int resolution = 0;
+    double settle = 0;
     std::vector<std::string> sets;
   };
   auto opt = std::make_shared<Options>();
   auto* cmd =
       app.add_subcommand("validate",
                          "Run an SPH reference case and compare it with its reference: "
-                         "hydrostatic (pressure = rho0 g d) or dambreak (Koshizuka & Oka 1996)");
-  cmd->add_option("case", opt->which, "hydrostatic or dambreak")
+                         "hydrostatic (pressure = rho0 g d), dambreak (Koshizuka & Oka 1996) or "
+                         "droplet (bounce, slide and rest of a lone drop against their analytic "
+                         "values)");
+  cmd->add_option("case", opt->which, "hydrostatic, dambreak or droplet")
       ->required()
-      ->check(CLI::IsMember({"hydrostatic", "dambreak"}));
+      ->check(CLI::IsMember({"hydrostatic", "dambreak", "droplet"}));
   cmd->add_option("--resolution", opt->resolution,
                   "particles across the length scale (hydrostatic: layers in the "
                   "column, default 16; dambreak: across L, default 20)");
+  cmd->add_option("--settle", opt->settle,
+                  "hydrostatic: seconds the column settles before the last quarter is averaged "
+                  "(default 50 sqrt(H/g), 10 s)");
   cmd->add_option("--out", opt->out, "folder for pressure.csv / front.csv (created)");
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
@@ -36,6 +42,9 @@ void add_validate_command(CLI::App& app) {
     v.resolution = opt->resolution;
     if (opt->resolution < 0 || opt->resolution > 2000)
       throw input_error("--resolution: must be in 1..2000");
+    if (!(opt->settle >= 0 && opt->settle <= 1e4))
+      throw input_error("--settle: must be in 0..10000 s");
+    v.settle_time = opt->settle;
     apply_overrides(v.params, opt->sets);
     if (!opt->out.empty()) {
       std::error_code ec;
@@ -47,7 +56,8 @@ void add_validate_command(CLI::App& app) {
     v.progress = isatty(STDERR_FILENO);
     ComputeContext compute(opt->device);
     const ValidationResult r = opt->which == "hydrostatic" ? validate_hydrostatic(compute, v)
-                                                           : validate_dambreak(compute, v);
+                               : opt->which == "dambreak"  ? validate_dambreak(compute, v)
+                                                           : validate_droplet(compute, v);
     std::cout << r.summary_json() << "\n";
   });
 }

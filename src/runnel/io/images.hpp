@@ -35,7 +35,7 @@ RgbImage erosion_picture(const Heightmap& before, const Heightmap& after, double
 // A title bar above an image.
 RgbImage with_title(const RgbImage& image, const std::string& title);
 
-// Draws text (digits, a–z, . - + : % ( ) /) with a 5×7 pixel font scaled by `scale`.
+// Draws text (digits, a–z, . , - + : % ( ) / * & _ =) with a 5×7 pixel font scaled by `scale`.
 void draw_text(RgbImage& image, int x, int y, const std::string& text, int scale,
                std::uint8_t r = 0, std::uint8_t g = 0, std::uint8_t b = 0);
 int text_width(const std::string& text, int scale);

@@ -9,6 +9,12 @@ Heightmap flat_floor(int x_cells, int z_cells, double cell) {
   return Heightmap(x_cells + 1, z_cells + 1, cell, 0.0f);
 }
 
+HostParticles uniform_block(const SphSettings& s, double lx, double ly, double lz) {
+  HostParticles p = hydrostatic_block(s, lx, ly, lz);
+  for (float& rho : p.f[kRho]) rho = static_cast<float>(s.rho0);
+  return p;
+}
+
 HostParticles hydrostatic_block(const SphSettings& s, double lx, double ly, double lz) {
   const double dx = s.spacing;
   const int nx = static_cast<int>(std::lround(lx / dx));

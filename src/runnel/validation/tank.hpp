@@ -13,5 +13,7 @@ Heightmap flat_floor(int x_cells, int z_cells, double cell);
 // centres), at rest, with the hydrostatic density of a column whose free surface is at ly:
 // ρ = ρ0 (1 + ρ0 g (ly − y) / B)^(1/7).
 HostParticles hydrostatic_block(const SphSettings& s, double lx, double ly, double lz);
+// The same lattice at rest with uniform density ρ0 (a start that is not the hydrostatic answer).
+HostParticles uniform_block(const SphSettings& s, double lx, double ly, double lz);
 
 }  // namespace runnel

@@ -11,10 +11,11 @@ namespace runnel {
 
 // The SPH reference cases (physics.md §5): `runnel validate CASE`.
 struct ValidationOptions {
-  int resolution = 0;     // particles across the case's length scale; 0: the case's default
-  std::string out_dir;    // where CSVs go; empty: none
-  Parameters params;      // sph.* overrides (--set)
-  bool progress = false;  // progress lines on stderr
+  int resolution = 0;      // particles across the case's length scale; 0: the case's default
+  std::string out_dir;     // where CSVs go; empty: none
+  Parameters params;       // sph.* overrides (--set)
+  bool progress = false;   // progress lines on stderr
+  double settle_time = 0;  // s, hydrostatic: how long the column settles; 0: the case's default
 };
 
 struct ValidationResult {
@@ -34,6 +35,37 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
 // A column L wide and 2L high collapses in a tank 4L long; surge front against Koshizuka & Oka
 // 1996.
 ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOptions& options);
+
+// Lone droplets on the terrain: bounce (no energy gained, rebound e²), slide (g sin α, Manning's
+// terminal speed) and resting clearance against spawn height.
+ValidationResult validate_droplet(ComputeContext& compute, const ValidationOptions& options);
+
+// One droplet released at rest 2 m above flat ground, followed for 10 s (heights in m above the
+// ground; the contact surface is contact_height above it).
+struct BounceResult {
+  double cfl = 0, restitution = 0;
+  double release_height = 0, contact_height = 0;
+  double highest_after_landing = 0;  // the highest point after the first contact
+  double first_rebound = -1;         // the apex of the first rebound
+  long long steps = 0;
+};
+BounceResult droplet_bounce(ComputeContext& compute, const Parameters& params, double cfl,
+                            double restitution);
+
+// One droplet sliding from rest down a 20° plane for 3 s.
+struct SlideResult {
+  double cfl = 0, manning_n = 0, slope_deg = 0, duration = 0;
+  double acceleration = 0, expected_acceleration = 0;  // fitted, and g sin α (m/s²)
+  double speed = 0, expected_speed = 0;                // at the end (m/s)
+  long long steps = 0;
+};
+SlideResult droplet_slide(ComputeContext& compute, const Parameters& params, double cfl,
+                          double manning_n);
+
+// The height above flat ground (m) at which a droplet spawned `spawn_height` above it rests after
+// 2 s.
+double droplet_rest_clearance(ComputeContext& compute, const Parameters& params,
+                              double spawn_height);
 
 // The Koshizuka & Oka (1996) surge-front measurements: t* = t·sqrt(g/L), x/L.
 struct FrontSample {
