@@ -129,47 +129,82 @@ TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
       << "shading varies across the picture";
 }
 
+// The viewer's stats lines so far ({"frame": ..., "particles": ..., "painting": ...}).
+struct StatsLine {
+  long long frame = -1, particles = -1;
+  bool painting = false;
+};
+std::vector<StatsLine> read_stats(const std::string& path) {
+  std::vector<StatsLine> out;
+  std::istringstream lines(test::read_text(path));
+  for (std::string line; std::getline(lines, line);) {
+    const auto f = line.find("\"frame\": "), at = line.find("\"particles\": ");
+    if (f == std::string::npos || at == std::string::npos || line.back() != '}') continue;
+    out.push_back({std::stoll(line.substr(f + 9)), std::stoll(line.substr(at + 13)),
+                   line.find("\"painting\": true") != std::string::npos});
+  }
+  return out;
+}
+
+// Polls the stats file until `done` holds for the lines read so far, at most `seconds`.
+template <typename Done>
+bool wait_for_stats(const std::string& path, Done done, double seconds) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < until) {
+    if (done(read_stats(path))) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
 TEST(Viewer, MouseDragOnTheTerrainPaintsRain) {
   REQUIRE_X_TOOLS();
   XServer x;
   ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
   test::ScratchDir dir;
-  // Global rain off: every particle must come from the brush.
-  const std::string viewer =
-      x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
-      "/data/scenarios/default.toml --no-rain --frames 160 --stats-every 5 --size 800x600 > " +
-      dir.path("stats.txt") + " 2>&1 &";
+  const std::string stats = dir.path("stats.txt");
+  // Global rain off: every particle must come from the brush. The viewer runs until stopped; the
+  // test acts on what it reports, never on how long things take.
+  const std::string viewer = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
+                             "/data/scenarios/default.toml --no-rain --frames 100000 "
+                             "--stats-every 5 --size 800x600 > " +
+                             stats + " 2>&1 & echo $! > " + dir.path("pid.txt");
   ASSERT_EQ(std::system(viewer.c_str()), 0);
+  struct Stop {
+    std::string pid_file;
+    ~Stop() { std::system(("kill $(cat " + pid_file + ") 2>/dev/null").c_str()); }
+  } stop{dir.path("pid.txt")};
   const std::string find =
       x.env() + " xdotool search --sync --name runnel-viewer > " + dir.path("wid.txt");
-  ASSERT_EQ(std::system(("timeout 30 sh -c '" + find + "'").c_str()), 0) << "no viewer window";
-  std::this_thread::sleep_for(std::chrono::seconds(2));
-  // Press on the middle of the window (the terrain), hold, drag a little, release.
+  ASSERT_EQ(std::system(("timeout 60 sh -c '" + find + "'").c_str()), 0) << "no viewer window";
+  // The first stats line: the viewer draws and simulates, and nothing has rained yet.
+  ASSERT_TRUE(wait_for_stats(
+      stats, [](const auto& l) { return !l.empty(); }, 120))
+      << test::read_text(stats);
+  EXPECT_EQ(read_stats(stats).front().particles, 0) << "no rain before the drag";
+
+  // Press on the middle of the window (the terrain), drag a little, and hold until the viewer
+  // reports painting and rain on the terrain; then release.
   const std::string wid = test::read_text(dir.path("wid.txt"))
                               .substr(0, test::read_text(dir.path("wid.txt")).find('\n'));
-  const std::string drag = x.env() + " xdotool mousemove --window " + wid +
-                           " 560 380 mousedown 1 sleep 2 " + "mousemove --window " + wid +
-                           " 600 400 sleep 2 mouseup 1";
-  ASSERT_EQ(std::system(drag.c_str()), 0);
-  // Wait for the viewer to finish its frames.
-  for (int k = 0; k < 120; ++k) {
-    if (test::read_text(dir.path("stats.txt")).find("\"frame\": 160,") != std::string::npos) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  }
-  std::istringstream lines(test::read_text(dir.path("stats.txt")));
-  long long first = -1, last = -1;
+  const std::string press = x.env() + " xdotool mousemove --window " + wid +
+                            " 560 380 mousedown 1 mousemove --window " + wid + " 600 400";
+  ASSERT_EQ(std::system(press.c_str()), 0);
+  const bool rained = wait_for_stats(
+      stats,
+      [](const auto& l) {
+        bool painted = false;
+        for (const StatsLine& s : l) painted = painted || s.painting;
+        return painted && l.back().particles > 50;
+      },
+      120);
+  std::system((x.env() + " xdotool mouseup 1").c_str());
+  const auto lines = read_stats(stats);
   bool painted = false;
-  for (std::string line; std::getline(lines, line);) {
-    const auto at = line.find("\"particles\": ");
-    if (at == std::string::npos) continue;
-    const long long particles = std::stoll(line.substr(at + 13));
-    if (first < 0) first = particles;
-    last = particles;
-    painted = painted || line.find("\"painting\": true") != std::string::npos;
-  }
-  EXPECT_EQ(first, 0) << "no rain before the drag";
+  for (const StatsLine& s : lines) painted = painted || s.painting;
   EXPECT_TRUE(painted) << "the drag was seen as painting on the terrain";
-  EXPECT_GT(last, 50) << test::read_text(dir.path("stats.txt"));
+  EXPECT_TRUE(rained) << test::read_text(stats);
+  EXPECT_GT(lines.back().particles, 50) << test::read_text(stats);
 }
 
 }  // namespace
