@@ -14,15 +14,15 @@
 // moves on along the surface for the rest of the step (tested once more); a particle resting on the
 // surface (within ε) is in contact from the start of the step. A particle found below the surface
 // without a contact (the terrain rose under it) is put back on it and counted as a projection.
-// A particle touching the ground (in contact this step, or within ε of the contact surface) feels
-// bed friction, Manning's law for the shear stress of a flow of depth D on the bed:
-//   τ_b = ρ g n² |u|² / D^(1/3),   du/dt = −τ_b / (ρ dx) · u/|u|   (stress over the particle's
-//   footprint dx², mass ρ dx³), applied implicitly (u ← u / (1 + dt g n² |u| / (D^(1/3) dx))), so
-// it only ever slows the flow. D is the local flow depth: dx times the number of particle layers,
-// from the neighbour count (a particle in one flat layer has LAYER_NEIGHBOURS neighbours).
+// Every particle of the water column on the bed (touching it, or with its lowest point within the
+// local water depth D of it) feels the bed friction of shallow-water flow, Manning's law:
+//   τ_b = ρ g n² |u|² / D^(1/3) over the bed area V/D its water covers, so
+//   du/dt = −τ_b (V/D) / (ρ V) = −g n² |u| u / D^(4/3)   (along the bed),
+// applied implicitly (u ← u / (1 + dt g n² |u| / D^(4/3))), so it only ever slows the flow. D is
+// the water depth on the bed at the end of the last step (water_depth.cl). In steady flow this is Manning's
+// equation, u = D^(2/3) S^(1/2) / n, and τ_b = ρ g D S.
 // Units: m, s. Compile-time constants (host -D): SPH_WALLS, SPH_SURFACE_EPS, SPH_RESTITUTION,
-// SPH_CONTACT_RADIUS, SPH_SPACING, SPH_MANNING_G_N2 (g n², m^(1/3)), SPH_LAYER_NEIGHBOURS,
-// SPH_GRAVITY.
+// SPH_CONTACT_RADIUS, SPH_MANNING_G_N2 (g n², m^(1/3)), SPH_GRAVITY.
 
 __kernel void kick(__global float* vx, __global float* vy, __global float* vz, const __global float* ax,
                    const __global float* ay, const __global float* az, const uint n, const float half_dt) {
@@ -33,12 +33,11 @@ __kernel void kick(__global float* vx, __global float* vy, __global float* vz, c
   vz[i] += az[i] * half_dt;
 }
 
-// Bed friction on the velocity tangential to the surface of normal n.
-inline float3 bed_friction(float3 v, float3 n, float neighbours, float dt) {
+// Bed friction on the velocity tangential to the surface of normal n, in water of depth D (m).
+inline float3 bed_friction(float3 v, float3 n, float depth, float dt) {
   const float vn = dot(v, n);
   const float3 vt = v - vn * n;
-  const float layers = fmax(1.0f, (neighbours + 1.0f) / (SPH_LAYER_NEIGHBOURS + 1.0f));
-  const float k = SPH_MANNING_G_N2 / (cbrt(layers * SPH_SPACING) * SPH_SPACING);  // 1/m
+  const float k = SPH_MANNING_G_N2 / (depth * cbrt(depth));  // 1/m
   return vn * n + vt / (1.0f + dt * k * length(vt));
 }
 
@@ -68,7 +67,7 @@ inline float3 rebound(float3* v, float3 a, float3 n, float t, float dt) {
 __kernel void drift(const __global float* x, const __global float* y, const __global float* z, __global float* vx,
                     __global float* vy, __global float* vz, __global float* age, __global int* sediment,
                     __global uint* contacts, __global uint* id, const __global float* ax, const __global float* ay, const __global float* az,
-                    const __global float* neighbours, __global float* x_new, __global float* y_new,
+                    const __global float* depth, __global float* x_new, __global float* y_new,
                     __global float* z_new, const uint n,
                     const float dt, const __global float* terrain_height, const __global float* terrain_normal,
                     const int tnx, const int tny, const float tcell, const float domain_x, const float domain_z,
@@ -139,9 +138,10 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
     v = contact_response(v, s.normal);
     touching = true;
   }
-  // Bed friction on a particle touching the ground: in contact this step, or resting within ε.
+  // Touching: in contact this step, or resting within ε. Bed friction on the water column.
   touching = touching || p.y - s.height <= SPH_SURFACE_EPS;
-  if (touching) v = bed_friction(v, s.normal, neighbours[i], dt);
+  const float water_depth = fmax(depth[i], 1e-6f);
+  if (touching || (p.y - s.height) * s.normal.y <= water_depth) v = bed_friction(v, s.normal, water_depth, dt);
   // A collision is an arrival: touching now, not at the end of the last step (a particle that
   // rests or slides on the ground stays in one contact).
   const uint flags = contacts[i];

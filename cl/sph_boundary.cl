@@ -25,7 +25,7 @@
 // The tank walls (sph.walls, vertical planes at the domain's edges, for the validation cases) are
 // free-slip mirror ghosts instead (Colagrossi & Landrini 2003): each neighbour j reflected across
 // each wall within reach, and across both walls of a corner, with its density and pressure and its
-// normal velocity reversed; also scaled by θ in both passes.
+// normal velocity reversed; also scaled by θ in both passes (and in the water depth).
 
 // θ from the Shepard sum of the others and the distance to the terrain.
 inline float fluid_fullness(float shepard_others, float d, float rhoi) {

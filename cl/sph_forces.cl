@@ -59,8 +59,7 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
                          const __global uint* cell_start, const __global uint* cell_end,
                          const __global float* terrain_height, const __global float* terrain_normal,
                          const int tnx, const int tny, const float tcell, const float domain_x,
-                         const float domain_z, __global float* ax, __global float* ay, __global float* az,
-                         __global float* neighbours) {
+                         const float domain_z, __global float* ax, __global float* ay, __global float* az) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
@@ -74,10 +73,11 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
   const TankWalls walls = tank_walls(pi, domain_x, domain_z);
 #endif
 
+  const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);
+
   float3 acc = (float3)(0.0f, 0.0f, 0.0f), acc_ghosts = (float3)(0.0f, 0.0f, 0.0f);
   float3 gp = (float3)(0.0f, 0.0f, 0.0f);  // Σ_j V_j (p_j − p_i) ∇_iW_ij, ghosts included
   float shepard = 0.0f;                    // Σ_{j≠i} V_j W_ij, ghosts included
-  int count = 0;
   NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end)
   const float3 pj = (float3)(x[j], y[j], z[j]);
   const float3 xij = pi - pj;
@@ -86,7 +86,6 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
     const float rhoj = rho[j];
     const float pres_j = tait_pressure(rhoj);
     if (j != i) {
-      ++count;
       pair_force(xij, vi - vj, rhoi, pres_i, pi_over_rho2, rhoj, pres_j, &acc, &gp, &shepard);
     }
 #if SPH_WALLS
@@ -100,12 +99,10 @@ __kernel void sph_forces(const __global float* x, const __global float* y, const
   NEIGHBOUR_LOOP_END
 
   // The terrain under the particle and the tank walls, scaled by the fluid fullness θ.
-  const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);
   const float d = (pi.y - floor.height) * floor.normal.y;
   const float theta = fluid_fullness(shepard, d, rhoi);
   acc += theta * (acc_ghosts + wall_force(d, floor.normal, pres_i / rhoi, gp / rhoi));
   ax[i] = acc.x;
   ay[i] = acc.y - SPH_GRAVITY;
   az[i] = acc.z;
-  neighbours[i] = (float)count;
 }

@@ -3,14 +3,20 @@
 // suspended sediment s are integer counts of the height quantum (so b + s + outflow is conserved
 // exactly); water depth d (m), pipe fluxes f (m³/s, L R T B) and velocity v (m/s) are floats.
 // One step of Δt, each pass reading only what the previous passes wrote:
-//   pipe_flux:      d1 = d + Δt·r (read only: neighbours read d too);  f_X = max(0, f_X + Δt·A·g·Δh_X/l);  scale all four by
+//   pipe_flux:      d1 = d + Δt·r (read only: neighbours read d too);  f_X = max(0, f_X + Δt·A·g·Δh_X/l);  with
+//                   pipe.manning_n > 0 (not in Mei 2007) the bed friction of the SPH model, implicitly,
+//                   f_X /= 1 + Δt g n² v / d1^(4/3), v = f_X/(l·d1); scale all four by
 //                   K = min(1, d1·l²/(Σf·Δt))   (outflow edges: outside b = d = 0; closed edges: f = 0)
 //   pipe_water:     d2 = d1 + Δt(Σf_in − Σf_out)/l²;  v from the mean flux through the cell
-//   pipe_erode:     C = K_c · max(sin α, sin α_min) · |v|; below capacity dissolve K_s(C − s), above deposit
-//                   K_d(s − C); then evaporation d *= 1 − K_e·Δt
+//   pipe_erode:     C = K_c · max(sin α, sin α_min) · |v|; below capacity dissolve (1 − e^(−K_s·Δt))(C − s),
+//                   above deposit (1 − e^(−K_d·Δt))(s − C) (K_s, K_d rates per second: the exact
+//                   relaxation towards C over the step, whatever Δt); then evaporation d *= e^(−K_e·Δt)
 //   pipe_transport: sediment leaves with the water that leaves, s·f_X·Δt/(d1·l²) to each neighbour
 //                   (upwind, a gather: each cell adds what its neighbours send it); what leaves the map
 //                   is booked as outflow
+// Amounts become whole quanta by stochastic rounding (counter-based random numbers of the cell and
+// the step), never by truncation: a step's exchange is often a few quanta, and truncating them would
+// make the result depend on Δt.
 // Compile-time constants (host -D): PIPE_*.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 
@@ -41,6 +47,11 @@ __kernel void pipe_flux(const __global long* height, const __global float* depth
 #endif
     }
     f[d] = fmax(0.0f, flux[4 * k + d] + dt * PIPE_AREA * PIPE_GRAVITY * (level - other) / cell);
+#if PIPE_FRICTION_ON
+    // Manning's bed friction on the flow through the face (implicit: it only slows the flow).
+    const float h = fmax(d1, 1e-3f), v = f[d] / (cell * h);
+    f[d] /= 1.0f + dt * PIPE_GRAVITY_N2 * v / (h * cbrt(h));
+#endif
     total += f[d];
   }
   const float scale = total > 0.0f ? fmin(1.0f, d1 * cell * cell / (total * dt)) : 0.0f;
@@ -72,9 +83,18 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
   velocity[2 * k + 1] = mean_depth > 1e-6f ? wz / (cell * mean_depth) : 0.0f;
 }
 
+#define PIPE_ERODE_STREAM 0x70657264UL      // "perd"
+#define PIPE_TRANSPORT_STREAM 0x70747273UL  // "ptrs"
+
+// Uniform in [0, 1): one number per cell and step of a stream.
+inline float pipe_random(ulong seed, ulong stream, ulong step, int cells, int k) {
+  return rng_uniform(seed, stream, step * (ulong)cells + (ulong)k);
+}
+
 __kernel void pipe_erode(__global long* height, const __global float* height_view, __global long* sediment,
                          __global float* depth, const __global float* velocity, const int nx, const int ny,
-                         const float quantum, const float cell, const float dt) {
+                         const float quantum, const float cell, const float dt, const ulong seed,
+                         const ulong step) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
   const int i = k % nx, j = k / nx;
@@ -89,28 +109,35 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   // The water cannot carry more sediment than its own depth (thin films move fast).
   const float capacity = fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth[k]);  // m
   const float s = (float)sediment[k] * quantum;
+  const float u = pipe_random(seed, PIPE_ERODE_STREAM, step, nx * ny, k);
   if (capacity > s) {
-    const long q = (long)floor(PIPE_DISSOLVE * (capacity - s) / quantum);
+    const long q = (long)floor(-expm1(-PIPE_DISSOLVE * dt) * (capacity - s) / quantum + u);
     height[k] -= q;
     sediment[k] += q;
   } else {
-    const long q = min(sediment[k], (long)floor(PIPE_DEPOSIT * (s - capacity) / quantum));
+    const long q = min(sediment[k], (long)floor(-expm1(-PIPE_DEPOSIT * dt) * (s - capacity) / quantum + u));
     height[k] += q;
     sediment[k] -= q;
   }
-  depth[k] *= fmax(0.0f, 1.0f - PIPE_EVAPORATION * dt);
+  depth[k] *= exp(-PIPE_EVAPORATION * dt);
 }
 
-// The share of its sediment a cell sends through pipe d: its outflow over the water it had, at most
-// all of it. Sender and receiver evaluate this same function on the same values, so what leaves
-// one cell arrives in the other to the quantum.
-inline long pipe_sent(long sediment, float outflux, float share) {
-  return (long)floor((float)sediment * fmin(1.0f, outflux * share));
+// The sediment a cell sends through pipe d: its outflows' shares of the water it had, f·share
+// (together at most 1), split by systematic sampling with one random u per cell and step, so each
+// pipe carries s·f·share in expectation and all four together never more than s. Sender and
+// receiver evaluate this same function on the same values, so what leaves one cell arrives in the
+// other to the quantum.
+inline long pipe_sent(long sediment, const __global float* flux4, float share, float u, int d) {
+  float before = 0.0f;
+  for (int e = 0; e < d; ++e) before += flux4[e] * share;
+  const float upto = fmin(1.0f, before + flux4[d] * share);
+  before = fmin(1.0f, before);
+  return (long)floor((float)sediment * upto + u) - (long)floor((float)sediment * before + u);
 }
 
 __kernel void pipe_transport(const __global long* sediment, __global long* sediment_next, const __global float* flux,
                              const __global float* previous_depth, const int nx, const int ny, const float cell,
-                             const float dt, volatile __global long* outflow) {
+                             const float dt, const ulong seed, const ulong step, volatile __global long* outflow) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
   const int i = k % nx, j = k / nx;
@@ -118,9 +145,10 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
   // share = Δt / (d1·l²): the fraction of the cell's water one unit of flux carries away in a step.
   const float volume = previous_depth[k] * cell2;
   const float share = volume > 0.0f ? dt / volume : 0.0f;
+  const float u = pipe_random(seed, PIPE_TRANSPORT_STREAM, step, nx * ny, k);
   long s = sediment[k];
   for (int d = 0; d < 4; ++d) {
-    const long sent = pipe_sent(sediment[k], flux[4 * k + d], share);
+    const long sent = pipe_sent(sediment[k], flux + 4 * k, share, u, d);
     s -= sent;
     const int x = i + kPipeNeighbour[d].x, z = j + kPipeNeighbour[d].y;
     if (!pipe_inside(x, z, nx, ny)) {
@@ -130,7 +158,8 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
     const int m = z * nx + x;
     const float volume_m = previous_depth[m] * cell2;
     const float share_m = volume_m > 0.0f ? dt / volume_m : 0.0f;
-    s += pipe_sent(sediment[m], flux[4 * m + (d ^ 1)], share_m);
+    s += pipe_sent(sediment[m], flux + 4 * m, share_m, pipe_random(seed, PIPE_TRANSPORT_STREAM, step, nx * ny, m),
+                   d ^ 1);
   }
   sediment_next[k] = s;
 }

@@ -24,16 +24,19 @@ void add_validate_command(CLI::App& app) {
                          "Run an SPH reference case and compare it with its reference: "
                          "hydrostatic (pressure = rho0 g d), dambreak (Koshizuka & Oka 1996) or "
                          "droplet (bounce, slide and rest of a lone drop against their analytic "
-                         "values)");
-  cmd->add_option("case", opt->which, "hydrostatic, dambreak or droplet")
+                         "values) or erosion-convergence (the eroded volume against the time step, "
+                         "the particle size and the spawn height)");
+  cmd->add_option("case", opt->which, "hydrostatic, dambreak, droplet or erosion-convergence")
       ->required()
-      ->check(CLI::IsMember({"hydrostatic", "dambreak", "droplet"}));
+      ->check(CLI::IsMember({"hydrostatic", "dambreak", "droplet", "erosion-convergence"}));
   cmd->add_option("--resolution", opt->resolution,
                   "particles across the length scale (hydrostatic: layers in the "
-                  "column, default 16; dambreak: across L, default 20)");
-  cmd->add_option("--settle", opt->settle,
-                  "hydrostatic: seconds the column settles before the last quarter is averaged "
-                  "(default 50 sqrt(H/g), 10 s)");
+                  "column, default 16; dambreak: across L, default 20); erosion-convergence: "
+                  "terrain vertices per side, default 65");
+  cmd->add_option(
+      "--settle", opt->settle,
+      "hydrostatic: seconds the column settles before the last quarter is averaged "
+      "(default 50 sqrt(H/g), 10 s); erosion-convergence: seconds of rain (default 20)");
   cmd->add_option("--out", opt->out, "folder for pressure.csv / front.csv (created)");
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
@@ -57,7 +60,8 @@ void add_validate_command(CLI::App& app) {
     ComputeContext compute(opt->device);
     const ValidationResult r = opt->which == "hydrostatic" ? validate_hydrostatic(compute, v)
                                : opt->which == "dambreak"  ? validate_dambreak(compute, v)
-                                                           : validate_droplet(compute, v);
+                               : opt->which == "droplet"   ? validate_droplet(compute, v)
+                                                         : validate_erosion_convergence(compute, v);
     std::cout << r.summary_json() << "\n";
   });
 }

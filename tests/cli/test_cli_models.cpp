@@ -158,8 +158,8 @@ TEST(CliModels, CompareWritesTableFigureAndReportWithOneRainBudget) {
   column("hypsometric_integral");
   column("spectral_slope");
   column("erosion_flow_correlation");
-  // The budget: 300 particles/s of (2 m)³ for 2 s.
-  const double budget = 300.0 * 8.0 * 2.0;
+  // The budget: 300 particles/s of (1 m)³ (half the 2 m cell) for 2 s.
+  const double budget = 300.0 * 1.0 * 2.0;
   const char* models[] = {"sph", "droplet", "pipe", "olsen", "thermal"};
   for (std::size_t k = 1; k < rows.size(); ++k) {
     ASSERT_EQ(rows[k].size(), header.size());

@@ -86,8 +86,8 @@ TEST(CliRun, RealDemWithItsOwnCellSizeRunsUnchanged) {
                "--steps", "40", "--out", dir.path("dem"), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string metrics = test::read_text(dir.path("dem/metrics.json"));
-  EXPECT_NE(metrics.find("\"spacing_m\": 83"), std::string::npos)
-      << "the particle spacing follows the DEM's 83 m cells";
+  EXPECT_NE(metrics.find("\"spacing_m\": 41.5"), std::string::npos)
+      << "the particle spacing follows the DEM's 83 m cells (half a cell)";
   EXPECT_NE(metrics.find("\"mass_balance_abs\": 0"), std::string::npos);
 }
 

@@ -23,7 +23,7 @@ Parameters rainy() {
   Parameters p;
   p.set("rain.rate", 3000.0);
   p.set("rain.lifespan", 0.5);
-  p.set("thermal.every", static_cast<std::int64_t>(7));
+  p.set("thermal.interval", 0.02);
   p.set("run.seed", static_cast<std::int64_t>(12));
   p.set("terrain.set.relief", 0.3);
   return p;
@@ -74,7 +74,7 @@ TEST(Checkpoint, EveryDatasetRoundTrips) {
   }
   EXPECT_EQ(r.ax, d.ax);
   EXPECT_EQ(r.drho, d.drho);
-  EXPECT_EQ(r.neighbours, d.neighbours);
+  EXPECT_EQ(r.depth, d.depth);
   EXPECT_EQ(r.next_id, d.next_id);
   EXPECT_EQ(r.time, d.time);
   EXPECT_EQ(r.dt, d.dt);

@@ -98,5 +98,57 @@ TEST(TerrainMetrics, ErosionFollowingFlowCorrelatesWithDrainageArea) {
   EXPECT_GT(erosion_flow_correlation(before, after), 0.9);
 }
 
+TEST(TerrainMetrics, StreamPowerCorrelationRanksErosionByDischargeAndSlope) {
+  // Erosion that is a growing function of √A·S of the initial terrain ranks perfectly (ρ = 1);
+  // erosion that shrinks with it, perfectly the other way.
+  const Heightmap before = generate_terrain("fbm", 65, 65, 1.0, 5, {{"relief", 0.2}});
+  const auto area = flow_accumulation(before);
+  const auto slope = slope_degrees(before);
+  Heightmap follows = before, opposes = before;
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    const double index = std::sqrt(area[k]) * std::tan(slope[k] * M_PI / 180.0);
+    follows.h[k] -= static_cast<float>(1e-3 * (1.0 + std::log1p(index)));
+    opposes.h[k] -= static_cast<float>(1e-3 / (1.0 + index));
+  }
+  EXPECT_GT(stream_power_correlation(before, follows), 0.99);
+  EXPECT_LT(stream_power_correlation(before, opposes), -0.99);
+}
+
+TEST(TerrainMetrics, DepressionsAndPeaksAreCountedOncePerBasinAndSummit) {
+  Heightmap bowl(33, 33, 1.0);
+  for (int j = 0; j < 33; ++j) {
+    for (int i = 0; i < 33; ++i)
+      bowl.at(i, j) = static_cast<float>((i - 16) * (i - 16) + (j - 11) * (j - 11));
+  }
+  EXPECT_EQ(closed_depressions(bowl), 1);
+  EXPECT_EQ(local_peaks(bowl), 0);
+  const Heightmap plane = generate_terrain("plane", 33, 33, 1.0, 1, {{"slope", 10.0}});
+  EXPECT_EQ(closed_depressions(plane), 0);
+  EXPECT_EQ(local_peaks(plane), 0);
+  // Two pits dug into the plane and a spike raised on it.
+  Heightmap rough = plane;
+  rough.at(5, 5) -= 3.0f;
+  rough.at(20, 9) -= 3.0f;
+  rough.at(12, 25) += 3.0f;
+  EXPECT_EQ(closed_depressions(rough), 2);
+  EXPECT_EQ(local_peaks(rough), 1);
+  EXPECT_EQ(local_peaks(generate_terrain("cone", 65, 65, 1.0, 1, {{"radius", 0.4}})), 1);
+}
+
+TEST(TerrainMetrics, ShortWavelengthShareSeparatesSpikesFromValleys) {
+  // Δh a broad valley (a wavelength of 16 cells): almost nothing under 4 cells. Δh a checkerboard
+  // (2 cells): almost everything.
+  const Heightmap before(64, 64, 1.0);
+  Heightmap valley = before, noise = before;
+  for (int j = 0; j < 64; ++j) {
+    for (int i = 0; i < 64; ++i) {
+      valley.at(i, j) = static_cast<float>(std::sin(2 * M_PI * i / 16.0));
+      noise.at(i, j) = ((i + j) % 2) ? 1.0f : -1.0f;
+    }
+  }
+  EXPECT_LT(short_wavelength_share(before, valley), 0.02);
+  EXPECT_GT(short_wavelength_share(before, noise), 0.98);
+}
+
 }  // namespace
 }  // namespace runnel::metrics

@@ -31,6 +31,8 @@ Parameters small_parameters(const std::string& model) {
   p.set("pipe.edges", std::string("closed"));  // a closed domain: nothing leaves
   p.set("pipe.rain", 0.05);
   p.set("droplet.batch", std::int64_t{64});
+  p.set("rain.rate", 2000.0);                     // SPH: drops land within the first steps
+  p.set("erosion.morphological_factor", 1000.0);  // and a few steps move material
   return p;
 }
 

@@ -89,8 +89,9 @@ TEST(Parameters, EveryKeyIsDeclaredOnce) {
 TEST(Parameters, DefaultScenarioLoads) {
   const Parameters p = load_scenario(test::source_dir() + "/data/scenarios/default.toml");
   const Heightmap t = load_terrain(p);
-  EXPECT_GE(t.nx, 256);
-  EXPECT_GE(t.ny, 256);
+  EXPECT_EQ(t.nx, 129);
+  EXPECT_EQ(t.ny, 129);
+  EXPECT_EQ(t.cell, 2.0);
 }
 
 TEST(Parameters, DocsAreGeneratedFromTheTable) {

@@ -22,9 +22,8 @@ Parameters busy_parameters() {
   p.set("rain.rate", 4000.0);
   p.set("rain.lifespan", 1.0);
   p.set("rain.max_particles", static_cast<std::int64_t>(3000));
-  p.set("erosion.capacity", 0.5);
-  p.set("erosion.time_scale", 1000.0);
-  p.set("thermal.every", static_cast<std::int64_t>(5));
+  p.set("erosion.morphological_factor", 1000.0);
+  p.set("thermal.interval", 0.005);
   p.set("thermal.talus_angle", 30.0);
   return p;
 }
@@ -118,49 +117,29 @@ std::pair<double, double> axis_and_flank_erosion(Simulation& sim) {
 }
 
 TEST(Simulation, RainOnAValleyGathersOnItsAxisAndErodesIt) {
-  // Erosion follows unit discharge (erosion.depth_exponent = 1) and takes sediment up slowly, so
-  // particles keep eroding along their whole path; drops live long enough to leave the valley.
+  // Rain on both flanks (10°) runs down to the axis (15°) and out at its foot: the water gathered
+  // there spends far more power on the bed (ω = ρ g q S) than the sheets on the flanks, so the axis
+  // erodes most. Particles of the cell's size keep the test quick.
   Parameters p;
-  p.set("rain.rate", 3000.0);
-  p.set("rain.max_particles", static_cast<std::int64_t>(4000));
+  p.set("sph.spacing", 1.0);
+  p.set("rain.rate", 40.0);
   p.set("rain.lifespan", 1000.0);
-  p.set("erosion.capacity", 0.5);
-  p.set("erosion.erode_rate", 0.01);
-  p.set("erosion.deposit_rate", 0.01);
-  p.set("erosion.depth_exponent", 1.0);
-  p.set("erosion.time_scale", 1000.0);
-  p.set("thermal.every", static_cast<std::int64_t>(0));
+  p.set("erosion.morphological_factor", 200.0);
+  p.set("thermal.interval", 0.0);
   const Heightmap valley =
-      generate_terrain("v-valley", 49, 49, 1.0, 1, {{"side_slope", 25.0}, {"axis_slope", 8.0}});
+      generate_terrain("v-valley", 49, 49, 1.0, 1, {{"side_slope", 10.0}, {"axis_slope", 15.0}});
   Simulation sim(compute(), p, valley);
-  for (int k = 0; k < 2500; ++k) sim.step();
+  while (sim.time() < 30.0) sim.step();
   // Water gathers: the band of ±4 m is 1/6 of the width, where rain alone would keep 17 % of it.
   const HostParticles q = sim.solver().particles().download();
-  ASSERT_GT(q.size(), 500u);
+  ASSERT_GT(q.size(), 100u);
   std::size_t near_axis = 0;
   for (std::size_t i = 0; i < q.size(); ++i) near_axis += std::fabs(q.f[kX][i] - 24.0) <= 4.0;
   EXPECT_GT(static_cast<double>(near_axis) / q.size(), 0.34) << near_axis << " of " << q.size();
   // And erodes: deeper on the axis than on the flanks.
   const auto [axis, flanks] = axis_and_flank_erosion(sim);
-  EXPECT_GT(axis, 1.15 * flanks) << "axis " << axis << " m, flanks " << flanks << " m";
+  EXPECT_GT(axis, 1.5 * flanks) << "axis " << axis << " m, flanks " << flanks << " m";
   EXPECT_EQ(sim.mass_balance().residual_quanta, 0);
-}
-
-TEST(Simulation, PerParticleCapacityFillsTheValleyAxis) {
-  // The documented limit of physics.md's per-particle capacity (depth_exponent = 0): flows from the
-  // two flanks meet on the axis, slow down and deposit there (docs/erosion.md).
-  Parameters p;
-  p.set("rain.rate", 3000.0);
-  p.set("rain.max_particles", static_cast<std::int64_t>(4000));
-  p.set("erosion.time_scale", 1000.0);
-  p.set("erosion.depth_exponent", 0.0);
-  p.set("thermal.every", static_cast<std::int64_t>(0));
-  const Heightmap valley =
-      generate_terrain("v-valley", 49, 49, 1.0, 1, {{"side_slope", 25.0}, {"axis_slope", 8.0}});
-  Simulation sim(compute(), p, valley);
-  for (int k = 0; k < 1500; ++k) sim.step();
-  const auto [axis, flanks] = axis_and_flank_erosion(sim);
-  EXPECT_LT(axis, flanks);
 }
 
 }  // namespace
@@ -179,11 +158,11 @@ TEST(Rain, DiscRegionBudgetAndIntensity) {
   p.set("rain.max_particles", static_cast<std::int64_t>(300));
   p.set("rain.lifespan", 1000.0);
   p.set("rain.spawn_height", 5.0);
-  p.set("thermal.every", static_cast<std::int64_t>(0));
+  p.set("thermal.interval", 0.0);
   const Heightmap flat = generate_terrain("plane", 41, 41, 1.0, 1, {{"slope", 0.0}});
   Simulation sim(compute(), p, flat);
-  // intensity → rate: 10 m/s × π·6² m² / dx³ (dx = cell = 1 m).
-  EXPECT_NEAR(sim.rain().settings().rate, 10.0 * M_PI * 36.0, 1e-9);
+  // intensity → rate: 10 m/s × π·6² m² / dx³ (dx = half the 1 m cell).
+  EXPECT_NEAR(sim.rain().settings().rate, 10.0 * M_PI * 36.0 / 0.125, 1e-6);
   for (int k = 0; k < 100 && sim.particles() < 20; ++k) sim.step();
   const HostParticles first = sim.solver().particles().download();
   ASSERT_GT(first.size(), 0u);
@@ -211,7 +190,9 @@ TEST(Erosion, AcidityModelErodesAFixedAmountPerContactAndConserves) {
   const double quantum = sim.solver().terrain().volume_quantum();
   for (std::size_t i = 0; i < q.size(); ++i) {
     EXPECT_LE(q.contacts[i] & ~kTouchingFlag, 3u);  // the top bit is the contact state
-    EXPECT_LE(q.sediment[i] * quantum, 3 * 0.002 * 1.0 + 1e-9);
+    // Three events of acidity · cell², each rounded to whole quanta (stochastically: one more at
+    // most).
+    EXPECT_LE(q.sediment[i] * quantum, 3 * (0.002 * 1.0 + quantum) + 1e-9);
   }
 }
 

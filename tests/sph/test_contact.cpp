@@ -47,9 +47,10 @@ TEST(Contact, FrictionlessSlideAcceleratesAtGSinAlpha) {
 }
 
 TEST(Contact, ManningBedFrictionFollowsItsTerminalSpeedLaw) {
-  // du/dt = g sin α − g n² u²/dx^(4/3): u = v_T tanh(g sin α t / v_T). With n = 0.06 s/m^(1/3) the
-  // droplet is at 82 % of v_T after 3 s, well into the friction-dominated regime.
-  const SlideResult s = droplet_slide(compute(), Parameters(), 0.25, 0.06);
+  // du/dt = g sin α − g n² u²/D^(4/3), D the lone drop's water depth on the terrain's vertices,
+  // against an RK4 integration of the same law. With n = 0.03 s/m^(1/3) the droplet is near its
+  // terminal speed after 3 s: friction dominates.
+  const SlideResult s = droplet_slide(compute(), Parameters(), 0.25, 0.03);
   EXPECT_NEAR(s.speed, s.expected_speed, 0.02 * s.expected_speed);
   EXPECT_LT(s.speed, 0.75 * s.expected_acceleration * s.duration) << "friction must slow it";
 }

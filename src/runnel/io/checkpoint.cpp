@@ -148,7 +148,7 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.write("/particles/ay", d.ay, {n});
     f.write("/particles/az", d.az, {n});
     f.write("/particles/drho", d.drho, {n});
-    f.write("/particles/neighbours", d.neighbours, {n});
+    f.write("/particles/depth", d.depth, {n});
     f.attribute("/particles", "count", static_cast<std::int64_t>(n));
     f.attribute("/particles", "next_id", static_cast<std::int64_t>(d.next_id));
     f.attribute("/particles", "sediment_quantum_m3", d.height_quantum * t.cell * t.cell);
@@ -243,7 +243,7 @@ CheckpointData read_checkpoint(const std::string& path) {
   d.ay = f.read_float("/particles/ay", n);
   d.az = f.read_float("/particles/az", n);
   d.drho = f.read_float("/particles/drho", n);
-  d.neighbours = f.read_float("/particles/neighbours", n);
+  d.depth = f.read_float("/particles/depth", n);
   for (auto* rates : {&d.ax, &d.ay, &d.az, &d.drho})
     require_finite(path, "/particles rates", *rates);
   d.next_id = static_cast<std::uint32_t>(f.read_int_attribute("/particles", "next_id"));

@@ -37,7 +37,7 @@ struct CheckpointData {
   std::vector<std::int64_t> height_fixed, initial_fixed;
   // Particles in their current (sorted) order, with the rates of the last force pass.
   HostParticles particles;
-  std::vector<float> ax, ay, az, drho, neighbours;
+  std::vector<float> ax, ay, az, drho, depth;
   std::uint32_t next_id = 0;
   // Clocks and counters.
   double time = 0, dt = 0;

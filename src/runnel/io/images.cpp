@@ -107,16 +107,36 @@ std::vector<float> hillshade(const Heightmap& t, double azimuth_deg, double alti
   return shade;
 }
 
+int picture_zoom(const Heightmap& t) {
+  return std::max(1, 512 / std::max(t.nx, t.ny));
+}
+
+namespace {
+// Bilinear value of a vertex field at pixel (px, py) of a picture `zoom` pixels per cell.
+float sample(const std::vector<float>& v, int nx, int ny, int zoom, int px, int py) {
+  const float u = std::min(static_cast<float>(px) / zoom, nx - 1.0f);
+  const float w = std::min(static_cast<float>(py) / zoom, ny - 1.0f);
+  const int i = std::min(static_cast<int>(u), nx - 2 < 0 ? 0 : nx - 2);
+  const int j = std::min(static_cast<int>(w), ny - 2 < 0 ? 0 : ny - 2);
+  const int i1 = std::min(i + 1, nx - 1), j1 = std::min(j + 1, ny - 1);
+  const float fx = u - i, fz = w - j;
+  auto at = [&](int a, int b) { return v[static_cast<std::size_t>(b) * nx + a]; };
+  return (1 - fx) * (1 - fz) * at(i, j) + fx * (1 - fz) * at(i1, j) + (1 - fx) * fz * at(i, j1) +
+         fx * fz * at(i1, j1);
+}
+}  // namespace
+
 RgbImage terrain_picture(const Heightmap& t, float lo, float hi) {
   const auto shade = hillshade(t);
-  RgbImage img(t.nx, t.ny);
+  const int zoom = picture_zoom(t);
+  const int w = (t.nx - 1) * zoom + 1, h = (t.ny - 1) * zoom + 1;
+  RgbImage img(w, h);
   const float range = hi > lo ? hi - lo : 1.0f;
-  for (int j = 0; j < t.ny; ++j) {
-    for (int i = 0; i < t.nx; ++i) {
-      const std::size_t k = static_cast<std::size_t>(j) * t.nx + i;
-      const Rgb c = ramp(kTerrainRamp, (t.h[k] - lo) / range);
-      const float s = 0.35f + 0.65f * shade[k];
-      img.set(i, j, to_byte(c.r * s), to_byte(c.g * s), to_byte(c.b * s));
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const Rgb c = ramp(kTerrainRamp, (sample(t.h, t.nx, t.ny, zoom, x, y) - lo) / range);
+      const float s = 0.35f + 0.65f * sample(shade, t.nx, t.ny, zoom, x, y);
+      img.set(x, y, to_byte(c.r * s), to_byte(c.g * s), to_byte(c.b * s));
     }
   }
   return img;
@@ -137,19 +157,23 @@ double erosion_scale(const Heightmap& before, const Heightmap& after) {
 
 RgbImage erosion_picture(const Heightmap& before, const Heightmap& after, double scale) {
   const auto shade = hillshade(after);
-  const int w = std::max(after.nx, 260), bar_h = 54;
-  RgbImage img(w, after.ny + bar_h);
-  for (int j = 0; j < after.ny; ++j) {
-    for (int i = 0; i < after.nx; ++i) {
-      const std::size_t k = static_cast<std::size_t>(j) * after.nx + i;
-      const float t = static_cast<float>(0.5 + 0.5 * (after.h[k] - before.h[k]) / scale);
+  std::vector<float> change(after.size());
+  for (std::size_t k = 0; k < change.size(); ++k) change[k] = after.h[k] - before.h[k];
+  const int zoom = picture_zoom(after);
+  const int map_w = (after.nx - 1) * zoom + 1, map_h = (after.ny - 1) * zoom + 1;
+  const int w = std::max(map_w, 260), bar_h = 54;
+  RgbImage img(w, map_h + bar_h);
+  for (int y = 0; y < map_h; ++y) {
+    for (int x = 0; x < map_w; ++x) {
+      const float t =
+          static_cast<float>(0.5 + 0.5 * sample(change, after.nx, after.ny, zoom, x, y) / scale);
       const Rgb c = ramp(kDivergingRamp, t);
-      const float s = 0.55f + 0.45f * shade[k];
-      img.set(i, j, to_byte(c.r * s), to_byte(c.g * s), to_byte(c.b * s));
+      const float s = 0.55f + 0.45f * sample(shade, after.nx, after.ny, zoom, x, y);
+      img.set(x, y, to_byte(c.r * s), to_byte(c.g * s), to_byte(c.b * s));
     }
   }
   // Colour bar with its scale: −scale (eroded) … 0 … +scale (deposited).
-  const int bar_x = 10, bar_w = w - 20, bar_y = after.ny + 6, bar_thick = 12;
+  const int bar_x = 10, bar_w = w - 20, bar_y = map_h + 6, bar_thick = 12;
   for (int x = 0; x < bar_w; ++x) {
     const Rgb c = ramp(kDivergingRamp, static_cast<float>(x) / (bar_w - 1));
     for (int y = 0; y < bar_thick; ++y)

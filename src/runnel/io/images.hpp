@@ -25,6 +25,10 @@ struct RgbImage {
 std::vector<float> hillshade(const Heightmap& terrain, double azimuth_deg = 315.0,
                              double altitude_deg = 45.0);
 
+// Pixels per cell of the pictures of a terrain: small terrains are drawn at least about 512 pixels
+// wide (bilinear between the vertices), large ones one pixel per vertex.
+int picture_zoom(const Heightmap& terrain);
+
 // The terrain coloured by height (water-meadow green, grass, earth, rock, snow), shaded by its
 // hillshade.
 RgbImage terrain_picture(const Heightmap& terrain, float min_height, float max_height);

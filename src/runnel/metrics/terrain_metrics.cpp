@@ -230,6 +230,37 @@ double concavity(const Heightmap& t, const std::vector<double>& area, double thr
   return -fit_slope(log_a, log_s);
 }
 
+// The 2-D FFT (in place) of a px × pz grid, px and pz powers of two, row-major.
+void fft2(std::vector<std::complex<double>>& grid, std::size_t px, std::size_t pz) {
+  std::vector<std::complex<double>> line;
+  for (std::size_t j = 0; j < pz; ++j) {  // rows
+    line.assign(grid.begin() + j * px, grid.begin() + (j + 1) * px);
+    fft(line, false);
+    std::copy(line.begin(), line.end(), grid.begin() + j * px);
+  }
+  line.resize(pz);
+  for (std::size_t i = 0; i < px; ++i) {  // columns
+    for (std::size_t j = 0; j < pz; ++j) line[j] = grid[j * px + i];
+    fft(line, false);
+    for (std::size_t j = 0; j < pz; ++j) grid[j * px + i] = line[j];
+  }
+}
+
+std::size_t next_power_of_two(int n) {
+  std::size_t p = 1;
+  while (p < static_cast<std::size_t>(n)) p <<= 1;
+  return p;
+}
+
+double hann(int i, int n) {
+  return 0.5 * (1 - std::cos(2 * M_PI * i / (n - 1)));
+}
+
+// Cycles per sample of FFT bin i of n.
+double frequency(std::size_t i, std::size_t n) {
+  return (i <= n / 2 ? double(i) : double(i) - n) / n;
+}
+
 double spectral_slope(const Heightmap& t) {
   // Detrend: remove the least-squares plane.
   const int nx = t.nx, ny = t.ny;
@@ -245,39 +276,22 @@ double spectral_slope(const Heightmap& t) {
   const double mx = sx / n, mz = sz / n, mh = sh / n;
   const double bx = (sxh / n - mx * mh) / (sxx / n - mx * mx),
                bz = (szh / n - mz * mh) / (szz / n - mz * mz);
-  std::size_t px = 1, pz = 1;
-  while (px < static_cast<std::size_t>(nx)) px <<= 1;
-  while (pz < static_cast<std::size_t>(ny)) pz <<= 1;
+  const std::size_t px = next_power_of_two(nx), pz = next_power_of_two(ny);
   std::vector<std::complex<double>> grid(px * pz);
   for (int j = 0; j < ny; ++j) {
-    const double wz = 0.5 * (1 - std::cos(2 * M_PI * j / (ny - 1)));
     for (int i = 0; i < nx; ++i) {
-      const double wx = 0.5 * (1 - std::cos(2 * M_PI * i / (nx - 1)));  // Hann window
       grid[static_cast<std::size_t>(j) * px + i] =
-          (t.at(i, j) - (mh + bx * (i - mx) + bz * (j - mz))) * wx * wz;
+          (t.at(i, j) - (mh + bx * (i - mx) + bz * (j - mz))) * hann(i, nx) * hann(j, ny);
     }
   }
-  std::vector<std::complex<double>> line;
-  for (std::size_t j = 0; j < pz; ++j) {  // rows
-    line.assign(grid.begin() + j * px, grid.begin() + (j + 1) * px);
-    fft(line, false);
-    std::copy(line.begin(), line.end(), grid.begin() + j * px);
-  }
-  line.resize(pz);
-  for (std::size_t i = 0; i < px; ++i) {  // columns
-    for (std::size_t j = 0; j < pz; ++j) line[j] = grid[j * px + i];
-    fft(line, false);
-    for (std::size_t j = 0; j < pz; ++j) grid[j * px + i] = line[j];
-  }
+  fft2(grid, px, pz);
   // Radial average in log-spaced bins of the wavenumber, between 2 cycles per map and Nyquist/2.
   const int bins = 24;
   std::vector<double> sum(bins, 0), count(bins, 0);
   const double k_min = 2.0 / std::max(px, pz), k_max = 0.25;  // cycles per sample
   for (std::size_t j = 0; j < pz; ++j) {
     for (std::size_t i = 0; i < px; ++i) {
-      const double fx = (i <= px / 2 ? double(i) : double(i) - px) / px;
-      const double fz = (j <= pz / 2 ? double(j) : double(j) - pz) / pz;
-      const double k = std::hypot(fx, fz);
+      const double k = std::hypot(frequency(i, px), frequency(j, pz));
       if (k < k_min || k > k_max) continue;
       const int b = std::min(
           bins - 1, static_cast<int>(bins * std::log(k / k_min) / std::log(k_max / k_min)));
@@ -311,6 +325,74 @@ double erosion_flow_correlation(const Heightmap& before, const Heightmap& after,
   return spearman(eroded, log_area);
 }
 
+double stream_power_correlation(const Heightmap& before, const Heightmap& after) {
+  const std::vector<double> area = flow_accumulation(before);
+  const std::vector<double> slope = slope_degrees(before);
+  std::vector<double> eroded, index;
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    const double e = double(before.h[k]) - after.h[k];
+    const double s = std::tan(slope[k] * M_PI / 180.0);
+    if (e <= 0 || s <= 0) continue;
+    eroded.push_back(e);
+    index.push_back(std::log(std::sqrt(area[k]) * s));
+  }
+  if (eroded.size() < 3) return NAN;
+  return spearman(eroded, index);
+}
+
+namespace {
+// Interior vertices whose height compares `beyond` every one of their 8 neighbours.
+template <typename Beyond>
+long long extremes(const Heightmap& t, Beyond beyond) {
+  long long count = 0;
+  for (int j = 1; j + 1 < t.ny; ++j) {
+    for (int i = 1; i + 1 < t.nx; ++i) {
+      bool all = true;
+      for (int dj = -1; dj <= 1 && all; ++dj) {
+        for (int di = -1; di <= 1 && all; ++di) {
+          if ((di || dj) && !beyond(t.at(i, j), t.at(i + di, j + dj))) all = false;
+        }
+      }
+      count += all;
+    }
+  }
+  return count;
+}
+}  // namespace
+
+long long closed_depressions(const Heightmap& t) {
+  return extremes(t, [](float h, float other) { return h < other; });
+}
+
+long long local_peaks(const Heightmap& t) {
+  return extremes(t, [](float h, float other) { return h > other; });
+}
+
+double short_wavelength_share(const Heightmap& before, const Heightmap& after, double cells) {
+  const int nx = after.nx, ny = after.ny;
+  double mean = 0;
+  for (std::size_t k = 0; k < after.size(); ++k) mean += double(after.h[k]) - before.h[k];
+  mean /= static_cast<double>(after.size());
+  const std::size_t px = next_power_of_two(nx), pz = next_power_of_two(ny);
+  std::vector<std::complex<double>> grid(px * pz);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double dh = double(after.at(i, j)) - before.at(i, j) - mean;
+      grid[static_cast<std::size_t>(j) * px + i] = dh * hann(i, nx) * hann(j, ny);
+    }
+  }
+  fft2(grid, px, pz);
+  double total = 0, short_waves = 0;
+  for (std::size_t j = 0; j < pz; ++j) {
+    for (std::size_t i = 0; i < px; ++i) {
+      const double power = std::norm(grid[j * px + i]);
+      total += power;
+      if (std::hypot(frequency(i, px), frequency(j, pz)) > 1.0 / cells) short_waves += power;
+    }
+  }
+  return total > 0 ? short_waves / total : 0.0;
+}
+
 std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
                                                                   const Heightmap& after) {
   return terrain_metric_values(before, after, flow_accumulation(after));
@@ -331,7 +413,13 @@ std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightma
           {"drainage_density_per_m", drainage_density(after, area, threshold)},
           {"concavity_theta", concavity(after, area, threshold)},
           {"spectral_slope", spectral_slope(after)},
-          {"erosion_flow_correlation", erosion_flow_correlation(before, after, area)}};
+          {"erosion_flow_correlation", erosion_flow_correlation(before, after, area)},
+          {"stream_power_correlation", stream_power_correlation(before, after)},
+          {"closed_depressions", static_cast<double>(closed_depressions(after))},
+          {"closed_depressions_initial", static_cast<double>(closed_depressions(before))},
+          {"local_peaks", static_cast<double>(local_peaks(after))},
+          {"local_peaks_initial", static_cast<double>(local_peaks(before))},
+          {"short_wavelength_dh_share", short_wavelength_share(before, after)}};
 }
 
 JsonObject terrain_metrics_json(const std::vector<std::pair<std::string, double>>& values,

@@ -48,6 +48,21 @@ double erosion_flow_correlation(const Heightmap& before, const Heightmap& after)
 double erosion_flow_correlation(const Heightmap& before, const Heightmap& after,
                                 const std::vector<double>& area);
 
+// Spearman correlation, over eroded vertices, of the height loss h0 − h with the stream-power index
+// log(√A·S) of the initial terrain (A its D8 drainage area, S its slope as a gradient): erosion by
+// running water grows with discharge and slope (models.md).
+double stream_power_correlation(const Heightmap& before, const Heightmap& after);
+
+// Interior vertices strictly lower (higher) than all 8 neighbours: the bottoms of closed
+// depressions (the tops of local peaks).
+long long closed_depressions(const Heightmap& t);
+long long local_peaks(const Heightmap& t);
+
+// The share of the variance of Δh = after − before at wavelengths under `cells` cells (the power of
+// the Hann-windowed, mean-removed Δh beyond 1/cells cycles per sample over its total): noise and
+// spikes live there, carved valleys do not.
+double short_wavelength_share(const Heightmap& before, const Heightmap& after, double cells = 4.0);
+
 // Every scalar metric above for a terrain (and its initial state), by name, in a fixed order (the
 // columns of runnel compare's metrics.csv).
 std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,

@@ -23,6 +23,7 @@ PipeSettings PipeSettings::from(const Parameters& p) {
   s.dissolve = p.real("pipe.dissolve");
   s.deposit = p.real("pipe.deposit");
   s.evaporation = p.real("pipe.evaporation");
+  s.manning_n = p.real("pipe.manning_n");
   s.min_tilt = p.real("pipe.min_tilt");
   s.cfl = p.real("pipe.cfl");
   s.cfl_depth = p.real("pipe.cfl_depth");
@@ -38,7 +39,9 @@ std::string PipeSettings::build_options() const {
          float_define("PIPE_GRAVITY", gravity) + float_define("PIPE_CAPACITY", capacity) +
          float_define("PIPE_DISSOLVE", dissolve) + float_define("PIPE_DEPOSIT", deposit) +
          float_define("PIPE_EVAPORATION", evaporation) + float_define("PIPE_MIN_TILT", min_tilt) +
-         float_define("PIPE_CFL_DEPTH", cfl_depth) + " -DPIPE_CLOSED=" + (closed ? "1" : "0");
+         float_define("PIPE_CFL_DEPTH", cfl_depth) + " -DPIPE_CLOSED=" + (closed ? "1" : "0") +
+         float_define("PIPE_GRAVITY_N2", gravity * manning_n * manning_n) +
+         " -DPIPE_FRICTION_ON=" + (manning_n > 0 ? "1" : "0");
 }
 
 const ModelInfo& PipeModel::model_info() {
@@ -76,7 +79,8 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   lost_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(outflow_, cl_long{0}, 0, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(lost_, cl_long{0}, 0, sizeof(cl_long));
-  cl::Program& program = compute.program({"cl/models/pipe.cl"}, settings_.build_options());
+  cl::Program& program =
+      compute.program({"cl/common.cl", "cl/models/pipe.cl"}, settings_.build_options());
   flux_kernel_ = cl::Kernel(program, "pipe_flux");
   water_kernel_ = cl::Kernel(program, "pipe_water");
   erode_kernel_ = cl::Kernel(program, "pipe_erode");
@@ -98,15 +102,16 @@ double PipeModel::take_step() {
   prof.launch(flux_kernel_, work, "pipe_flux");
   set_args(water_kernel_, depth, flux, velocity, previous_depth_, nx, ny, cell, dt);
   prof.launch(water_kernel_, work, "pipe_water");
+  const cl_ulong seed = static_cast<cl_ulong>(params_.integer("run.seed")), step = steps();
   set_args(erode_kernel_, terrain.height_fixed(), terrain.height(), sediment, depth, velocity, nx,
-           ny, q, cell, dt);
+           ny, q, cell, dt, seed, step);
   prof.launch(erode_kernel_, work, "pipe_erode");
   if (settings_.semi_lagrangian) {
     set_args(advect_kernel_, sediment, sediment_next_, velocity, nx, ny, cell, dt, lost_);
     prof.launch(advect_kernel_, work, "pipe_advect");
   } else {
     set_args(transport_kernel_, sediment, sediment_next_, flux, previous_depth_, nx, ny, cell, dt,
-             outflow_);
+             seed, step, outflow_);
     prof.launch(transport_kernel_, work, "pipe_transport");
   }
   std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment

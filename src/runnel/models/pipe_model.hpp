@@ -15,6 +15,7 @@ struct PipeSettings {
   double dissolve = 0.1;      // K_s, fraction of the free capacity dissolved per step
   double deposit = 0.1;       // K_d, fraction of the excess deposited per step
   double evaporation = 0.05;  // K_e, 1/s
+  double manning_n = 0;       // s/m^(1/3); 0: no bed friction (Mei 2007)
   double min_tilt = 0.05;     // smallest sin α in the capacity
   double cfl = 0.25;
   double cfl_depth = 0.01;       // m: thinner water does not limit the step

@@ -22,7 +22,10 @@ std::vector<std::int64_t> to_fixed(const Heightmap& t, double quantum) {
 
 Simulation::Simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
     : compute_(compute), params_(params), initial_(terrain) {
-  const double spacing = params.real("sph.spacing") > 0 ? params.real("sph.spacing") : terrain.cell;
+  // The water's resolution, not the grid's: half a cell, so a channel a few cells wide is several
+  // particles across (docs/erosion.md).
+  const double spacing =
+      params.real("sph.spacing") > 0 ? params.real("sph.spacing") : 0.5 * terrain.cell;
   const double relief =
       std::max(0.0, static_cast<double>(terrain.max_height() - terrain.min_height()));
   const double spawn =
@@ -32,8 +35,8 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   // of the relief (faster water is rarer and tolerates the larger density error).
   reference_speed_ = std::sqrt(2.0 * std::max(gravity, 1e-3) * std::max(0.25 * relief, spawn));
   const SphSettings sph = SphSettings::from(params, spacing, reference_speed_);
-  const ErosionSettings erosion = ErosionSettings::from(params, spacing);
 
+  const ErosionSettings erosion = ErosionSettings::from(params, sph, terrain.cell);
   const double top = terrain.max_height() + spawn + 4.0 * spacing;
   solver_ = std::make_unique<SphSolver>(compute, sph, terrain, top, erosion.height_quantum);
   initial_fixed_ = to_fixed(terrain, erosion.height_quantum);
@@ -47,9 +50,10 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   rain_ = std::make_unique<RainEmitter>(compute, rain,
                                         static_cast<std::uint64_t>(params.integer("run.seed")),
                                         static_cast<float>(sph.rho0));
-  erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_);
-  thermal_every_ = params.integer("thermal.every");
-  if (thermal_every_ > 0) {
+  erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_,
+                                       static_cast<std::uint64_t>(params.integer("run.seed")));
+  thermal_interval_ = params.real("thermal.interval");
+  if (thermal_interval_ > 0) {
     thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(),
                                                    ThermalSettings::from(params));
   }
@@ -60,7 +64,10 @@ void Simulation::step() {
   s.drift();  // integrate.kick, sph.continuity, integrate.drift (+ collide.terrain, outflow)
   erosion_->exchange(s, s.dt());  // erode.exchange and evaporation → fixed-point deltas
   s.terrain().apply();            // terrain.apply: deltas → heights, normals
-  if (thermal_ && (s.steps() + 1) % thermal_every_ == 0) thermal_->relax();  // thermal.relax
+  // thermal.relax, whenever the clock crosses a multiple of the interval (seconds, not steps).
+  if (thermal_ && std::floor((s.time() + s.dt()) / thermal_interval_) >
+                      std::floor(s.time() / thermal_interval_))
+    thermal_->relax();
   s.project_to_surface();  // no particle stays below a terrain that rose
   rain_->emit(s, s.dt());  // rain.emit: this step's drops at the spawn height
   s.complete_step();       // hash, sph_forces, kick, next dt
@@ -95,7 +102,7 @@ CheckpointData Simulation::checkpoint() {
   d.ay = store.read_field(kAy);
   d.az = store.read_field(kAz);
   d.drho = store.read_field(kDrho);
-  d.neighbours = store.read_field(kNeighbours);
+  d.depth = store.read_field(kDepth);
   d.next_id = store.next_id();
   d.time = solver_->time();
   d.dt = solver_->dt();
@@ -122,7 +129,7 @@ void Simulation::restore(const CheckpointData& d) {
   store.upload_field(kAy, d.ay);
   store.upload_field(kAz, d.az);
   store.upload_field(kDrho, d.drho);
-  store.upload_field(kNeighbours, d.neighbours);
+  store.upload_field(kDepth, d.depth);
   store.set_next_id(d.next_id);
   solver_->restore_clock(d.time, d.dt, d.steps);
   solver_->restore_counters(d.counters);

@@ -61,7 +61,7 @@ class Simulation {
   std::unique_ptr<RainEmitter> rain_;
   std::unique_ptr<Erosion> erosion_;
   std::unique_ptr<ThermalRelaxation> thermal_;
-  long long thermal_every_ = 0;
+  double thermal_interval_ = 0;  // s
 };
 
 }  // namespace runnel

@@ -1,76 +1,75 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/sph/erosion.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
+#include "runnel/core/error.hpp"
 
 namespace runnel {
-ErosionSettings ErosionSettings::from(const Parameters& p, double spacing) {
+
+ErosionSettings ErosionSettings::from(const Parameters& p, const SphSettings& sph,
+                                      double terrain_cell) {
   ErosionSettings e;
   e.model = p.text("erosion.model");
-  e.capacity = p.real("erosion.capacity");
-  e.erode_rate = p.real("erosion.erode_rate");
-  e.deposit_rate = p.real("erosion.deposit_rate");
-  e.min_slope_deg = p.real("erosion.min_slope");
-  e.time_scale = p.real("erosion.time_scale");
-  // Measured from the particle's surface: a particle is a sphere of radius dx/2 around its centre.
-  e.contact_distance = (0.5 + p.real("erosion.contact_distance")) * spacing;
-  e.limit_fraction = p.real("erosion.limit_fraction");
+  e.erodibility = p.real("erosion.erodibility");
+  e.critical_power = p.real("erosion.critical_power");
+  e.transport = p.real("erosion.transport_efficiency");
+  e.settling = p.real("erosion.settling_velocity");
+  e.bed_density = p.real("erosion.bed_density");
+  e.max_concentration = p.real("erosion.max_concentration");
+  e.morphological_factor = p.real("erosion.morphological_factor");
+  e.footprint_radius = runnel::footprint_radius(sph, terrain_cell);
   e.acidity = p.real("erosion.acidity");
   e.capacity_contacts = p.integer("erosion.capacity_contacts");
   e.deposit_fraction = p.real("erosion.deposit_fraction");
   e.height_quantum = p.real("erosion.height_quantum");
-  e.depth_exponent = p.real("erosion.depth_exponent");
-  const double support = 2.0 * p.real("sph.h_factor");  // 2h in units of dx
-  e.layer_neighbours = M_PI * support * support - 1.0;
   return e;
 }
 
-std::string ErosionSettings::build_options(double particle_volume, double volume_quantum) const {
+std::string ErosionSettings::build_options(const SphSettings& sph, double volume_quantum) const {
   std::string o = std::string(" -DEROSION_MODEL=") + (model == "acidity" ? "1" : "0");
-  o += float_define("EROSION_CAPACITY", capacity);
-  o += float_define("EROSION_ERODE_RATE", erode_rate);
-  o += float_define("EROSION_DEPOSIT_RATE", deposit_rate);
-  o += float_define("EROSION_SIN_MIN_SLOPE", std::sin(min_slope_deg * M_PI / 180.0));
-  o += float_define("EROSION_CONTACT_DISTANCE", contact_distance);
-  o += float_define("EROSION_LIMIT_FRACTION", limit_fraction);
+  const double volume = sph.spacing * sph.spacing * sph.spacing;
+  o += float_define("EROSION_RHO_G_N2", sph.rho0 * sph.gravity * sph.manning_n * sph.manning_n);
+  o += float_define("EROSION_CRITICAL_POWER", critical_power);
+  o += float_define("EROSION_DETACHMENT", erodibility / bed_density);
+  o += float_define("EROSION_TRANSPORT", transport / bed_density);
+  o += float_define("EROSION_MAX_CONCENTRATION", max_concentration);
+  o += float_define("EROSION_SETTLING", settling);
+  o += float_define("EROSION_PARTICLE_RADIUS", sph.contact_radius);
+  o += float_define("EROSION_PARTICLE_VOLUME", volume);
+  o += float_define("FOOTPRINT_RADIUS", footprint_radius);
   o += float_define("EROSION_ACIDITY", acidity);
   o += " -DEROSION_CAPACITY_CONTACTS=" + std::to_string(capacity_contacts) + "u";
   o += float_define("EROSION_DEPOSIT_FRACTION", deposit_fraction);
-  o += float_define("EROSION_PARTICLE_VOLUME", particle_volume);
   o += float_define("EROSION_VOLUME_QUANTUM", volume_quantum);
-  o += float_define("EROSION_DEPTH_EXPONENT", depth_exponent);
-  o += float_define("EROSION_LAYER_NEIGHBOURS", layer_neighbours);
   return o;
 }
 
 JsonObject ErosionSettings::json() const {
   return JsonObject()
       .add("model", model)
-      .add("capacity_s_per_m", capacity)
-      .add("erode_rate_per_s", erode_rate)
-      .add("deposit_rate_per_s", deposit_rate)
-      .add("min_slope_deg", min_slope_deg)
-      .add("time_scale", time_scale)
-      .add("contact_distance_m", contact_distance)
-      .add("limit_fraction", limit_fraction)
+      .add("erodibility_s2_per_m2", erodibility)
+      .add("critical_power_w_per_m2", critical_power)
+      .add("transport_efficiency_s2_per_m", transport)
+      .add("settling_velocity_m_per_s", settling)
+      .add("bed_density_kg_per_m3", bed_density)
+      .add("max_concentration", max_concentration)
+      .add("morphological_factor", morphological_factor)
+      .add("footprint_radius_m", footprint_radius)
       .add("deposit_fraction", deposit_fraction)
-      .add("height_quantum_m", height_quantum)
-      .add("depth_exponent", depth_exponent)
-      .add("layer_neighbours", layer_neighbours);
+      .add("height_quantum_m", height_quantum);
 }
 
-Erosion::Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver)
-    : compute_(compute), settings_(settings) {
-  const double volume =
-      solver.settings().spacing * solver.settings().spacing * solver.settings().spacing;
+Erosion::Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver,
+                 std::uint64_t seed)
+    : compute_(compute), settings_(settings), seed_(seed) {
   const std::string options = settings.build_options(
-      volume, settings.height_quantum * solver.terrain_cell() * solver.terrain_cell());
+      solver.settings(), settings.height_quantum * solver.terrain_cell() * solver.terrain_cell());
   kernel_ = cl::Kernel(compute.program({"cl/common.cl", "cl/counters.cl", "cl/grid.cl",
-                                        "cl/terrain_sample.cl", "cl/erode.cl"},
+                                        "cl/terrain_sample.cl", "cl/footprint.cl", "cl/erode.cl"},
                                        options),
                        "erode_exchange");
 }
@@ -82,11 +81,14 @@ void Erosion::exchange(SphSolver& solver, double dt) {
   cl::Kernel& k = kernel_;
   cl_uint a = 0;
   for (ParticleField f :
-       {kX, kY, kZ, kVx, kVy, kVz, kSediment, kContacts, kAge, kLifespan, kId, kNeighbours}) {
+       {kX, kY, kZ, kVx, kVy, kVz, kSediment, kContacts, kAge, kLifespan, kId, kDepth}) {
     k.setArg(a++, store.buffer(f));
   }
   k.setArg(a++, n);
-  k.setArg(a++, static_cast<float>(dt * settings_.time_scale));
+  k.setArg(a++, static_cast<float>(dt));
+  k.setArg(a++, static_cast<float>(settings_.morphological_factor));
+  k.setArg(a++, static_cast<cl_ulong>(seed_));
+  k.setArg(a++, static_cast<cl_ulong>(solver.steps()));
   solver.terrain().set_args(k, a);
   a += 5;
   k.setArg(a++, solver.terrain().delta());

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "runnel/compute/context.hpp"
@@ -9,26 +10,27 @@
 
 namespace runnel {
 
-// The erosion of one run, resolved from the erosion.* parameters.
+// The erosion of one run, resolved from the erosion.* parameters and the fluid's settings
+// (docs/erosion.md): the stream-power model (Foster & Meyer 1975's coupling, Bagnold 1966's stream
+// power) or Fritz 2016's acidity model.
 struct ErosionSettings {
-  std::string model = "capacity";  // or "acidity"
-  double capacity = 0.2;           // K_c, s/m
-  double erode_rate = 0.005;       // K_s, 1/s
-  double deposit_rate = 0.005;     // K_d, 1/s
-  double min_slope_deg = 2;
-  double time_scale = 5000;
-  double contact_distance = 0.5;  // m (resolved from dx)
-  double limit_fraction = 0.5;
-  double acidity = 0.001;  // m
-  long long capacity_contacts = 10;
+  std::string model = "stream-power";  // or "acidity"
+  double erodibility = 0;              // K_ω, s²/m²
+  double critical_power = 0;           // ω_c, W/m²
+  double transport = 0;                // k_T, s²/m
+  double settling = 0;                 // w_s, m/s
+  double bed_density = 0;              // ρ_b, kg/m³
+  double max_concentration = 0;        // c_max, bed volume per water volume
+  double morphological_factor = 1;
+  double footprint_radius = 0;  // m, where an exchange is spread
+  double acidity = 0;           // m
+  long long capacity_contacts = 0;
   double deposit_fraction = 1.0;
-  double height_quantum = 1e-6;    // m
-  double depth_exponent = 1.0;     // β: capacity × (flow depth in layers)^β
-  double layer_neighbours = 17.1;  // neighbours of a particle in one flat layer
+  double height_quantum = 1e-6;  // m
 
-  static ErosionSettings from(const Parameters& p, double spacing);
+  static ErosionSettings from(const Parameters& p, const SphSettings& sph, double terrain_cell);
   // OpenCL build options (-DEROSION_...) for cl/erode.cl.
-  std::string build_options(double particle_volume, double volume_quantum) const;
+  std::string build_options(const SphSettings& sph, double volume_quantum) const;
   JsonObject json() const;
 };
 
@@ -36,13 +38,16 @@ struct ErosionSettings {
 // accumulated into the terrain's fixed-point deltas (applied once per step by DeviceTerrain).
 class Erosion {
  public:
-  Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver);
+  Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver,
+          std::uint64_t seed);
+  // The exchange over the step of length dt that the solver has just drifted.
   void exchange(SphSolver& solver, double dt);
   const ErosionSettings& settings() const { return settings_; }
 
  private:
   ComputeContext& compute_;
   ErosionSettings settings_;
+  std::uint64_t seed_;
   cl::Kernel kernel_;
 };
 

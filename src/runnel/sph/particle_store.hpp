@@ -25,7 +25,7 @@ enum ParticleField : int {
   kPersistentFieldCount,
   kAx = kPersistentFieldCount, kAy, kAz,  // acceleration, m/s²
   kDrho,                                  // dρ/dt, kg/m³/s
-  kNeighbours,                            // neighbours within 2h (float count), for the flow depth
+  kDepth,                                 // local water depth (m), from the force pass
   kFieldCount
   // clang-format on
 };

@@ -42,8 +42,10 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
   r.max_particles = p.integer("rain.max_particles");
   r.spawn_height = p.real("rain.spawn_height") > 0 ? p.real("rain.spawn_height") : spacing;
   r.speed = p.real("rain.speed");
-  r.lifespan =
-      p.real("rain.lifespan") > 0 ? p.real("rain.lifespan") : std::max(lx, lz) / reference_speed;
+  // By default a drop lives long enough to cross the terrain at a tenth of the reference speed:
+  // water under bed friction runs several times slower than a free fall over the relief.
+  r.lifespan = p.real("rain.lifespan") > 0 ? p.real("rain.lifespan")
+                                           : 10.0 * std::max(lx, lz) / reference_speed;
   r.lifespan_jitter = p.real("rain.lifespan_jitter");
   const double volume = spacing * spacing * spacing;
   if (p.real("rain.rate") > 0) {

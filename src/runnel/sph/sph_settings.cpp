@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/sph/sph_settings.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -36,9 +37,8 @@ SphSettings SphSettings::from(const Parameters& p, double default_spacing, doubl
   return s;
 }
 
-double SphSettings::layer_neighbours() const {
-  const double support = 2.0 * h / spacing;
-  return M_PI * support * support - 1.0;
+double footprint_radius(const SphSettings& s, double terrain_cell) {
+  return std::min(std::max(2.0 * s.h, 1.5 * terrain_cell), 8.0 * terrain_cell);
 }
 
 std::string SphSettings::build_options() const {
@@ -54,8 +54,6 @@ std::string SphSettings::build_options() const {
   o += float_define("SPH_RESTITUTION", restitution);
   o += float_define("SPH_MANNING_G_N2", gravity * manning_n * manning_n);
   o += float_define("SPH_CONTACT_RADIUS", contact_radius);
-  o += float_define("SPH_SPACING", spacing);
-  o += float_define("SPH_LAYER_NEIGHBOURS", layer_neighbours());
   o += float_define("SPH_SURFACE_EPS", surface_eps);
   o += std::string(" -DSPH_CLAMP_NEGATIVE_PRESSURE=") + (clamp_negative_pressure ? "1" : "0");
   o += std::string(" -DSPH_WALLS=") + (walls ? "1" : "0");

@@ -6,6 +6,11 @@
 
 namespace runnel {
 
+struct SphSettings;
+// The radius (m) over which a particle's water is counted on the terrain and its erosion spread
+// (cl/footprint.cl): at least the kernel's support 2h and 1.5 cells, at most 8 cells.
+double footprint_radius(const SphSettings& s, double terrain_cell);
+
 // The SPH parameters of one run, resolved: no "auto" values left. Built from the parameter table.
 struct SphSettings {
   double spacing = 0.1;  // dx, m
@@ -29,9 +34,6 @@ struct SphSettings {
 
   double mass() const { return rho0 * spacing * spacing * spacing; }  // kg
   double tait_b() const { return c0 * c0 * rho0 / 7.0; }              // Pa
-  // Neighbours within 2h of a particle in one flat layer of the lattice of spacing dx: π(2h/dx)²
-  // − 1.
-  double layer_neighbours() const;
 
   // `default_spacing` and `reference_speed` fill sph.spacing = 0 and sph.c0 = 0 (c0 = 10 v_ref).
   static SphSettings from(const Parameters& params, double default_spacing, double reference_speed);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 
@@ -12,11 +13,17 @@ namespace runnel {
 namespace {
 
 const std::vector<std::string> kSphSources = {
-    "cl/common.cl",         "cl/counters.cl",     "cl/grid.cl",    "cl/sph_kernel.cl",
-    "cl/terrain_sample.cl", "cl/sph_boundary.cl", "cl/collide.cl", "cl/sph_forces.cl",
-    "cl/sph_continuity.cl", "cl/integrate.cl"};
+    "cl/common.cl",         "cl/counters.cl",     "cl/grid.cl",      "cl/sph_kernel.cl",
+    "cl/terrain_sample.cl", "cl/sph_boundary.cl", "cl/collide.cl",   "cl/sph_forces.cl",
+    "cl/sph_continuity.cl", "cl/integrate.cl",    "cl/footprint.cl", "cl/water_depth.cl"};
 constexpr cl_uint kStatBlocks = 256;
 constexpr int kStatColumns = 6;
+
+// -DFOOTPRINT_RADIUS and the particle volume for the water depth pass (cl/water_depth.cl).
+std::string footprint_options(const SphSettings& s, double terrain_cell) {
+  return float_define("FOOTPRINT_RADIUS", footprint_radius(s, terrain_cell)) +
+         float_define("WATER_PARTICLE_VOLUME", s.spacing * s.spacing * s.spacing);
+}
 
 GridSpec fluid_grid(const SphSettings& s, const Heightmap& floor, double top) {
   const double margin = 2.0 * s.h;
@@ -36,13 +43,17 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
       terrain_(compute, floor, height_quantum),
       store_(compute),
       hash_(compute, fluid_grid(settings, floor, top)) {
-  cl::Program& program = compute.program(kSphSources, settings.build_options());
+  cl::Program& program = compute.program(
+      kSphSources, settings.build_options() + footprint_options(settings, floor.cell));
   forces_ = cl::Kernel(program, "sph_forces");
   continuity_ = cl::Kernel(program, "sph_continuity");
   drift_ = cl::Kernel(program, "drift");
   kick_ = cl::Kernel(program, "kick");
   stats_ = cl::Kernel(program, "step_stats");
   project_ = cl::Kernel(program, "project_to_surface");
+  depth_scatter_ = cl::Kernel(program, "water_depth_scatter");
+  depth_gather_ = cl::Kernel(program, "water_depth_gather");
+  water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, floor.size() * sizeof(cl_long));
   stats_buffer_ =
       cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
   counters_buffer_ =
@@ -59,6 +70,7 @@ void SphSolver::add(HostParticles particles) {
 
 void SphSolver::prepare() {
   build_hash();
+  measure_water_depth();
   compute_forces();
   choose_next_dt();
   rates_ready_ = true;
@@ -79,10 +91,24 @@ void SphSolver::drift() {
   store_.swap_scratch({kX, kY, kZ, kRho});  // x(n+1), ρ(n+1) become the state
 }
 
+void SphSolver::measure_water_depth() {
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  const std::size_t vertices = static_cast<std::size_t>(terrain_.nx()) * terrain_.ny();
+  compute_.queue().enqueueFillBuffer(water_, cl_long{0}, 0, vertices * sizeof(cl_long));
+  if (n == 0) return;
+  set_args(depth_scatter_, store_.buffer(kX), store_.buffer(kZ), store_.buffer(kId), n, water_,
+           terrain_.nx(), terrain_.ny(), terrain_.cell());
+  compute_.profiler().launch(depth_scatter_, round_up_work(n), "water_depth_scatter");
+  set_args(depth_gather_, store_.buffer(kX), store_.buffer(kZ), store_.buffer(kId), n, water_,
+           terrain_.nx(), terrain_.ny(), terrain_.cell(), store_.buffer(kDepth));
+  compute_.profiler().launch(depth_gather_, round_up_work(n), "water_depth_gather");
+}
+
 void SphSolver::complete_step() {
-  build_hash();      // sort by cell, reorder, drop dead particles, cell tables
-  compute_forces();  // a(n+1) at x(n+1), ρ(n+1)
-  kick();            // v(n+1) = v(n+½) + a(n+1)·dt/2
+  build_hash();           // sort by cell, reorder, drop dead particles, cell tables
+  measure_water_depth();  // D at x(n+1), new drops included: the next step's friction and erosion
+  compute_forces();       // a(n+1) at x(n+1), ρ(n+1)
+  kick();                 // v(n+1) = v(n+½) + a(n+1)·dt/2
   time_ += dt_;
   ++steps_;
   choose_next_dt();  // CFL and acceleration limits; stops on NaN or a collapsing step
@@ -93,7 +119,7 @@ void SphSolver::drift_and_collide() {
   auto& k = drift_;
   cl_uint a = 0;
   for (ParticleField f :
-       {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kNeighbours})
+       {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth})
     k.setArg(a++, store_.buffer(f));
   for (ParticleField f : {kX, kY, kZ}) k.setArg(a++, store_.scratch(f));
   k.setArg(a++, n);
@@ -157,7 +183,7 @@ void SphSolver::compute_forces() {
   a += 5;
   k.setArg(a++, static_cast<float>(terrain_.extent_x()));
   k.setArg(a++, static_cast<float>(terrain_.extent_z()));
-  for (ParticleField f : {kAx, kAy, kAz, kNeighbours}) k.setArg(a++, store_.buffer(f));
+  for (ParticleField f : {kAx, kAy, kAz}) k.setArg(a++, store_.buffer(f));
   compute_.profiler().launch(k, round_up_work(n), "sph_forces");
 }
 

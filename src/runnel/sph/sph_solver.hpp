@@ -77,6 +77,7 @@ class SphSolver {
 
  private:
   void drift_and_collide();
+  void measure_water_depth();
   void build_hash();
   void integrate_density();
   void compute_forces();
@@ -88,7 +89,8 @@ class SphSolver {
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  cl::Kernel forces_, continuity_, drift_, kick_, stats_, project_;
+  cl::Kernel forces_, continuity_, drift_, kick_, stats_, project_, depth_scatter_, depth_gather_;
+  cl::Buffer water_;  // water on each terrain vertex, counts of 1 µm of depth (cl/water_depth.cl)
   cl::Buffer stats_buffer_, counters_buffer_;
   bool rates_ready_ = false;
   bool hash_stale_ = true;

@@ -26,8 +26,8 @@ namespace runnel {
 ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const int layers = options.resolution > 0 ? options.resolution : 16;
-  const int width_cells = 10;       // particles across the box (each way)
-  const double height = 0.4;        // m
+  const double height = 0.4;  // m, in a box 0.25 m wide whatever the resolution
+  const int width_cells = std::max(4, static_cast<int>(std::lround(0.625 * layers)));
   const double floor_height = 1.0;  // m: the terrain floor is not at zero
   const double dx = height / layers;
   Parameters params = options.params;

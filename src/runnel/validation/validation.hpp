@@ -36,6 +36,12 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
 // 1996.
 ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOptions& options);
 
+// Erosion against numerical knobs: half the time step, half the particle size (same rain volume),
+// spawn heights of 0.5 and 2 spacings, each against the base run (resolution: terrain vertices per
+// side, default 65; settle_time: the simulated seconds, default 20).
+ValidationResult validate_erosion_convergence(ComputeContext& compute,
+                                              const ValidationOptions& options);
+
 // Lone droplets on the terrain: bounce (no energy gained, rebound e²), slide (g sin α, Manning's
 // terminal speed) and resting clearance against spawn height.
 ValidationResult validate_droplet(ComputeContext& compute, const ValidationOptions& options);

@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+// Erosion convergence: the same rain on the same terrain, computed again with half the time step,
+// with particles of half the size (the same rain volume: eight times as many), and with drops
+// spawned at 0.5 and 2 spacings instead of 1. A result that moves with a numerical knob is an
+// artefact, so each variant is compared with the base run: its eroded volume (cell²·Σ max(0, h0 −
+// h)), and for the finer particles the correlation of the Δh maps smoothed over 4 cells.
+// The terrain: fBm hills like the default scenario's, `resolution` vertices per side (default 65,
+// 2 m cells), rain at a constant intensity over the whole terrain for `sim_time` seconds; drops
+// live until they leave the map, so the rain volume is the only water.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "runnel/sim/simulation.hpp"
+#include "runnel/terrain/generators.hpp"
+#include "runnel/validation/validation.hpp"
+
+namespace runnel {
+namespace {
+
+struct ErosionRun {
+  double eroded = 0;  // m³
+  Heightmap before, after;
+  long long spawned = 0, steps = 0;
+  double wall_seconds = 0;
+};
+
+ErosionRun run_rain(ComputeContext& compute, const Parameters& params, const Heightmap& terrain,
+                    double sim_time) {
+  const auto start = std::chrono::steady_clock::now();
+  Simulation sim(compute, params, terrain);
+  while (sim.time() < sim_time) sim.step();
+  ErosionRun r;
+  r.before = sim.initial_terrain();
+  r.after = sim.terrain();
+  r.eroded = sim.mass_balance().eroded;
+  r.spawned = static_cast<long long>(sim.rain().spawned());
+  r.steps = static_cast<long long>(sim.steps());
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// Δh = after − before, averaged over a window of `width` cells (clamped at the edges).
+std::vector<double> smoothed_change(const ErosionRun& r, int width) {
+  const Heightmap& a = r.after;
+  const int half = width / 2;
+  std::vector<double> out(a.size());
+  for (int j = 0; j < a.ny; ++j) {
+    for (int i = 0; i < a.nx; ++i) {
+      double sum = 0;
+      int n = 0;
+      for (int dj = -half; dj <= half; ++dj) {
+        for (int di = -half; di <= half; ++di) {
+          const int x = std::clamp(i + di, 0, a.nx - 1), z = std::clamp(j + dj, 0, a.ny - 1);
+          sum += double(a.at(x, z)) - r.before.at(x, z);
+          ++n;
+        }
+      }
+      out[static_cast<std::size_t>(j) * a.nx + i] = sum / n;
+    }
+  }
+  return out;
+}
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) ma += a[k], mb += b[k];
+  ma /= a.size(), mb /= b.size();
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    sab += (a[k] - ma) * (b[k] - mb);
+    saa += (a[k] - ma) * (a[k] - ma);
+    sbb += (b[k] - mb) * (b[k] - mb);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+}  // namespace
+
+ValidationResult validate_erosion_convergence(ComputeContext& compute,
+                                              const ValidationOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const int size = options.resolution > 0 ? options.resolution : 65;
+  const double cell = 2.0, sim_time = options.settle_time > 0 ? options.settle_time : 20.0;
+  const Heightmap terrain = generate_terrain("fbm", size, size, cell, 7,
+                                             {{"relief", 0.12}, {"hurst", 1.0}, {"octaves", 6}});
+  Parameters base = options.params;
+  auto set_default = [&](const char* key, auto value) {
+    if (!base.was_set(key)) base.set(key, value, "validate");
+  };
+  set_default("rain.intensity", 20000.0);  // mm/h: a storm heavy enough that the water flows
+  set_default("rain.lifespan", 1e9);       // water leaves only through the map's edges
+  set_default("rain.max_particles", static_cast<std::int64_t>(100000000));
+  set_default("erosion.morphological_factor", 100.0);
+  const double spacing = base.real("sph.spacing") > 0 ? base.real("sph.spacing") : 0.5 * cell;
+  base.set("sph.spacing", spacing, "validate");
+  base.set("rain.spawn_height", spacing, "validate");
+
+  struct Variant {
+    const char* name;
+    Parameters params;
+  };
+  std::vector<Variant> variants = {{"base", base}};
+  Parameters half_cfl = base;
+  half_cfl.set("sph.cfl", 0.5 * base.real("sph.cfl"), "validate");
+  variants.push_back({"half_cfl", half_cfl});
+  Parameters half_spacing = base;
+  half_spacing.set("sph.spacing", 0.5 * spacing, "validate");
+  half_spacing.set("rain.spawn_height", 0.5 * spacing, "validate");
+  variants.push_back({"half_spacing", half_spacing});
+  for (double spawn : {0.5, 2.0}) {
+    Parameters p = base;
+    p.set("rain.spawn_height", spawn * spacing, "validate");
+    variants.push_back({spawn < 1 ? "spawn_0.5dx" : "spawn_2dx", p});
+  }
+
+  std::vector<ErosionRun> runs;
+  for (auto& v : variants) {
+    if (options.progress) std::fprintf(stderr, "erosion-convergence: %s\n", v.name);
+    runs.push_back(run_rain(compute, v.params, terrain, sim_time));
+  }
+  const double eroded = runs[0].eroded;
+  auto change = [&](std::size_t k) { return std::fabs(runs[k].eroded - eroded) / eroded; };
+  const double correlation = pearson(smoothed_change(runs[0], 4), smoothed_change(runs[2], 4));
+  const double spawn_change = std::max(change(3), change(4));
+
+  ValidationResult r;
+  r.name = "erosion-convergence";
+  for (const auto& run : runs) {
+    r.particles += run.spawned;
+    r.steps += run.steps;
+  }
+  // The worst of the four criteria, each as a fraction of its tolerance (≤ 1 passes).
+  const double scores[4] = {change(1) / 0.10, change(2) / 0.25, (1.0 - correlation) / 0.3,
+                            spawn_change / 0.20};
+  r.relative_error = *std::max_element(scores, scores + 4);
+  r.target = 1.0;
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::vector<JsonObject> table;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    table.push_back(JsonObject()
+                        .add("variant", variants[k].name)
+                        .add("eroded_m3", runs[k].eroded)
+                        .add("relative_change", k == 0 ? 0.0 : change(k))
+                        .add("particles_spawned", runs[k].spawned)
+                        .add("steps", runs[k].steps)
+                        .add("wall_seconds", runs[k].wall_seconds));
+  }
+  r.details
+      .add("terrain", "fbm " + std::to_string(size) + "x" + std::to_string(size) + ", 2 m cells")
+      .add("sim_time", sim_time)
+      .add("runs", table)
+      .add("half_cfl_change", change(1))
+      .add("half_cfl_target", 0.10)
+      .add("half_spacing_change", change(2))
+      .add("half_spacing_target", 0.25)
+      .add("half_spacing_dh_correlation", correlation)
+      .add("half_spacing_correlation_target", 0.7)
+      .add("spawn_height_change", spawn_change)
+      .add("spawn_height_target", 0.20)
+      .add("score", "relative_error is the worst criterion as a fraction of its tolerance");
+  return r;
+}
+
+}  // namespace runnel

@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+// SPH erosion (docs/erosion.md): every exchange lands on a footprint of vertices, not on one tile;
+// the eroded volume does not move with the time step, the particle size or the spawn height; on
+// hills the erosion follows the water and leaves the surface smooth.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/sim/simulation.hpp"
+#include "runnel/sph/footprint.hpp"
+#include "runnel/terrain/generators.hpp"
+#include "runnel/validation/validation.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::compute;
+
+TEST(Erosion, AnEvaporatingLoadSpreadsOverItsFootprint) {
+  // One particle carrying 1 m³ of sediment evaporates over flat ground: the whole load lands, in
+  // the proportions of the footprint weights, on the vertices within the footprint radius.
+  Parameters p;
+  p.set("rain.enabled", false);
+  p.set("thermal.interval", 0.0);
+  const Heightmap flat = generate_terrain("plane", 33, 33, 2.0, 1, {{"slope", 0.0}});
+  Simulation sim(compute(), p, flat);
+  const double quantum = sim.solver().terrain().volume_quantum();
+  HostParticles drop;
+  const double x = 31.3, z = 30.7;
+  drop.push(static_cast<float>(x), 0.6f, static_cast<float>(z), 0, 0, 0, 1000, 0.0f);
+  drop.sediment[0] = static_cast<std::int32_t>(std::llround(1.0 / quantum));
+  sim.solver().add(drop);
+  sim.step();
+  EXPECT_EQ(sim.particles(), 0u) << "it evaporated";
+  const Heightmap after = sim.terrain();
+  const auto weights = footprint_weights(x, z, flat.nx, flat.ny, flat.cell,
+                                         footprint_radius(sim.solver().settings(), flat.cell));
+  double total = 0, largest = 0;
+  int touched = 0;
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    const double volume = (after.h[k] - sim.initial_terrain().h[k]) * flat.cell * flat.cell;
+    total += volume;
+    largest = std::max(largest, volume);
+    touched += volume > 0;
+  }
+  EXPECT_NEAR(total, 1.0, 1e-4);
+  EXPECT_GE(touched, 9) << "a footprint, not a tile's four vertices";
+  EXPECT_LT(largest, 0.5) << "no vertex takes the bulk of the load";
+  for (const auto& w : weights) {
+    const double got =
+        (after.at(w.i, w.j) - sim.initial_terrain().at(w.i, w.j)) * flat.cell * flat.cell;
+    EXPECT_NEAR(got, w.weight, 1e-4) << w.i << "," << w.j;
+  }
+  // The books: the terrain gained exactly the load the particle was given by hand.
+  EXPECT_EQ(sim.mass_balance().residual_quanta, drop.sediment[0]);
+}
+
+TEST(Erosion, EroddedVolumeDoesNotMoveWithTimeStepParticleSizeOrSpawnHeight) {
+  // A small storm on a 33 × 33 fBm (validate erosion-convergence at a small size).
+  ValidationOptions options;
+  options.resolution = 33;
+  options.params.set("rain.intensity", 40000.0);
+  const ValidationResult r = validate_erosion_convergence(compute(), options);
+  const std::string json = r.summary_json();
+  EXPECT_LT(test::json_number(json, "half_cfl_change"), 0.10) << json;
+  EXPECT_LT(test::json_number(json, "half_spacing_change"), 0.25) << json;
+  EXPECT_GT(test::json_number(json, "half_spacing_dh_correlation"), 0.7) << json;
+  EXPECT_LT(test::json_number(json, "spawn_height_change"), 0.20) << json;
+}
+
+TEST(Erosion, OnHillsErosionFollowsTheWaterAndLeavesTheSurfaceSmooth) {
+  Parameters p;
+  p.set("rain.intensity", 8000.0);
+  p.set("rain.lifespan", 600.0);
+  p.set("erosion.morphological_factor", 100.0);
+  const Heightmap hills = generate_terrain("fbm", 65, 65, 2.0, 7, {{"relief", 0.12}});
+  Simulation sim(compute(), p, hills);
+  while (sim.time() < 40.0) sim.step();
+  const Heightmap before = sim.initial_terrain(), after = sim.terrain();
+  EXPECT_GT(sim.mass_balance().eroded, 10.0);
+  EXPECT_GT(metrics::stream_power_correlation(before, after), 0.3)
+      << "erosion grows with discharge and slope";
+  EXPECT_LE(metrics::closed_depressions(after), 1.25 * metrics::closed_depressions(before) + 2);
+  EXPECT_LE(metrics::local_peaks(after), 1.25 * metrics::local_peaks(before) + 2);
+  // At this small size and short time (the README gives the default scenario's figure, 10 %).
+  EXPECT_LT(metrics::short_wavelength_share(before, after), 0.25) << "carved, not roughened";
+  EXPECT_EQ(sim.mass_balance().residual_quanta, 0);
+}
+
+}  // namespace
+}  // namespace runnel
