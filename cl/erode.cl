@@ -5,23 +5,23 @@
 // loses.
 //
 // The stream-power model (EROSION_MODEL 0): Foster & Meyer's (1975) coupling of detachment and
-// transport capacity, as in WEPP (Nearing et al. 1989), with detachment and capacity driven by the
-// power the flow spends on its bed (Bagnold 1966; Nearing et al. 1997: stream power predicts rill
-// detachment best). A particle of the water column on the bed (its lowest point, along the surface
+// transport capacity, as in WEPP's rill equations (Nearing et al. 1989), driven by the power the
+// flow spends on its bed (Bagnold 1966; Nearing et al. 1997 found stream power the best predictor of
+// rill detachment). A particle of the water column on the bed (its lowest point, along the surface
 // normal, within the local water depth D of the terrain; D from water_depth.cl, measured at the end
-// of the last step) stands for the water
-// over the bed area V/D, and exchanges with that area:
+// of the last step) stands for the water over the bed area V/D, and exchanges with that area:
 //   bed shear stress (Manning, the SPH bed friction's law):  τ = ρ0 g n² |u_t|² / D^(1/3)
-//   stream power spent on the bed:                           ω = τ |u_t|        (W/m²; ρ g q S in
-//                                                                                steady flow)
-//   detachment capacity:     D_c = K_ω (ω − ω_c)⁺ / ρ_b                          (m/s of bed)
-//   transport capacity (transport ∝ stream power, as a concentration of the water):
-//                            c_T = min(k_T τ / ρ_b, c_max)      (k_T ω per unit width over ρ_b q)
+//   stream power spent on the bed:   ω = τ |u_t|     (W/m²; ρ0 g q S in steady flow)
+//   detachment capacity:             D_c = K_ω (ω − ω_c)⁺ / ρ_b          (m/s of bed)
+//   transport capacity: k_T ω per unit width, as a concentration of the water,
+//                       c_T = min(k_T ρ0 g S / ρ_b, c_max)    (its steady-flow value: S = sin α
+//                       of the bed; a unit of water's capacity is set by the slope, which no
+//                       particle size or depth estimate can bias)
 //   c = s / V the particle's load per water volume;
 //   c < c_T: detachment  E = D_c (1 − c/c_T),   uptake ΔV = E (V/D) dt, at most (c_T − c) V
 //   c > c_T: deposition  E = w_s (c − c_T),     drop   ΔV = E (V/D) dt, at most (c − c_T) V
-// Rates are per second of flow and per unit area of bed, so the total over the bed does not depend
-// on the particle size (a particle detaches K_ω ρ g S |u| V / ρ_b in steady flow, whatever D), and
+// Rates are per second of flow and per unit area of bed: the total over the bed does not depend on
+// the particle size where the flow is resolved (the water on a footprint is several particles);
 // the caps keep a step from overshooting.
 // The morphological factor MF (Roelvink 2006) runs the bed MF times faster than the water: the
 // load is kept in accelerated bed volume, c̃ = MF c, so the detachment rate and the capacity (c_T,
@@ -86,7 +86,9 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   const float speed = length(vel - dot(vel, s.normal) * s.normal);
   const float tau = EROSION_RHO_G_N2 * speed * speed / cbrt(water_depth);  // Pa
   const float excess = fmax(tau * speed - EROSION_CRITICAL_POWER, 0.0f);    // W/m²
-  const float capacity = morphological_factor * fmin(EROSION_TRANSPORT * tau, EROSION_MAX_CONCENTRATION);
+  const float sin_slope = sqrt(fmax(0.0f, 1.0f - s.normal.y * s.normal.y));
+  const float capacity =
+      morphological_factor * fmin(EROSION_TRANSPORT_SLOPE * sin_slope, EROSION_MAX_CONCENTRATION);
   const float area = EROSION_PARTICLE_VOLUME / water_depth;  // the bed under this water, m²
   const float load = (float)carried * EROSION_VOLUME_QUANTUM;                         // m³
   const float concentration = load / EROSION_PARTICLE_VOLUME;                         // c

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The footprint of a particle on the terrain's vertices: where its erosion and deposition land
 // (erode.cl) and where its water is counted (water_depth.cl). The vertices within FOOTPRINT_RADIUS
-// of the particle (at least the smoothing length's support, and 1.5 cells, so every particle reaches
+// of the particle (at least the smoothing length's support, and 2 cells, so every particle reaches
 // several vertices whatever its size), weighted by a smooth, separable function of the distances.
 // Compile-time constants (host -D): FOOTPRINT_RADIUS (m).
 

@@ -37,20 +37,23 @@ void write_compare_png(const std::string& path, const Heightmap& initial,
   const int factor = std::max(1, (std::max(initial.nx, initial.ny) - 2) / (kTileVertices - 1) + 1);
   const Heightmap before = subsample(initial, factor);
   float lo = before.min_height(), hi = before.max_height();
-  double scale = 0;  // one Δh scale for every model: the largest of their robust scales
   std::vector<Heightmap> after;
   for (const ModelResult& r : results) {
     after.push_back(subsample(r.final_terrain, factor));
     lo = std::min(lo, after.back().min_height());
     hi = std::max(hi, after.back().max_height());
-    scale = std::max(scale, erosion_scale(before, after.back()));
   }
+  // Each erosion map on its own Δh scale (its 99th percentile of |Δh|, in its title): models that
+  // move a hundred times more than others would otherwise leave those blank. The magnitudes are in
+  // the table beside the figure.
   std::vector<RgbImage> top, bottom;
   top.push_back(with_title(terrain_picture(before, lo, hi), "initial terrain"));
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string name = lower(results[k].model);
+    const double scale = erosion_scale(before, after[k]);
     top.push_back(with_title(terrain_picture(after[k], lo, hi), name + ": final"));
-    bottom.push_back(with_title(erosion_picture(before, after[k], scale), name + ": erosion"));
+    bottom.push_back(with_title(erosion_picture(before, after[k], scale),
+                                name + ": dh +-" + format("%.2g", scale) + " m"));
   }
   int tile_w = 0, top_h = 0, bottom_h = 0;
   for (auto& t : top) tile_w = std::max(tile_w, t.width), top_h = std::max(top_h, t.height);
@@ -66,8 +69,8 @@ void write_compare_png(const std::string& path, const Heightmap& initial,
   }
   // Under the initial terrain: what the colours mean.
   const int x = gap + 4, y = top_h + 2 * gap + 8;
-  draw_text(grid, x, y, "one scale for all:", 2);
-  draw_text(grid, x, y + 24, "dh +-" + format("%.3g", scale) + " m", 2);
+  draw_text(grid, x, y, "erosion maps:", 2);
+  draw_text(grid, x, y + 24, "each its own scale", 2);
   draw_text(grid, x, y + 48, "red: eroded", 2, 180, 30, 30);
   draw_text(grid, x, y + 72, "blue: deposited", 2, 30, 60, 180);
   draw_text(grid, x, y + 96, "heights " + format("%.4g", lo) + " to", 2);
@@ -92,8 +95,9 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
   md +=
       "| model | class | steps | time | rain m³ | eroded m³ | deposited m³ | outflow m³ | balance "
       "(rel) | hypsometric integral | erosion score | mean slope ° | drainage density 1/m | "
-      "concavity θ | spectral slope | erosion–flow ρ |\n";
-  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "concavity θ | spectral slope | erosion–flow ρ | stream-power ρ | depressions | short-λ "
+      "share |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ModelResult& r : results) {
     md += "| [" + r.model + "](" + r.folder + "/metrics.json) | " + r.class_name + " | " +
           std::to_string(r.steps) + " | " + format("%.4g", r.time) + (r.clock == "s" ? " s" : "") +
@@ -106,7 +110,10 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
           format("%.4g", metric(r, "drainage_density_per_m")) + " | " +
           format("%.3f", metric(r, "concavity_theta")) + " | " +
           format("%.3f", metric(r, "spectral_slope")) + " | " +
-          format("%.3f", metric(r, "erosion_flow_correlation")) + " |\n";
+          format("%.3f", metric(r, "erosion_flow_correlation")) + " | " +
+          format("%.3f", metric(r, "stream_power_correlation")) + " | " +
+          format("%.0f", metric(r, "closed_depressions")) + " | " +
+          format("%.3f", metric(r, "short_wavelength_dh_share")) + " |\n";
   }
   md += "\nHow each model received the budget (parameters set by runnel compare):\n\n";
   for (const ModelResult& r : results)
@@ -117,7 +124,11 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
              results.empty() ? std::nan("") : metric(results[0], "hypsometric_integral_initial")) +
       ", erosion score " +
       format("%.4f", results.empty() ? std::nan("") : metric(results[0], "erosion_score_initial")) +
-      ". Every column for every model is in metrics.csv; each model's folder holds its pictures, "
+      ", closed depressions " +
+      format("%.0f",
+             results.empty() ? std::nan("") : metric(results[0], "closed_depressions_initial")) +
+      " (docs/metrics.md). Every column for every model is in metrics.csv; each model's folder "
+      "holds its pictures, "
       "final terrain (ASC, NPY, HDF5) and metrics.json.\n";
   return md;
 }

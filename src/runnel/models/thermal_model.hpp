@@ -7,8 +7,8 @@ namespace runnel {
 
 // Erosion_Musgrave1989: talus relaxation (Musgrave, Kolb & Mace 1989; Olsen 2004), constant or
 // height-aware (Fritz 2016). One step is one relaxation pass of cl/thermal.cl
-// (ThermalRelaxation, the same pass the SPH model runs every thermal.every steps). No water, no
-// rain; volume is exact (integer quanta, closed edges).
+// (ThermalRelaxation, the same pass the SPH model runs every thermal.interval seconds). No water,
+// no rain; volume is exact (integer quanta, closed edges).
 class ThermalModel final : public GridModel {
  public:
   static const ModelInfo& model_info();

@@ -53,10 +53,10 @@ const std::vector<ParamSpec>& parameter_table() {
       {"rain.lifespan_jitter", T::kReal, "0.25", "1", 0, 0.99, {}, "lifespans are uniform in mean·(1 ± jitter)"},
       {"rain.enabled", T::kBool, "true", "", 0, 0, {}, "rain on or off"},
       // erosion: dissolving and depositing sediment (physics.md §4)
-      {"erosion.model", T::kString, "\"stream-power\"", "", 0, 0, {"stream-power", "acidity"}, "stream-power: detachment and transport capacity driven by the power the flow spends on its bed, coupled as Foster & Meyer 1975 (docs/erosion.md); acidity: Fritz 2016's fixed erosion per contact"},
+      {"erosion.model", T::kString, "\"stream-power\"", "", 0, 0, {"stream-power", "acidity"}, "stream-power: detachment driven by the power the flow spends on its bed against a transport capacity, coupled as Foster & Meyer 1975 (docs/erosion.md); acidity: Fritz 2016's fixed erosion per contact"},
       {"erosion.erodibility", T::kReal, "0.001", "s^2/m^2", 0, 1e6, {}, "K_ω: detachment K_ω (ω − ω_c) in kg/m²/s, ω the stream power on the bed in W/m²"},
       {"erosion.critical_power", T::kReal, "0", "W/m^2", 0, 1e9, {}, "ω_c, the stream power below which the flow detaches nothing"},
-      {"erosion.transport_efficiency", T::kReal, "0.02", "s^2/m", 0, 1e6, {}, "k_T: transport capacity k_T ω per unit width (kg/m/s, Bagnold 1966: about 0.16 × his efficiency, 0.01–0.15), carried as the concentration k_T τ / ρ_b"},
+      {"erosion.transport_efficiency", T::kReal, "0.02", "s^2/m", 0, 1e6, {}, "k_T: transport capacity k_T ω per unit width (kg/m/s, ω the stream power; Bagnold 1966: about 0.16 × his efficiency, 0.01–0.15), carried as the concentration k_T ρ0 g S / ρ_b (S the sine of the slope)"},
       {"erosion.settling_velocity", T::kReal, "0.01", "m/s", 0, 100, {}, "w_s, the fall velocity of the sediment (fine sand about 0.01): deposition w_s (c − c_T)"},
       {"erosion.bed_density", T::kReal, "1600", "kg/m^3", 1, 1e5, {}, "ρ_b, dry bulk density of the bed: converts mass rates into bed volume"},
       {"erosion.max_concentration", T::kReal, "0.2", "1", 0, 1, {}, "c_max, the most bed volume a particle carries per volume of its water"},

@@ -35,7 +35,7 @@ std::string ErosionSettings::build_options(const SphSettings& sph, double volume
   o += float_define("EROSION_RHO_G_N2", sph.rho0 * sph.gravity * sph.manning_n * sph.manning_n);
   o += float_define("EROSION_CRITICAL_POWER", critical_power);
   o += float_define("EROSION_DETACHMENT", erodibility / bed_density);
-  o += float_define("EROSION_TRANSPORT", transport / bed_density);
+  o += float_define("EROSION_TRANSPORT_SLOPE", transport * sph.rho0 * sph.gravity / bed_density);
   o += float_define("EROSION_MAX_CONCENTRATION", max_concentration);
   o += float_define("EROSION_SETTLING", settling);
   o += float_define("EROSION_PARTICLE_RADIUS", sph.contact_radius);

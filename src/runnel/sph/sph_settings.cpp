@@ -38,7 +38,7 @@ SphSettings SphSettings::from(const Parameters& p, double default_spacing, doubl
 }
 
 double footprint_radius(const SphSettings& s, double terrain_cell) {
-  return std::min(std::max(2.0 * s.h, 1.5 * terrain_cell), 8.0 * terrain_cell);
+  return std::min(std::max(2.0 * s.h, 2.0 * terrain_cell), 8.0 * terrain_cell);
 }
 
 std::string SphSettings::build_options() const {

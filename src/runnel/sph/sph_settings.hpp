@@ -8,7 +8,7 @@ namespace runnel {
 
 struct SphSettings;
 // The radius (m) over which a particle's water is counted on the terrain and its erosion spread
-// (cl/footprint.cl): at least the kernel's support 2h and 1.5 cells, at most 8 cells.
+// (cl/footprint.cl): at least the kernel's support 2h and 2 cells, at most 8 cells.
 double footprint_radius(const SphSettings& s, double terrain_cell);
 
 // The SPH parameters of one run, resolved: no "auto" values left. Built from the parameter table.
