@@ -147,6 +147,20 @@ void SphSolver::project_to_surface() {
   compute_.profiler().launch(project_, round_up_work(n), "project_to_surface");
 }
 
+// Both neighbour passes see the same neighbourhood: the hash grid, its cell ranges and the terrain
+// boundary.
+cl_uint SphSolver::set_neighbourhood_args(cl::Kernel& k, cl_uint a) {
+  hash_.set_grid_args(k, a);
+  a += 7;
+  k.setArg(a++, hash_.cell_start());
+  k.setArg(a++, hash_.cell_end());
+  terrain_.set_args(k, a);
+  a += 5;
+  k.setArg(a++, static_cast<float>(terrain_.extent_x()));
+  k.setArg(a++, static_cast<float>(terrain_.extent_z()));
+  return a;
+}
+
 void SphSolver::integrate_density() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   auto& k = continuity_;
@@ -156,14 +170,7 @@ void SphSolver::integrate_density() {
   k.setArg(a++, store_.buffer(kRho));
   k.setArg(a++, n);
   k.setArg(a++, static_cast<float>(dt_));
-  hash_.set_grid_args(k, a);
-  a += 7;
-  k.setArg(a++, hash_.cell_start());
-  k.setArg(a++, hash_.cell_end());
-  terrain_.set_args(k, a);
-  a += 5;
-  k.setArg(a++, static_cast<float>(terrain_.extent_x()));
-  k.setArg(a++, static_cast<float>(terrain_.extent_z()));
+  a = set_neighbourhood_args(k, a);
   k.setArg(a++, store_.buffer(kDrho));
   k.setArg(a++, store_.scratch(kRho));
   compute_.profiler().launch(k, round_up_work(n), "sph_continuity");
@@ -175,14 +182,7 @@ void SphSolver::compute_forces() {
   cl_uint a = 0;
   for (ParticleField f : {kX, kY, kZ, kVx, kVy, kVz, kRho}) k.setArg(a++, store_.buffer(f));
   k.setArg(a++, n);
-  hash_.set_grid_args(k, a);
-  a += 7;
-  k.setArg(a++, hash_.cell_start());
-  k.setArg(a++, hash_.cell_end());
-  terrain_.set_args(k, a);
-  a += 5;
-  k.setArg(a++, static_cast<float>(terrain_.extent_x()));
-  k.setArg(a++, static_cast<float>(terrain_.extent_z()));
+  a = set_neighbourhood_args(k, a);
   for (ParticleField f : {kAx, kAy, kAz}) k.setArg(a++, store_.buffer(f));
   compute_.profiler().launch(k, round_up_work(n), "sph_forces");
 }

@@ -79,6 +79,7 @@ class SphSolver {
   void drift_and_collide();
   void measure_water_depth();
   void build_hash();
+  cl_uint set_neighbourhood_args(cl::Kernel& k, cl_uint first);
   void integrate_density();
   void compute_forces();
   void kick();
