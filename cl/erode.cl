@@ -57,7 +57,7 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
                              __global int* sediment, __global uint* contacts, const __global float* age,
                              const __global float* lifespan, __global uint* id, const __global float* depth,
                              const uint n, const float dt, const float morphological_factor,
-                             const ulong seed, const ulong step,
+                             const ulong seed, const ulong step_index,
                              const __global float* terrain_height, const __global float* terrain_normal,
                              const int tnx, const int tny, const float tcell, volatile __global long* delta,
                              volatile __global long* counters) {
@@ -69,7 +69,7 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
 
   if (age[i] > lifespan[i]) {  // evaporation: deposit and leave
     const long kept = min(carried, (long)floor((float)carried * EROSION_DEPOSIT_FRACTION));
-    spread_quanta(delta, tnx, tny, tcell, px, pz, kept, 1, exchange_random(seed, id[i], step, 1));
+    spread_quanta(delta, tnx, tny, tcell, px, pz, kept, 1, exchange_random(seed, id[i], step_index, 1));
     atom_add(&counters[COUNTER_LOST_SEDIMENT], carried - kept);
     atom_inc(&counters[COUNTER_EVAPORATED]);
     sediment[i] = 0;
@@ -95,25 +95,25 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   if (concentration < capacity) {
     const float rate = morphological_factor * EROSION_DETACHMENT * excess * (1.0f - concentration / capacity);
     const float amount = fmin(rate * area * dt, (capacity - concentration) * EROSION_PARTICLE_VOLUME);
-    const long q = stochastic_quanta(amount, exchange_random(seed, id[i], step, 0));
+    const long q = stochastic_quanta(amount, exchange_random(seed, id[i], step_index, 0));
     if (q > 0 && carried + q < 0x7fffffffL) {
-      spread_quanta(delta, tnx, tny, tcell, px, pz, q, -1, exchange_random(seed, id[i], step, 1));
+      spread_quanta(delta, tnx, tny, tcell, px, pz, q, -1, exchange_random(seed, id[i], step_index, 1));
       sediment[i] = (int)(carried + q);
     }
   } else {
     const float rate = EROSION_SETTLING * (concentration - capacity);  // m/s
     const float amount = fmin(rate * area * dt, load - capacity * EROSION_PARTICLE_VOLUME);
-    const long q = min(carried, stochastic_quanta(amount, exchange_random(seed, id[i], step, 0)));
+    const long q = min(carried, stochastic_quanta(amount, exchange_random(seed, id[i], step_index, 0)));
     if (q > 0) {
-      spread_quanta(delta, tnx, tny, tcell, px, pz, q, 1, exchange_random(seed, id[i], step, 1));
+      spread_quanta(delta, tnx, tny, tcell, px, pz, q, 1, exchange_random(seed, id[i], step_index, 1));
       sediment[i] = (int)(carried - q);
     }
   }
 #else
   if ((contacts[i] & ~TOUCHING_FLAG) < EROSION_CAPACITY_CONTACTS) {
-    const long q = stochastic_quanta(EROSION_ACIDITY * tcell * tcell, exchange_random(seed, id[i], step, 0));
+    const long q = stochastic_quanta(EROSION_ACIDITY * tcell * tcell, exchange_random(seed, id[i], step_index, 0));
     if (q > 0 && carried + q < 0x7fffffffL) {
-      spread_quanta(delta, tnx, tny, tcell, px, pz, q, -1, exchange_random(seed, id[i], step, 1));
+      spread_quanta(delta, tnx, tny, tcell, px, pz, q, -1, exchange_random(seed, id[i], step_index, 1));
       sediment[i] = (int)(carried + q);
       contacts[i] += 1;
     }

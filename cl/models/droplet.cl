@@ -89,12 +89,12 @@ inline void erode_brush(volatile __global long* delta, int nx, int ny, float x, 
 // a droplet that has finished.
 __kernel void droplet_step(const __global float* height, volatile __global long* delta, const int nx, const int ny,
                            const float quantum, const ulong seed, const ulong first_droplet, const uint count,
-                           const int step, __global float* state, __global long* load,
+                           const int step_index, __global float* state, __global long* load,
                            volatile __global long* counters) {
   const uint d = get_global_id(0);
   if (d >= count) return;
   __global float* s = state + 6 * d;
-  if (step == 0) {
+  if (step_index == 0) {
     const ulong id = first_droplet + d;
     s[0] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1), (float)(nx - 1) - 1e-3f);
     s[1] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1), (float)(ny - 1) - 1e-3f);
@@ -146,7 +146,7 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
   }
   speed = sqrt(fmax(0.0f, speed * speed - dh * DROPLET_GRAVITY));
   water *= 1.0f - DROPLET_EVAPORATE;
-  if (step == DROPLET_LIFETIME - 1) {  // the end of its life: it deposits what it still carries
+  if (step_index == DROPLET_LIFETIME - 1) {  // the end of its life: it deposits what it still carries
     deposit_bilinear(delta, nx, nx_pos, nz_pos, sediment);
     sediment = 0;
     water = -1.0f;

@@ -94,7 +94,7 @@ inline float pipe_random(ulong seed, ulong stream, ulong step, int cells, int k)
 __kernel void pipe_erode(__global long* height, const __global float* height_view, __global long* sediment,
                          __global float* depth, const __global float* velocity, const int nx, const int ny,
                          const float quantum, const float cell, const float dt, const ulong seed,
-                         const ulong step) {
+                         const ulong step_index) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
   const int i = k % nx, j = k / nx;
@@ -109,7 +109,7 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   // The water cannot carry more sediment than its own depth (thin films move fast).
   const float capacity = fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth[k]);  // m
   const float s = (float)sediment[k] * quantum;
-  const float u = pipe_random(seed, PIPE_ERODE_STREAM, step, nx * ny, k);
+  const float u = pipe_random(seed, PIPE_ERODE_STREAM, step_index, nx * ny, k);
   if (capacity > s) {
     const long q = (long)floor(-expm1(-PIPE_DISSOLVE * dt) * (capacity - s) / quantum + u);
     height[k] -= q;
@@ -137,7 +137,7 @@ inline long pipe_sent(long sediment, const __global float* flux4, float share, f
 
 __kernel void pipe_transport(const __global long* sediment, __global long* sediment_next, const __global float* flux,
                              const __global float* previous_depth, const int nx, const int ny, const float cell,
-                             const float dt, const ulong seed, const ulong step, volatile __global long* outflow) {
+                             const float dt, const ulong seed, const ulong step_index, volatile __global long* outflow) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
   const int i = k % nx, j = k / nx;
@@ -145,7 +145,7 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
   // share = Δt / (d1·l²): the fraction of the cell's water one unit of flux carries away in a step.
   const float volume = previous_depth[k] * cell2;
   const float share = volume > 0.0f ? dt / volume : 0.0f;
-  const float u = pipe_random(seed, PIPE_TRANSPORT_STREAM, step, nx * ny, k);
+  const float u = pipe_random(seed, PIPE_TRANSPORT_STREAM, step_index, nx * ny, k);
   long s = sediment[k];
   for (int d = 0; d < 4; ++d) {
     const long sent = pipe_sent(sediment[k], flux + 4 * k, share, u, d);
@@ -158,7 +158,7 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
     const int m = z * nx + x;
     const float volume_m = previous_depth[m] * cell2;
     const float share_m = volume_m > 0.0f ? dt / volume_m : 0.0f;
-    s += pipe_sent(sediment[m], flux + 4 * m, share_m, pipe_random(seed, PIPE_TRANSPORT_STREAM, step, nx * ny, m),
+    s += pipe_sent(sediment[m], flux + 4 * m, share_m, pipe_random(seed, PIPE_TRANSPORT_STREAM, step_index, nx * ny, m),
                    d ^ 1);
   }
   sediment_next[k] = s;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/rng.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -88,16 +89,13 @@ TEST(TerrainNormals, PlaneNormalIsAnalytic) {
 
 TEST(Rng, DeviceDrawsTheSameBitsAsTheHost) {
   ComputeContext compute("cpu");
-  cl::Kernel probe(compute.program({"cl/common.cl", "cl/rng_probe.cl"}), "rng_probe");
+  Kernel probe(compute, compute.program({"cl/common.cl", "cl/rng_probe.cl"}), "rng_probe");
   const std::size_t n = 4096;
   cl::Buffer bits(compute.context(), CL_MEM_WRITE_ONLY, n * sizeof(cl_ulong));
   cl::Buffer uniform(compute.context(), CL_MEM_WRITE_ONLY, n * sizeof(float));
   const cl_ulong seed = 0xDEADBEEF12345ULL, stream = 77;
-  probe.setArg(0, bits);
-  probe.setArg(1, uniform);
-  probe.setArg(2, seed);
-  probe.setArg(3, stream);
-  compute.queue().enqueueNDRangeKernel(probe, cl::NullRange, cl::NDRange(n));
+  probe.set("bits", bits).set("uniform", uniform).set("seed", seed).set("stream", stream);
+  probe.launch(n);
   std::vector<cl_ulong> b(n);
   std::vector<float> u(n);
   compute.queue().enqueueReadBuffer(bits, CL_TRUE, 0, n * sizeof(cl_ulong), b.data());

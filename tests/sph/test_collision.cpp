@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "runnel/compute/kernel.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/surface.hpp"
@@ -77,10 +78,11 @@ TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
   // contact surface a particle's radius above it.
   const Heightmap rough = generate_terrain("diamond-square", 49, 41, 0.5, 9, {{"relief", 0.4}});
   SphSolver solver(compute(), droplet_settings(0.25), rough, 40.0);
-  cl::Kernel probe(compute().program({"cl/common.cl", "cl/terrain_sample.cl", "cl/collide.cl",
-                                      "cl/collide_probe.cl"},
-                                     droplet_settings(0.25).build_options()),
-                   "collide_probe");
+  Kernel probe(compute(),
+               compute().program(
+                   {"cl/common.cl", "cl/terrain_sample.cl", "cl/collide.cl", "cl/collide_probe.cl"},
+                   droplet_settings(0.25).build_options()),
+               "collide_probe");
   for (double radius : {0.0, 0.25}) {
     const Heightmap surface = contact_surface(rough, radius);
     std::mt19937 rng(11);
@@ -100,12 +102,9 @@ TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
     cl::Buffer seg_buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, segments.size() * 4,
                           segments.data());
     cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n * 4);
-    probe.setArg(0, seg_buffer);
-    probe.setArg(1, static_cast<cl_uint>(n));
-    solver.terrain().set_args(probe, 2);
-    probe.setArg(7, static_cast<float>(radius));
-    probe.setArg(8, result);
-    compute().queue().enqueueNDRangeKernel(probe, cl::NullRange, cl::NDRange(n));
+    solver.terrain().bind(probe);
+    probe.set("segments", seg_buffer).set("n", static_cast<cl_uint>(n));
+    probe.set("radius", static_cast<float>(radius)).set("result", result).launch(n);
     std::vector<float> r(4 * n);
     compute().queue().enqueueReadBuffer(result, CL_TRUE, 0, r.size() * 4, r.data());
     int hits = 0;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/sph/sph_reference.hpp"
 #include "runnel/sph/sph_settings.hpp"
@@ -23,16 +24,19 @@ Probe probe(const std::vector<float>& r, double h = kH) {
   static ComputeContext compute("cpu");
   SphSettings s;
   s.h = h;
-  cl::Kernel k(compute.program({"cl/common.cl", "cl/sph_kernel.cl", "cl/sph_kernel_probe.cl"},
-                               s.build_options()),
-               "sph_kernel_probe");
+  Kernel k(compute,
+           compute.program({"cl/common.cl", "cl/sph_kernel.cl", "cl/sph_kernel_probe.cl"},
+                           s.build_options()),
+           "sph_kernel_probe");
   const std::size_t n = r.size();
   auto& ctx = compute.context();
   cl::Buffer rb(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * 4, const_cast<float*>(r.data()));
   std::vector<cl::Buffer> out;
   for (int f = 0; f < 6; ++f) out.emplace_back(ctx, CL_MEM_WRITE_ONLY, n * 4);
-  set_args(k, rb, static_cast<cl_uint>(n), out[0], out[1], out[2], out[3], out[4], out[5]);
-  compute.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
+  k.set("r", rb).set("n", static_cast<cl_uint>(n));
+  const char* names[] = {"w", "grad", "wall_g", "wall_a", "wall_b", "wall_v"};
+  for (int f = 0; f < 6; ++f) k.set(names[f], out[f]);
+  k.launch(n);
   Probe p;
   std::vector<float>* fields[] = {&p.w, &p.grad, &p.g, &p.a, &p.b, &p.v};
   for (int f = 0; f < 6; ++f) {

@@ -155,7 +155,8 @@ cl::Program ComputeContext::build_source(const std::string& source, const std::s
   cl::Program program(context_, source);
   // Fixed math options so every device computes the same way: no fast-math, denormals as the device
   // has them.
-  const std::string all_options = "-cl-std=CL1.2 " + options;
+  // -cl-kernel-arg-info: so Kernel can check its argument names against the compiler's.
+  const std::string all_options = "-cl-std=CL1.2 -cl-kernel-arg-info " + options;
   try {
     program.build({device_}, all_options.c_str());
   } catch (const cl::Error& e) {

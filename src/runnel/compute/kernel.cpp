@@ -86,12 +86,12 @@ cl_uint Kernel::index_of(std::string_view argument) const {
   throw runtime_error("kernel " + name_ + " has no argument '" + std::string(argument) + "'");
 }
 
-void Kernel::launch(std::size_t global) {
+void Kernel::launch(std::size_t global, const char* label) {
   for (std::size_t a = 0; a < assigned_.size(); ++a) {
     if (!assigned_[a])
       throw runtime_error("kernel " + name_ + ": argument '" + arguments_[a] + "' was never set");
   }
-  compute_->profiler().launch(kernel_, global, name_.c_str());
+  compute_->profiler().launch(kernel_, global, label ? label : name_.c_str());
 }
 
 }  // namespace runnel

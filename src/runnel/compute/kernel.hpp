@@ -25,8 +25,9 @@ class Kernel {
     assigned_[index] = true;
     return *this;
   }
-  // Launches over `global` work-items through the profiler (timed under the kernel's name).
-  void launch(std::size_t global);
+  // Launches over `global` work-items through the profiler, timed under `label` (default: the
+  // kernel's name).
+  void launch(std::size_t global, const char* label = nullptr);
 
   const std::string& name() const { return name_; }
   const std::vector<std::string>& arguments() const { return arguments_; }

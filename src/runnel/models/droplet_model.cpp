@@ -61,7 +61,8 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
     : GridModel(compute, params, terrain),
       settings_(DropletSettings::from(params)),
       seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
-      kernel_(compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings_.build_options()),
+      kernel_(compute,
+              compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings_.build_options()),
               "droplet_step"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long)),
       droplet_state_(compute.context(), CL_MEM_READ_WRITE,
@@ -89,11 +90,19 @@ double DropletModel::take_step() {
   const cl_uint count = static_cast<cl_uint>(batch_size());
   // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl).
   for (int step = 0; step < settings_.lifetime; ++step) {
-    set_args(kernel_, terrain.height(), terrain.delta(), terrain.nx(), terrain.ny(),
-             static_cast<float>(terrain.quantum()), static_cast<cl_ulong>(seed_),
-             static_cast<cl_ulong>(droplets_), count, static_cast<cl_int>(step), droplet_state_,
-             droplet_load_, counters_);
-    compute_.profiler().launch(kernel_, round_up_work(count), "droplet_step");
+    kernel_.set("height", terrain.height())
+        .set("delta", terrain.delta())
+        .set("nx", terrain.nx())
+        .set("ny", terrain.ny())
+        .set("quantum", static_cast<float>(terrain.quantum()))
+        .set("seed", static_cast<cl_ulong>(seed_))
+        .set("first_droplet", static_cast<cl_ulong>(droplets_))
+        .set("count", count)
+        .set("step_index", static_cast<cl_int>(step))
+        .set("state", droplet_state_)
+        .set("load", droplet_load_)
+        .set("counters", counters_)
+        .launch(round_up_work(count));
     terrain.apply();
   }
   droplets_ += count;

@@ -60,7 +60,7 @@ class DropletModel final : public GridModel {
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;
-  cl::Kernel kernel_;
+  Kernel kernel_;
   cl::Buffer counters_;                      // {droplets out, outflow quanta}
   cl::Buffer droplet_state_, droplet_load_;  // per droplet of a batch, between its steps
 };

@@ -42,10 +42,10 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
       float_define("OLSEN_RAIN", s.rain) + float_define("OLSEN_SOLUBILITY", s.solubility) +
       float_define("OLSEN_EVAPORATION", s.evaporation) + float_define("OLSEN_CAPACITY", s.capacity);
   cl::Program& program = compute.program({"cl/models/olsen.cl"}, options);
-  dissolve_ = cl::Kernel(program, "olsen_dissolve");
-  outflow_ = cl::Kernel(program, "olsen_outflow");
-  gather_ = cl::Kernel(program, "olsen_gather");
-  settle_ = cl::Kernel(program, "olsen_settle");
+  dissolve_ = Kernel(compute, program, "olsen_dissolve");
+  outflow_ = Kernel(compute, program, "olsen_outflow");
+  gather_ = Kernel(compute, program, "olsen_gather");
+  settle_ = Kernel(compute, program, "olsen_settle");
 }
 
 double OlsenModel::take_step() {
@@ -54,15 +54,17 @@ double OlsenModel::take_step() {
   const float q = static_cast<float>(terrain.quantum());
   const std::size_t work = round_up_work(static_cast<std::size_t>(n));
   cl::Buffer &water = state_.buffer(water_), &sediment = state_.buffer(sediment_);
-  auto& prof = compute_.profiler();
-  set_args(dissolve_, terrain.height_fixed(), water, sediment, n, q);
-  prof.launch(dissolve_, work, "olsen_dissolve");
-  set_args(outflow_, terrain.height_fixed(), water, sediment, out_water_, out_sediment_, nx, ny, q);
-  prof.launch(outflow_, work, "olsen_outflow");
-  set_args(gather_, water, sediment, out_water_, out_sediment_, nx, ny);
-  prof.launch(gather_, work, "olsen_gather");
-  set_args(settle_, terrain.height_fixed(), water, sediment, n, q);
-  prof.launch(settle_, work, "olsen_settle");
+  for (Kernel* k : {&dissolve_, &settle_}) {
+    k->set("height", terrain.height_fixed()).set("water", water).set("sediment", sediment);
+    k->set("n", n).set("quantum", q);
+  }
+  outflow_.set("height", terrain.height_fixed()).set("water", water).set("sediment", sediment);
+  outflow_.set("quantum", q);
+  gather_.set("water", water).set("sediment", sediment);
+  for (Kernel* k : {&outflow_, &gather_}) {
+    k->set("out_water", out_water_).set("out_sediment", out_sediment_).set("nx", nx).set("ny", ny);
+  }
+  for (Kernel* k : {&dissolve_, &outflow_, &gather_, &settle_}) k->launch(work);
   terrain.apply();
   return 1.0;
 }

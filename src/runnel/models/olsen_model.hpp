@@ -34,7 +34,7 @@ class OlsenModel final : public GridModel {
   OlsenSettings settings_;
   int water_, sediment_;  // GridState handles
   cl::Buffer out_water_, out_sediment_;
-  cl::Kernel dissolve_, outflow_, gather_, settle_;
+  Kernel dissolve_, outflow_, gather_, settle_;
 };
 
 }  // namespace runnel

@@ -81,12 +81,12 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   compute.queue().enqueueFillBuffer(lost_, cl_long{0}, 0, sizeof(cl_long));
   cl::Program& program =
       compute.program({"cl/common.cl", "cl/models/pipe.cl"}, settings_.build_options());
-  flux_kernel_ = cl::Kernel(program, "pipe_flux");
-  water_kernel_ = cl::Kernel(program, "pipe_water");
-  erode_kernel_ = cl::Kernel(program, "pipe_erode");
-  transport_kernel_ = cl::Kernel(program, "pipe_transport");
-  advect_kernel_ = cl::Kernel(program, "pipe_advect");
-  stats_kernel_ = cl::Kernel(program, "pipe_stats");
+  flux_kernel_ = Kernel(compute, program, "pipe_flux");
+  water_kernel_ = Kernel(compute, program, "pipe_water");
+  erode_kernel_ = Kernel(compute, program, "pipe_erode");
+  transport_kernel_ = Kernel(compute, program, "pipe_transport");
+  advect_kernel_ = Kernel(compute, program, "pipe_advect");
+  stats_kernel_ = Kernel(compute, program, "pipe_stats");
 }
 
 double PipeModel::take_step() {
@@ -97,23 +97,27 @@ double PipeModel::take_step() {
   const std::size_t work = round_up_work(static_cast<std::size_t>(n));
   cl::Buffer &depth = state_.buffer(depth_), &flux = state_.buffer(flux_),
              &velocity = state_.buffer(velocity_), &sediment = state_.buffer(sediment_);
-  auto& prof = compute_.profiler();
-  set_args(flux_kernel_, terrain.height_fixed(), depth, flux, nx, ny, q, cell, dt);
-  prof.launch(flux_kernel_, work, "pipe_flux");
-  set_args(water_kernel_, depth, flux, velocity, previous_depth_, nx, ny, cell, dt);
-  prof.launch(water_kernel_, work, "pipe_water");
   const cl_ulong seed = static_cast<cl_ulong>(params_.integer("run.seed")), step = steps();
-  set_args(erode_kernel_, terrain.height_fixed(), terrain.height(), sediment, depth, velocity, nx,
-           ny, q, cell, dt, seed, step);
-  prof.launch(erode_kernel_, work, "pipe_erode");
-  if (settings_.semi_lagrangian) {
-    set_args(advect_kernel_, sediment, sediment_next_, velocity, nx, ny, cell, dt, lost_);
-    prof.launch(advect_kernel_, work, "pipe_advect");
-  } else {
-    set_args(transport_kernel_, sediment, sediment_next_, flux, previous_depth_, nx, ny, cell, dt,
-             seed, step, outflow_);
-    prof.launch(transport_kernel_, work, "pipe_transport");
+  Kernel& transport = settings_.semi_lagrangian ? advect_kernel_ : transport_kernel_;
+  for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_, &transport}) {
+    k->set("nx", nx).set("ny", ny).set("dt", dt);
+    if (k->has("cell")) k->set("cell", cell);
+    if (k->has("quantum")) k->set("quantum", q);
+    if (k->has("seed")) k->set("seed", seed).set("step_index", step);
   }
+  flux_kernel_.set("height", terrain.height_fixed()).set("depth", depth).set("flux", flux);
+  water_kernel_.set("depth", depth).set("flux", flux).set("velocity", velocity);
+  water_kernel_.set("previous_depth", previous_depth_);
+  erode_kernel_.set("height", terrain.height_fixed()).set("height_view", terrain.height());
+  erode_kernel_.set("sediment", sediment).set("depth", depth).set("velocity", velocity);
+  transport.set("sediment", sediment).set("sediment_next", sediment_next_);
+  if (settings_.semi_lagrangian) {
+    advect_kernel_.set("velocity", velocity).set("lost", lost_);
+  } else {
+    transport_kernel_.set("flux", flux).set("previous_depth", previous_depth_);
+    transport_kernel_.set("outflow", outflow_);
+  }
+  for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_, &transport}) k->launch(work);
   std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment
   terrain.apply();
   const double taken = dt_;
@@ -127,9 +131,16 @@ void PipeModel::choose_next_dt() {
   const int n = static_cast<int>(state_.vertices());
   const int chunk = (n + kStatBlocks - 1) / kStatBlocks;
   // The flux and d1 of the step just taken (dt_ is still its length).
-  set_args(stats_kernel_, state_.buffer(depth_), state_.buffer(velocity_), state_.buffer(flux_),
-           previous_depth_, n, chunk, state_.terrain().cell(), static_cast<float>(dt_), stats_);
-  compute_.profiler().launch(stats_kernel_, kStatBlocks, "pipe_stats");
+  stats_kernel_.set("depth", state_.buffer(depth_))
+      .set("velocity", state_.buffer(velocity_))
+      .set("flux", state_.buffer(flux_))
+      .set("previous_depth", previous_depth_)
+      .set("n", n)
+      .set("chunk", chunk)
+      .set("cell", state_.terrain().cell())
+      .set("dt", static_cast<float>(dt_))
+      .set("stats", stats_)
+      .launch(kStatBlocks);
   std::vector<float> stats(2 * kStatBlocks);
   compute_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, stats.size() * sizeof(float),
                                      stats.data());

@@ -57,7 +57,7 @@ class PipeModel final : public GridModel {
   double dt_ = 0;
   int depth_, flux_, velocity_, sediment_;  // GridState handles
   cl::Buffer previous_depth_, sediment_next_, stats_, outflow_, lost_;
-  cl::Kernel flux_kernel_, water_kernel_, erode_kernel_, transport_kernel_, advect_kernel_,
+  Kernel flux_kernel_, water_kernel_, erode_kernel_, transport_kernel_, advect_kernel_,
       stats_kernel_;
 };
 

@@ -68,32 +68,27 @@ Erosion::Erosion(ComputeContext& compute, const ErosionSettings& settings, const
     : compute_(compute), settings_(settings), seed_(seed) {
   const std::string options = settings.build_options(
       solver.settings(), settings.height_quantum * solver.terrain_cell() * solver.terrain_cell());
-  kernel_ = cl::Kernel(compute.program({"cl/common.cl", "cl/counters.cl", "cl/grid.cl",
-                                        "cl/terrain_sample.cl", "cl/footprint.cl", "cl/erode.cl"},
-                                       options),
-                       "erode_exchange");
+  kernel_ = Kernel(compute,
+                   compute.program({"cl/common.cl", "cl/counters.cl", "cl/grid.cl",
+                                    "cl/terrain_sample.cl", "cl/footprint.cl", "cl/erode.cl"},
+                                   options),
+                   "erode_exchange");
 }
 
 void Erosion::exchange(SphSolver& solver, double dt) {
   ParticleStore& store = solver.particles();
   const cl_uint n = static_cast<cl_uint>(store.size());
   if (n == 0) return;
-  cl::Kernel& k = kernel_;
-  cl_uint a = 0;
-  for (ParticleField f :
-       {kX, kY, kZ, kVx, kVy, kVz, kSediment, kContacts, kAge, kLifespan, kId, kDepth}) {
-    k.setArg(a++, store.buffer(f));
-  }
-  k.setArg(a++, n);
-  k.setArg(a++, static_cast<float>(dt));
-  k.setArg(a++, static_cast<float>(settings_.morphological_factor));
-  k.setArg(a++, static_cast<cl_ulong>(seed_));
-  k.setArg(a++, static_cast<cl_ulong>(solver.steps()));
-  solver.terrain().set_args(k, a);
-  a += 5;
-  k.setArg(a++, solver.terrain().delta());
-  k.setArg(a++, solver.counters_buffer());
-  compute_.profiler().launch(k, round_up_work(n), "erode_exchange");
+  Kernel& k = kernel_;
+  store.bind(k, {kX, kY, kZ, kVx, kVy, kVz, kSediment, kContacts, kAge, kLifespan, kId, kDepth});
+  solver.terrain().bind(k);
+  k.set("dt", static_cast<float>(dt))
+      .set("morphological_factor", static_cast<float>(settings_.morphological_factor))
+      .set("seed", static_cast<cl_ulong>(seed_))
+      .set("step_index", static_cast<cl_ulong>(solver.steps()))
+      .set("delta", solver.terrain().delta())
+      .set("counters", solver.counters_buffer());
+  k.launch(round_up_work(n));
 }
 
 }  // namespace runnel

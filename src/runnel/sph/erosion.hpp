@@ -4,6 +4,7 @@
 #include <string>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sim/parameters.hpp"
 #include "runnel/sph/sph_solver.hpp"
@@ -48,7 +49,7 @@ class Erosion {
   ComputeContext& compute_;
   ErosionSettings settings_;
   std::uint64_t seed_;
-  cl::Kernel kernel_;
+  Kernel kernel_;
 };
 
 }  // namespace runnel

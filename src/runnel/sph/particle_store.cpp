@@ -97,6 +97,15 @@ void ParticleStore::grow_to(std::size_t needed) {
   capacity_ = new_capacity;
 }
 
+void ParticleStore::bind(Kernel& kernel, std::initializer_list<ParticleField> fields) {
+  for (ParticleField f : fields) kernel.set(kFieldInfo[f].name, current_[f]);
+  if (kernel.has("n")) kernel.set("n", static_cast<cl_uint>(size_));
+}
+
+void ParticleStore::bind_new(Kernel& kernel, std::initializer_list<ParticleField> fields) {
+  for (ParticleField f : fields) kernel.set(std::string(kFieldInfo[f].name) + "_new", scratch_[f]);
+}
+
 void ParticleStore::swap_scratch() {
   for (int k = 0; k < kPersistentFieldCount; ++k) std::swap(current_[k], scratch_[k]);
 }

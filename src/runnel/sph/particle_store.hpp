@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 
 namespace runnel {
 
@@ -66,6 +67,11 @@ class ParticleStore {
   std::size_t size() const { return size_; }
   std::size_t capacity() const { return capacity_; }
   cl::Buffer& buffer(ParticleField f) { return current_[f]; }
+  // Sets each field's buffer as the kernel argument of the field's name (particle_field_info), and
+  // `n`, the live particle count, where the kernel takes it.
+  void bind(Kernel& kernel, std::initializer_list<ParticleField> fields);
+  // Sets each field's scratch buffer as the argument `<name>_new` (the step's next state).
+  void bind_new(Kernel& kernel, std::initializer_list<ParticleField> fields);
   cl::Buffer& scratch(ParticleField f) { return scratch_[f]; }
   // After the hash has gathered every persistent field into scratch: scratch becomes current.
   void swap_scratch();

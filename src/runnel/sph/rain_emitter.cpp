@@ -80,7 +80,8 @@ RainEmitter::RainEmitter(ComputeContext& compute, const RainSettings& settings, 
       settings_(settings),
       seed_(seed),
       rest_density_(rest_density),
-      kernel_(compute.program({"cl/common.cl", "cl/grid.cl", "cl/terrain_sample.cl", "cl/rain.cl"}),
+      kernel_(compute,
+              compute.program({"cl/common.cl", "cl/grid.cl", "cl/terrain_sample.cl", "cl/rain.cl"}),
               "rain_emit") {}
 
 std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
@@ -96,28 +97,29 @@ std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
   if (count == 0) return 0;
   const cl_uint first_id = store.next_id();
   const std::size_t first = store.extend(count);
-  cl::Kernel& k = kernel_;
-  cl_uint a = 0;
-  for (ParticleField f :
-       {kX, kY, kZ, kVx, kVy, kVz, kRho, kSediment, kAge, kLifespan, kContacts, kId}) {
-    k.setArg(a++, store.buffer(f));
-  }
-  k.setArg(a++, static_cast<cl_uint>(first));
-  k.setArg(a++, static_cast<cl_uint>(count));
-  k.setArg(a++, static_cast<cl_ulong>(seed_));
-  k.setArg(a++, static_cast<cl_ulong>(spawned_));
-  k.setArg(a++, first_id);
-  k.setArg(a++, static_cast<cl_int>(settings_.region));
-  for (double v :
-       {settings_.a, settings_.b, settings_.c, settings_.d, settings_.spawn_height,
-        solver.settings().contact_radius, solver.settings().surface_eps, settings_.speed}) {
-    k.setArg(a++, static_cast<float>(v));
-  }
-  k.setArg(a++, rest_density_);
-  k.setArg(a++, static_cast<float>(settings_.lifespan));
-  k.setArg(a++, static_cast<float>(settings_.lifespan_jitter));
-  solver.terrain().set_args(k, a);
-  compute_.profiler().launch(k, round_up_work(count), "rain_emit");
+  Kernel& k = kernel_;
+  store.bind(k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kSediment, kAge, kLifespan, kContacts, kId});
+  solver.terrain().bind(k);
+  k.set("first_index", static_cast<cl_uint>(first))
+      .set("count", static_cast<cl_uint>(count))
+      .set("seed", static_cast<cl_ulong>(seed_))
+      .set("first_counter", static_cast<cl_ulong>(spawned_))
+      .set("first_id", first_id)
+      .set("region", static_cast<cl_int>(settings_.region))
+      .set("rho0", rest_density_);
+  const std::pair<const char*, double> reals[] = {
+      {"a", settings_.a},
+      {"b", settings_.b},
+      {"c", settings_.c},
+      {"d", settings_.d},
+      {"spawn_height", settings_.spawn_height},
+      {"contact_radius", solver.settings().contact_radius},
+      {"surface_eps", solver.settings().surface_eps},
+      {"speed", settings_.speed},
+      {"lifespan_mean", settings_.lifespan},
+      {"lifespan_jitter", settings_.lifespan_jitter}};
+  for (const auto& [name, value] : reals) k.set(name, static_cast<float>(value));
+  k.launch(round_up_work(count));
   spawned_ += count;
   return count;
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sim/parameters.hpp"
 #include "runnel/sph/sph_solver.hpp"
@@ -55,7 +56,7 @@ class RainEmitter {
   RainSettings settings_;
   std::uint64_t seed_;
   float rest_density_;
-  cl::Kernel kernel_;
+  Kernel kernel_;
   std::uint64_t spawned_ = 0;
   double carry_ = 0.0;
 };

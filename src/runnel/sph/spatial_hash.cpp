@@ -44,13 +44,13 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid)
   dead_key_ = 1u << (bits - 1);  // one past every Morton code of the grid
   passes_ = (bits + 7) / 8;
   cl::Program& program = compute.program(kHashSources);
-  hash_keys_ = cl::Kernel(program, "hash_keys");
-  histogram_ = cl::Kernel(program, "radix_histogram");
-  scan_ = cl::Kernel(program, "radix_scan");
-  scatter_ = cl::Kernel(program, "radix_scatter");
-  reorder_ = cl::Kernel(program, "reorder_words");
-  cell_bounds_ = cl::Kernel(program, "cell_bounds");
-  neighbour_list_ = cl::Kernel(program, "neighbour_list");
+  hash_keys_ = Kernel(compute, program, "hash_keys");
+  histogram_ = Kernel(compute, program, "radix_histogram");
+  scan_ = Kernel(compute, program, "radix_scan");
+  scatter_ = Kernel(compute, program, "radix_scatter");
+  reorder_ = Kernel(compute, program, "reorder_words");
+  cell_bounds_ = Kernel(compute, program, "cell_bounds");
+  neighbour_list_ = Kernel(compute, program, "neighbour_list");
   auto& ctx = compute.context();
   hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * kRadixBlocks * sizeof(cl_uint));
   alive_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_uint));
@@ -58,14 +58,19 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid)
   cell_end_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
 }
 
-void SpatialHash::set_grid_args(cl::Kernel& k, cl_uint i) const {
-  k.setArg(i + 0, grid_.origin[0]);
-  k.setArg(i + 1, grid_.origin[1]);
-  k.setArg(i + 2, grid_.origin[2]);
-  k.setArg(i + 3, 1.0f / grid_.cell);
-  k.setArg(i + 4, grid_.dims[0]);
-  k.setArg(i + 5, grid_.dims[1]);
-  k.setArg(i + 6, grid_.dims[2]);
+void SpatialHash::bind_grid(Kernel& k) const {
+  k.set("ox", grid_.origin[0])
+      .set("oy", grid_.origin[1])
+      .set("oz", grid_.origin[2])
+      .set("inv_cell", 1.0f / grid_.cell)
+      .set("gx", grid_.dims[0])
+      .set("gy", grid_.dims[1])
+      .set("gz", grid_.dims[2]);
+}
+
+void SpatialHash::bind_cells(Kernel& k) const {
+  bind_grid(k);
+  k.set("cell_start", cell_start_).set("cell_end", cell_end_);
 }
 
 void SpatialHash::ensure_capacity(std::size_t n) {
@@ -80,23 +85,16 @@ void SpatialHash::ensure_capacity(std::size_t n) {
 void SpatialHash::build(ParticleStore& store) {
   const cl_uint n = static_cast<cl_uint>(store.size());
   auto& q = compute_.queue();
-  auto& prof = compute_.profiler();
   const cl_uint empty = 0xFFFFFFFFu;
   q.enqueueFillBuffer(cell_start_, empty, 0, grid_.cell_count() * sizeof(cl_uint));
   if (n == 0) return;
   ensure_capacity(n);
 
   // 1. Keys: the Morton code of each particle's cell.
-  hash_keys_.setArg(0, store.buffer(kX));
-  hash_keys_.setArg(1, store.buffer(kY));
-  hash_keys_.setArg(2, store.buffer(kZ));
-  hash_keys_.setArg(3, store.buffer(kId));
-  hash_keys_.setArg(4, keys_[0]);
-  hash_keys_.setArg(5, values_[0]);
-  hash_keys_.setArg(6, n);
-  set_grid_args(hash_keys_, 7);
-  hash_keys_.setArg(14, dead_key_);
-  prof.launch(hash_keys_, round_up_work(n), "hash_keys");
+  store.bind(hash_keys_, {kX, kY, kZ, kId});
+  bind_grid(hash_keys_);
+  hash_keys_.set("key", keys_[0]).set("index", values_[0]).set("dead_key", dead_key_);
+  hash_keys_.launch(round_up_work(n));
 
   // 2. Stable LSD radix sort of (key, index), 8 bits per pass. The blocks' count follows n (about
   // 512 keys each, at most kRadixBlocks): a handful of particles must not pay for 256 histograms.
@@ -106,37 +104,31 @@ void SpatialHash::build(ParticleStore& store) {
   int in = 0;
   for (int pass = 0; pass < passes_; ++pass) {
     const cl_uint shift = 8 * pass;
-    set_args(histogram_, keys_[in], n, shift, chunk, hist_);
-    prof.launch(histogram_, blocks, "radix_histogram");
-    set_args(scan_, hist_, static_cast<cl_uint>(256 * blocks));
-    prof.launch(scan_, 1, "radix_scan");
-    set_args(scatter_, keys_[in], values_[in], keys_[1 - in], values_[1 - in], hist_, n, shift,
-             chunk);
-    prof.launch(scatter_, blocks, "radix_scatter");
+    histogram_.set("key", keys_[in]).set("n", n).set("shift", shift).set("chunk", chunk);
+    histogram_.set("hist", hist_).launch(blocks);
+    scan_.set("hist", hist_).set("count", static_cast<cl_uint>(256 * blocks)).launch(1);
+    scatter_.set("key_in", keys_[in]).set("value_in", values_[in]);
+    scatter_.set("key_out", keys_[1 - in]).set("value_out", values_[1 - in]);
+    scatter_.set("hist", hist_).set("n", n).set("shift", shift).set("chunk", chunk);
+    scatter_.launch(blocks);
     in = 1 - in;
   }
 
   // 3. Gather every persistent field into the sorted order (as 4-byte words: bit-exact for floats
   // too).
   for (int f = 0; f < kPersistentFieldCount; ++f) {
-    set_args(reorder_, values_[in], store.buffer(static_cast<ParticleField>(f)),
-             store.scratch(static_cast<ParticleField>(f)), n);
-    prof.launch(reorder_, round_up_work(n), "reorder");
+    reorder_.set("perm", values_[in]).set("n", n);
+    reorder_.set("in", store.buffer(static_cast<ParticleField>(f)));
+    reorder_.set("out", store.scratch(static_cast<ParticleField>(f)));
+    reorder_.launch(round_up_work(n), "reorder");
   }
   store.swap_scratch();
 
   // 4. Cell ranges and the live count (dead particles sorted to the end).
-  cell_bounds_.setArg(0, keys_[in]);
-  cell_bounds_.setArg(1, store.buffer(kX));
-  cell_bounds_.setArg(2, store.buffer(kY));
-  cell_bounds_.setArg(3, store.buffer(kZ));
-  cell_bounds_.setArg(4, n);
-  set_grid_args(cell_bounds_, 5);
-  cell_bounds_.setArg(12, dead_key_);
-  cell_bounds_.setArg(13, cell_start_);
-  cell_bounds_.setArg(14, cell_end_);
-  cell_bounds_.setArg(15, alive_);
-  prof.launch(cell_bounds_, round_up_work(n), "cell_bounds");
+  store.bind(cell_bounds_, {kX, kY, kZ});
+  bind_cells(cell_bounds_);
+  cell_bounds_.set("key", keys_[in]).set("dead_key", dead_key_).set("alive", alive_);
+  cell_bounds_.launch(round_up_work(n));
   cl_uint alive = 0;
   q.enqueueReadBuffer(alive_, CL_TRUE, 0, sizeof(cl_uint), &alive);
   store.truncate(alive);
@@ -152,19 +144,10 @@ std::vector<std::vector<std::uint32_t>> SpatialHash::neighbour_lists(ParticleSto
   cl::Buffer ids(compute_.context(), CL_MEM_READ_WRITE,
                  static_cast<std::size_t>(n) * max_neighbours * sizeof(cl_uint));
   auto& k = neighbour_list_;
-  k.setArg(0, store.buffer(kX));
-  k.setArg(1, store.buffer(kY));
-  k.setArg(2, store.buffer(kZ));
-  k.setArg(3, store.buffer(kId));
-  k.setArg(4, n);
-  set_grid_args(k, 5);
-  k.setArg(12, cell_start_);
-  k.setArg(13, cell_end_);
-  k.setArg(14, radius);
-  k.setArg(15, max_neighbours);
-  k.setArg(16, count);
-  k.setArg(17, ids);
-  compute_.profiler().launch(k, round_up_work(n), "neighbour_list");
+  store.bind(k, {kX, kY, kZ, kId});
+  bind_cells(k);
+  k.set("radius", radius).set("max_neighbours", max_neighbours);
+  k.set("count", count).set("neighbours", ids).launch(round_up_work(n));
   std::vector<cl_uint> counts(n), all(static_cast<std::size_t>(n) * max_neighbours);
   compute_.queue().enqueueReadBuffer(count, CL_TRUE, 0, n * sizeof(cl_uint), counts.data());
   compute_.queue().enqueueReadBuffer(ids, CL_TRUE, 0, all.size() * sizeof(cl_uint), all.data());

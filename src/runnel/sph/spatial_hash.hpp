@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 #include "runnel/sph/particle_store.hpp"
 
 namespace runnel {
@@ -34,8 +35,10 @@ class SpatialHash {
   const GridSpec& grid() const { return grid_; }
   const cl::Buffer& cell_start() const { return cell_start_; }
   const cl::Buffer& cell_end() const { return cell_end_; }
-  // The 7 grid arguments (origin, 1/cell, dims) every kernel that walks the grid takes, in order.
-  void set_grid_args(cl::Kernel& kernel, cl_uint first_index) const;
+  // The grid arguments every kernel that hashes a position takes: ox, oy, oz, inv_cell, gx, gy, gz.
+  void bind_grid(Kernel& kernel) const;
+  // The grid and its cell ranges (cell_start, cell_end): what a neighbour loop walks.
+  void bind_cells(Kernel& kernel) const;
 
   // Neighbour ids within `radius` of every particle, in the store's (sorted) order. For tests.
   std::vector<std::vector<std::uint32_t>> neighbour_lists(ParticleStore& store, float radius);
@@ -50,7 +53,7 @@ class SpatialHash {
   int passes_;
   std::size_t capacity_ = 0;
   cl::Buffer keys_[2], values_[2], hist_, alive_, cell_start_, cell_end_;
-  cl::Kernel hash_keys_, histogram_, scan_, scatter_, reorder_, cell_bounds_, neighbour_list_;
+  Kernel hash_keys_, histogram_, scan_, scatter_, reorder_, cell_bounds_, neighbour_list_;
 };
 
 }  // namespace runnel

@@ -45,14 +45,14 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
       hash_(compute, fluid_grid(settings, floor, top)) {
   cl::Program& program = compute.program(
       kSphSources, settings.build_options() + footprint_options(settings, floor.cell));
-  forces_ = cl::Kernel(program, "sph_forces");
-  continuity_ = cl::Kernel(program, "sph_continuity");
-  drift_ = cl::Kernel(program, "drift");
-  kick_ = cl::Kernel(program, "kick");
-  stats_ = cl::Kernel(program, "step_stats");
-  project_ = cl::Kernel(program, "project_to_surface");
-  depth_scatter_ = cl::Kernel(program, "water_depth_scatter");
-  depth_gather_ = cl::Kernel(program, "water_depth_gather");
+  forces_ = Kernel(compute, program, "sph_forces");
+  continuity_ = Kernel(compute, program, "sph_continuity");
+  drift_ = Kernel(compute, program, "drift");
+  kick_ = Kernel(compute, program, "kick");
+  stats_ = Kernel(compute, program, "step_stats");
+  project_ = Kernel(compute, program, "project_to_surface");
+  depth_scatter_ = Kernel(compute, program, "water_depth_scatter");
+  depth_gather_ = Kernel(compute, program, "water_depth_gather");
   water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, floor.size() * sizeof(cl_long));
   stats_buffer_ =
       cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
@@ -96,12 +96,14 @@ void SphSolver::measure_water_depth() {
   const std::size_t vertices = static_cast<std::size_t>(terrain_.nx()) * terrain_.ny();
   compute_.queue().enqueueFillBuffer(water_, cl_long{0}, 0, vertices * sizeof(cl_long));
   if (n == 0) return;
-  set_args(depth_scatter_, store_.buffer(kX), store_.buffer(kZ), store_.buffer(kId), n, water_,
-           terrain_.nx(), terrain_.ny(), terrain_.cell());
-  compute_.profiler().launch(depth_scatter_, round_up_work(n), "water_depth_scatter");
-  set_args(depth_gather_, store_.buffer(kX), store_.buffer(kZ), store_.buffer(kId), n, water_,
-           terrain_.nx(), terrain_.ny(), terrain_.cell(), store_.buffer(kDepth));
-  compute_.profiler().launch(depth_gather_, round_up_work(n), "water_depth_gather");
+  for (Kernel* k : {&depth_scatter_, &depth_gather_}) {
+    store_.bind(*k, {kX, kZ, kId});
+    k->set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
+    k->set("tcell", terrain_.cell());
+  }
+  depth_scatter_.launch(round_up_work(n));
+  store_.bind(depth_gather_, {kDepth});
+  depth_gather_.launch(round_up_work(n));
 }
 
 void SphSolver::complete_step() {
@@ -117,19 +119,12 @@ void SphSolver::complete_step() {
 void SphSolver::drift_and_collide() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   auto& k = drift_;
-  cl_uint a = 0;
-  for (ParticleField f :
-       {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth})
-    k.setArg(a++, store_.buffer(f));
-  for (ParticleField f : {kX, kY, kZ}) k.setArg(a++, store_.scratch(f));
-  k.setArg(a++, n);
-  k.setArg(a++, static_cast<float>(dt_));
-  terrain_.set_args(k, a);
-  a += 5;
-  k.setArg(a++, static_cast<float>(terrain_.extent_x()));
-  k.setArg(a++, static_cast<float>(terrain_.extent_z()));
-  k.setArg(a++, counters_buffer_);
-  compute_.profiler().launch(k, round_up_work(n), "drift");
+  store_.bind(k,
+              {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth});
+  store_.bind_new(k, {kX, kY, kZ});
+  bind_domain(k);
+  k.set("dt", static_cast<float>(dt_)).set("counters", counters_buffer_);
+  k.launch(round_up_work(n));
 }
 
 void SphSolver::build_hash() {
@@ -139,59 +134,42 @@ void SphSolver::build_hash() {
 
 void SphSolver::project_to_surface() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
-  cl_uint a = 0;
-  for (ParticleField f : {kX, kY, kZ, kVx, kVy, kVz}) project_.setArg(a++, store_.buffer(f));
-  project_.setArg(a++, n);
-  terrain_.set_args(project_, a);
-  project_.setArg(a + 5, counters_buffer_);
-  compute_.profiler().launch(project_, round_up_work(n), "project_to_surface");
+  store_.bind(project_, {kX, kY, kZ, kVx, kVy, kVz});
+  terrain_.bind(project_);
+  project_.set("counters", counters_buffer_).launch(round_up_work(n));
 }
 
-// Both neighbour passes see the same neighbourhood: the hash grid, its cell ranges and the terrain
-// boundary.
-cl_uint SphSolver::set_neighbourhood_args(cl::Kernel& k, cl_uint a) {
-  hash_.set_grid_args(k, a);
-  a += 7;
-  k.setArg(a++, hash_.cell_start());
-  k.setArg(a++, hash_.cell_end());
-  terrain_.set_args(k, a);
-  a += 5;
-  k.setArg(a++, static_cast<float>(terrain_.extent_x()));
-  k.setArg(a++, static_cast<float>(terrain_.extent_z()));
-  return a;
+// The terrain boundary and the domain's extent (outflow, walls): what drift and both neighbour
+// passes see.
+void SphSolver::bind_domain(Kernel& k) {
+  terrain_.bind(k);
+  k.set("domain_x", static_cast<float>(terrain_.extent_x()));
+  k.set("domain_z", static_cast<float>(terrain_.extent_z()));
 }
 
 void SphSolver::integrate_density() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   auto& k = continuity_;
-  cl_uint a = 0;
-  for (ParticleField f : {kX, kY, kZ}) k.setArg(a++, store_.buffer(f));
-  for (ParticleField f : {kX, kY, kZ}) k.setArg(a++, store_.scratch(f));
-  k.setArg(a++, store_.buffer(kRho));
-  k.setArg(a++, n);
-  k.setArg(a++, static_cast<float>(dt_));
-  a = set_neighbourhood_args(k, a);
-  k.setArg(a++, store_.buffer(kDrho));
-  k.setArg(a++, store_.scratch(kRho));
-  compute_.profiler().launch(k, round_up_work(n), "sph_continuity");
+  store_.bind(k, {kX, kY, kZ, kRho, kDrho});
+  store_.bind_new(k, {kX, kY, kZ, kRho});
+  hash_.bind_cells(k);
+  bind_domain(k);
+  k.set("dt", static_cast<float>(dt_)).launch(round_up_work(n));
 }
 
 void SphSolver::compute_forces() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   auto& k = forces_;
-  cl_uint a = 0;
-  for (ParticleField f : {kX, kY, kZ, kVx, kVy, kVz, kRho}) k.setArg(a++, store_.buffer(f));
-  k.setArg(a++, n);
-  a = set_neighbourhood_args(k, a);
-  for (ParticleField f : {kAx, kAy, kAz}) k.setArg(a++, store_.buffer(f));
-  compute_.profiler().launch(k, round_up_work(n), "sph_forces");
+  store_.bind(k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAx, kAy, kAz});
+  hash_.bind_cells(k);
+  bind_domain(k);
+  k.launch(round_up_work(n));
 }
 
 void SphSolver::kick() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
-  set_args(kick_, store_.buffer(kVx), store_.buffer(kVy), store_.buffer(kVz), store_.buffer(kAx),
-           store_.buffer(kAy), store_.buffer(kAz), n, static_cast<float>(0.5 * dt_));
-  compute_.profiler().launch(kick_, round_up_work(n), "kick");
+  store_.bind(kick_, {kVx, kVy, kVz, kAx, kAy, kAz});
+  kick_.set("half_dt", static_cast<float>(0.5 * dt_)).launch(round_up_work(n));
 }
 
 void SphSolver::choose_next_dt() {
@@ -203,10 +181,8 @@ void SphSolver::choose_next_dt() {
     return;
   }
   const cl_uint chunk = (n + kStatBlocks - 1) / kStatBlocks;
-  set_args(stats_, store_.buffer(kVx), store_.buffer(kVy), store_.buffer(kVz), store_.buffer(kAx),
-           store_.buffer(kAy), store_.buffer(kAz), store_.buffer(kRho), store_.buffer(kDrho), n,
-           chunk, stats_buffer_);
-  compute_.profiler().launch(stats_, kStatBlocks, "step_stats");
+  store_.bind(stats_, {kVx, kVy, kVz, kAx, kAy, kAz, kRho, kDrho});
+  stats_.set("chunk", chunk).set("stats", stats_buffer_).launch(kStatBlocks);
   float rows[kStatBlocks * kStatColumns];
   compute_.queue().enqueueReadBuffer(stats_buffer_, CL_TRUE, 0, sizeof(rows), rows);
   double v2 = 0, a2 = 0, rmin = INFINITY, rmax = -INFINITY, drmax = 0;

@@ -79,7 +79,7 @@ class SphSolver {
   void drift_and_collide();
   void measure_water_depth();
   void build_hash();
-  cl_uint set_neighbourhood_args(cl::Kernel& k, cl_uint first);
+  void bind_domain(Kernel& k);
   void integrate_density();
   void compute_forces();
   void kick();
@@ -90,7 +90,7 @@ class SphSolver {
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  cl::Kernel forces_, continuity_, drift_, kick_, stats_, project_, depth_scatter_, depth_gather_;
+  Kernel forces_, continuity_, drift_, kick_, stats_, project_, depth_scatter_, depth_gather_;
   cl::Buffer water_;  // water on each terrain vertex, counts of 1 µm of depth (cl/water_depth.cl)
   cl::Buffer stats_buffer_, counters_buffer_;
   bool rates_ready_ = false;

@@ -21,7 +21,7 @@ DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, 
       delta_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(cl_long)),
       height_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(float)),
       normal_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * 3 * sizeof(float)),
-      apply_(compute.program({"cl/terrain_apply.cl"}), "terrain_apply") {
+      apply_(compute, compute.program({"cl/terrain_apply.cl"}), "terrain_apply") {
   if (!(quantum > 0)) throw input_error("erosion.height_quantum: must be positive");
   upload(terrain);
 }
@@ -52,8 +52,12 @@ cl::Buffer& DeviceTerrain::normal() {
 
 void DeviceTerrain::refresh_view() {
   const cl_uint n = static_cast<cl_uint>(nx_) * ny_;
-  runnel::set_args(apply_, height_fixed_, delta_, height_, n, static_cast<float>(quantum_));
-  compute_.profiler().launch(apply_, round_up_work(n), "terrain_apply");
+  apply_.set("height_fixed", height_fixed_)
+      .set("delta", delta_)
+      .set("height", height_)
+      .set("n", n)
+      .set("quantum", static_cast<float>(quantum_));
+  apply_.launch(round_up_work(n));
   normals_stale_ = true;
 }
 
@@ -72,12 +76,12 @@ std::vector<std::int64_t> DeviceTerrain::download_fixed() {
   return fixed;
 }
 
-void DeviceTerrain::set_args(cl::Kernel& k, cl_uint i) {
-  k.setArg(i + 0, height_);
-  k.setArg(i + 1, normal());
-  k.setArg(i + 2, nx_);
-  k.setArg(i + 3, ny_);
-  k.setArg(i + 4, cell_);
+void DeviceTerrain::bind(Kernel& k) {
+  k.set("terrain_height", height_)
+      .set("terrain_normal", normal())
+      .set("tnx", nx_)
+      .set("tny", ny_)
+      .set("tcell", cell_);
 }
 
 }  // namespace runnel

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 #include "runnel/core/heightmap.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
 
@@ -21,15 +22,16 @@ class DeviceTerrain {
   void upload(const Heightmap& terrain);
   void upload_fixed(const std::vector<std::int64_t>& fixed);
   // Adds the accumulated deltas to the fixed-point heights, clears them and refreshes the view.
-  // The normals are refreshed when next asked for (normal(), set_args()): the grid models never
+  // The normals are refreshed when next asked for (normal(), bind()): the grid models never
   // read them, and recomputing them every step cost the pipe model a sixth of its time.
   void apply();
   // The float view as a heightmap, and the exact fixed-point state.
   Heightmap download();
   std::vector<std::int64_t> download_fixed();
 
-  // (height, normal, nx, ny, cell): the five kernel arguments every terrain-aware kernel takes.
-  void set_args(cl::Kernel& kernel, cl_uint first_index);
+  // The arguments every terrain-aware kernel takes: terrain_height, terrain_normal, tnx, tny,
+  // tcell.
+  void bind(Kernel& kernel);
   cl::Buffer& height() { return height_; }
   cl::Buffer& normal();
   cl::Buffer& delta() { return delta_; }
@@ -53,7 +55,7 @@ class DeviceTerrain {
   double origin_x_, origin_z_;
   cl::Buffer height_fixed_, delta_, height_, normal_;
   bool normals_stale_ = true;
-  cl::Kernel apply_;
+  Kernel apply_;
 };
 
 }  // namespace runnel

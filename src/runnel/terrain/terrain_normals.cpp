@@ -28,17 +28,13 @@ std::vector<float> terrain_normals_reference(const Heightmap& t) {
 
 TerrainNormals::TerrainNormals(ComputeContext& compute)
     : compute_(compute),
-      kernel_(compute.program({"cl/common.cl", "cl/terrain_normals.cl"}), "terrain_normals") {}
+      kernel_(compute, compute.program({"cl/common.cl", "cl/terrain_normals.cl"}),
+              "terrain_normals") {}
 
 void TerrainNormals::enqueue(const cl::Buffer& height, const cl::Buffer& normal, int nx, int ny,
                              float cell) {
-  kernel_.setArg(0, height);
-  kernel_.setArg(1, normal);
-  kernel_.setArg(2, nx);
-  kernel_.setArg(3, ny);
-  kernel_.setArg(4, cell);
-  compute_.profiler().launch(kernel_, round_up_work(static_cast<std::size_t>(nx) * ny),
-                             "terrain_normals");
+  kernel_.set("height", height).set("normal", normal).set("nx", nx).set("ny", ny);
+  kernel_.set("cell", cell).launch(round_up_work(static_cast<std::size_t>(nx) * ny));
 }
 
 std::vector<float> TerrainNormals::compute(const Heightmap& terrain) {

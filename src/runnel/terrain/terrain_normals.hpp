@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 #include "runnel/core/heightmap.hpp"
 
 namespace runnel {
@@ -22,7 +23,7 @@ class TerrainNormals {
 
  private:
   ComputeContext& compute_;
-  cl::Kernel kernel_;
+  Kernel kernel_;
 };
 
 }  // namespace runnel

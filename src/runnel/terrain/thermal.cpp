@@ -25,8 +25,8 @@ ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& ter
       outflow_(compute.context(), CL_MEM_READ_WRITE,
                static_cast<std::size_t>(terrain.nx()) * terrain.ny() * 4 * sizeof(cl_long)) {
   cl::Program& program = compute.program({"cl/thermal.cl"});
-  outflow_kernel_ = cl::Kernel(program, "thermal_outflow");
-  gather_kernel_ = cl::Kernel(program, "thermal_gather");
+  outflow_kernel_ = Kernel(compute, program, "thermal_outflow");
+  gather_kernel_ = Kernel(compute, program, "thermal_gather");
 }
 
 void ThermalRelaxation::relax() {
@@ -40,14 +40,18 @@ void ThermalRelaxation::relax() {
     h_min = *lo;
     h_range = *hi - *lo;
   }
-  set_args(outflow_kernel_, terrain_.height_fixed(), outflow_, nx, ny, talus,
-           static_cast<float>(settings_.rate), static_cast<cl_int>(settings_.height_aware),
-           static_cast<float>(settings_.hardness), h_min, h_range);
-  compute_.profiler().launch(outflow_kernel_, round_up_work(static_cast<std::size_t>(nx) * ny),
-                             "thermal_outflow");
-  set_args(gather_kernel_, terrain_.height_fixed(), outflow_, nx, ny);
-  compute_.profiler().launch(gather_kernel_, round_up_work(static_cast<std::size_t>(nx) * ny),
-                             "thermal_gather");
+  const std::size_t cells = round_up_work(static_cast<std::size_t>(nx) * ny);
+  for (Kernel* k : {&outflow_kernel_, &gather_kernel_}) {
+    k->set("height", terrain_.height_fixed()).set("outflow", outflow_).set("nx", nx).set("ny", ny);
+  }
+  outflow_kernel_.set("talus", talus)
+      .set("rate", static_cast<float>(settings_.rate))
+      .set("height_aware", static_cast<cl_int>(settings_.height_aware))
+      .set("hardness", static_cast<float>(settings_.hardness))
+      .set("h_min", h_min)
+      .set("h_range", h_range)
+      .launch(cells);
+  gather_kernel_.launch(cells);
   terrain_.apply();
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
 #include "runnel/sim/parameters.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
@@ -27,7 +28,7 @@ class ThermalRelaxation {
   DeviceTerrain& terrain_;
   ThermalSettings settings_;
   cl::Buffer outflow_;
-  cl::Kernel outflow_kernel_, gather_kernel_;
+  Kernel outflow_kernel_, gather_kernel_;
 };
 
 }  // namespace runnel
