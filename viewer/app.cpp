@@ -221,14 +221,7 @@ void Viewer::update_rain() {
   RainSettings& rain = sim_->rain().settings();
   const double dx = sim_->solver().settings().spacing;
   if (painting_) {
-    rain.region = RainSettings::Region::kDisc;
-    rain.a = brush_.x;
-    rain.c = brush_.z;
-    rain.b = brush_.radius;
-    rain.area = M_PI * brush_.radius * brush_.radius;
-    rain.intensity_mm_h = brush_.intensity;
-    rain.rate = brush_.intensity / 3.6e6 * rain.area / (dx * dx * dx);
-    rain.enabled = true;
+    rain.rain_on_disc(brush_.x, brush_.z, brush_.radius, brush_.intensity, dx);
   } else {
     const auto carry_budget = rain.max_particles;
     rain = global_rain_;

@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
-#include "runnel/sim/parameters.hpp"
+#include "runnel/core/parameters.hpp"
 
 namespace runnel::cli {
 

@@ -5,7 +5,7 @@
 #include <set>
 
 #include "runnel/core/error.hpp"
-#include "runnel/sim/parameters.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/sim/scenario.hpp"
 #include "test_support.hpp"
 

@@ -22,7 +22,7 @@ struct Probe {
 
 Probe probe(const std::vector<float>& r, double h = kH) {
   static ComputeContext compute("cpu");
-  SphSettings s;
+  SphSettings s = SphSettings::from(Parameters(), 0.1, 2.0);  // dx 0.1 m, c0 20 m/s
   s.h = h;
   Kernel k(compute,
            compute.program({"cl/common.cl", "cl/sph_kernel.cl", "cl/sph_kernel_probe.cl"},

@@ -34,7 +34,7 @@ TEST(Thermal, ConvergesToTheTalusAngleAndConservesVolume) {
   ASSERT_GT(steepest(pyramid), 55.0);
   DeviceTerrain terrain(compute(), pyramid);
   const auto before = terrain.download_fixed();
-  ThermalSettings s;
+  ThermalSettings s = ThermalSettings::from(Parameters());
   s.talus_angle_deg = 35.0;
   ThermalRelaxation thermal(compute(), terrain, s);
   for (int k = 0; k < 600; ++k) thermal.relax();
@@ -52,7 +52,7 @@ TEST(Thermal, HeightAwareVariantKeepsPeaksSharper) {
   double peaks[2];
   for (int variant = 0; variant < 2; ++variant) {
     DeviceTerrain terrain(compute(), cone);
-    ThermalSettings s;
+    ThermalSettings s = ThermalSettings::from(Parameters());
     s.talus_angle_deg = 30.0;
     s.height_aware = variant == 1;
     s.hardness = 1.0;

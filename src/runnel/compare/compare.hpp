@@ -6,8 +6,8 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/models/mass_balance.hpp"
-#include "runnel/sim/parameters.hpp"
 
 // runnel compare: several erosion models on one terrain with one rain budget (docs/models.md).
 namespace runnel::compare {

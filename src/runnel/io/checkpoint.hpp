@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "runnel/core/heightmap.hpp"
-#include "runnel/sim/parameters.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/sph/particle_store.hpp"
 #include "runnel/sph/sph_solver.hpp"
 

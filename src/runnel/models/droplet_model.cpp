@@ -6,42 +6,46 @@
 
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
+#include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/settings_table.hpp"
 
 namespace runnel {
 
+namespace {
+
+// clang-format off
+const SettingsTable<DropletSettings> kDropletTable = {
+      // droplet: Beyer 2015's particle droplets (models.md), in cells and metres of height
+      {"droplet.radius", "3", "cells", 0.5, 8, {}, "erosion brush radius (its weights are kept in private memory: at most 8)", &DropletSettings::radius, "DROPLET_RADIUS"},
+      {"droplet.inertia", "0.05", "1", 0, 1, {}, "how much a droplet keeps its direction", &DropletSettings::inertia, "DROPLET_INERTIA"},
+      {"droplet.capacity", "4", "1", 0, 1e6, {}, "capacity factor: capacity = −Δh · speed · water · factor", &DropletSettings::capacity, "DROPLET_CAPACITY"},
+      {"droplet.min_capacity", "0.01", "m", 0, 1e6, {}, "smallest capacity", &DropletSettings::min_capacity, "DROPLET_MIN_CAPACITY"},
+      {"droplet.erode", "0.3", "1", 0, 1, {}, "fraction of the free capacity eroded per step", &DropletSettings::erode, "DROPLET_ERODE"},
+      {"droplet.deposit", "0.3", "1", 0, 1, {}, "fraction of the excess load deposited per step", &DropletSettings::deposit, "DROPLET_DEPOSIT"},
+      {"droplet.evaporate", "0.01", "1", 0, 1, {}, "fraction of the water evaporating per step", &DropletSettings::evaporate, "DROPLET_EVAPORATE"},
+      {"droplet.gravity", "4", "1", 0, 1e3, {}, "gravity of the speed update", &DropletSettings::gravity, "DROPLET_GRAVITY"},
+      {"droplet.lifetime", "30", "steps", 1, 100000, {}, "steps a droplet lives", &DropletSettings::lifetime, "DROPLET_LIFETIME"},
+      {"droplet.initial_water", "1", "1", 0, 1e6, {}, "water a droplet starts with", &DropletSettings::initial_water, "DROPLET_INITIAL_WATER"},
+      {"droplet.initial_speed", "1", "1", 0, 1e6, {}, "speed a droplet starts with", &DropletSettings::initial_speed, "DROPLET_INITIAL_SPEED"},
+      {"droplet.batch", "0", "droplets", 0, 1e8, {}, "droplets per parallel batch (they see the terrain as at the batch start); 0: one per 64 cells, so few share a pit", &DropletSettings::batch},
+      {"droplet.volume", "0", "m^3", 0, 1e9, {}, "rain water one droplet stands for (rain_volume in metrics; runnel compare sets it to the SPH particle volume); 0: cell³", &DropletSettings::volume},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<ParamSpec> droplet_parameters() {
+  return settings_specs(kDropletTable);
+}
+
 DropletSettings DropletSettings::from(const Parameters& p) {
-  DropletSettings s;
-  s.radius = p.real("droplet.radius");
-  s.inertia = p.real("droplet.inertia");
-  s.capacity = p.real("droplet.capacity");
-  s.min_capacity = p.real("droplet.min_capacity");
-  s.erode = p.real("droplet.erode");
-  s.deposit = p.real("droplet.deposit");
-  s.evaporate = p.real("droplet.evaporate");
-  s.gravity = p.real("droplet.gravity");
-  s.lifetime = static_cast<int>(p.integer("droplet.lifetime"));
-  s.initial_water = p.real("droplet.initial_water");
-  s.initial_speed = p.real("droplet.initial_speed");
-  s.batch = p.integer("droplet.batch");
-  s.volume = p.real("droplet.volume");
-  return s;
+  return read_settings(p, kDropletTable);
 }
 
 std::string DropletSettings::build_options() const {
-  std::string o;
-  o += float_define("DROPLET_RADIUS", radius);
-  o += float_define("DROPLET_INERTIA", inertia);
-  o += float_define("DROPLET_CAPACITY", capacity);
-  o += float_define("DROPLET_MIN_CAPACITY", min_capacity);
-  o += float_define("DROPLET_ERODE", erode);
-  o += float_define("DROPLET_DEPOSIT", deposit);
-  o += float_define("DROPLET_EVAPORATE", evaporate);
-  o += float_define("DROPLET_GRAVITY", gravity);
-  o += float_define("DROPLET_INITIAL_WATER", initial_water);
-  o += float_define("DROPLET_INITIAL_SPEED", initial_speed);
-  o += " -DDROPLET_LIFETIME=" + std::to_string(lifetime);
-  o += " -DDROPLET_RADIUS_CELLS=" + std::to_string(static_cast<int>(std::ceil(radius)));
-  return o;
+  // The brush's extent in whole cells sizes its private weight array.
+  return settings_defines(*this, kDropletTable) +
+         " -DDROPLET_RADIUS_CELLS=" + std::to_string(static_cast<int>(std::ceil(radius)));
 }
 
 const ModelInfo& DropletModel::model_info() {

@@ -10,17 +10,18 @@ namespace runnel {
 
 // Beyer 2015's droplet model (models.md), parameters with the widely used defaults.
 struct DropletSettings {
-  double radius = 3;  // cells, erosion brush
-  double inertia = 0.05;
-  double capacity = 4;         // capacity factor
-  double min_capacity = 0.01;  // m of height
-  double erode = 0.3, deposit = 0.3, evaporate = 0.01;
-  double gravity = 4;
-  int lifetime = 30;  // steps
-  double initial_water = 1, initial_speed = 1;
-  long long batch =
-      0;  // droplets per batch (they see the terrain as at the batch start); 0: cells/64
-  double volume = 0;  // m³ of rain per droplet; 0: cell³
+  // The droplet.* parameters (defaults, units, meaning: the table in droplet_model.cpp).
+  double radius;  // cells, erosion brush
+  double inertia;
+  double capacity;      // capacity factor
+  double min_capacity;  // m of height
+  double erode, deposit, evaporate;
+  double gravity;
+  int lifetime;  // steps
+  double initial_water, initial_speed;
+  std::int64_t
+      batch;      // droplets per batch (they see the terrain as at the batch start); 0: cells/64
+  double volume;  // m³ of rain per droplet; 0: cell³
 
   static DropletSettings from(const Parameters& params);
   std::string build_options() const;

@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "runnel/core/heightmap.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/io/checkpoint.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/fields.hpp"
 #include "runnel/models/mass_balance.hpp"
-#include "runnel/sim/parameters.hpp"
 
 namespace runnel {
 

@@ -3,16 +3,31 @@
 
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
+#include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/settings_table.hpp"
 
 namespace runnel {
 
+namespace {
+
+// clang-format off
+const SettingsTable<OlsenSettings> kOlsenTable = {
+      // olsen: cellular-automaton hydraulic erosion (Olsen 2004), per iteration
+      {"olsen.rain", "0.01", "m", 0, 1e3, {}, "K_r, water added to every cell per iteration", &OlsenSettings::rain, "OLSEN_RAIN"},
+      {"olsen.solubility", "0.01", "1", 0, 1, {}, "K_s, terrain dissolved per unit water depth", &OlsenSettings::solubility, "OLSEN_SOLUBILITY"},
+      {"olsen.evaporation", "0.5", "1", 0, 1, {}, "K_e, fraction of the water evaporating per iteration", &OlsenSettings::evaporation, "OLSEN_EVAPORATION"},
+      {"olsen.capacity", "0.01", "1", 0, 1e3, {}, "K_c, sediment capacity per unit water depth", &OlsenSettings::capacity, "OLSEN_CAPACITY"},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<ParamSpec> olsen_parameters() {
+  return settings_specs(kOlsenTable);
+}
+
 OlsenSettings OlsenSettings::from(const Parameters& p) {
-  OlsenSettings s;
-  s.rain = p.real("olsen.rain");
-  s.solubility = p.real("olsen.solubility");
-  s.evaporation = p.real("olsen.evaporation");
-  s.capacity = p.real("olsen.capacity");
-  return s;
+  return read_settings(p, kOlsenTable);
 }
 
 const ModelInfo& OlsenModel::model_info() {
@@ -38,9 +53,7 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
   out_water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(float));
   out_sediment_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
   const OlsenSettings& s = settings_;
-  const std::string options =
-      float_define("OLSEN_RAIN", s.rain) + float_define("OLSEN_SOLUBILITY", s.solubility) +
-      float_define("OLSEN_EVAPORATION", s.evaporation) + float_define("OLSEN_CAPACITY", s.capacity);
+  const std::string options = settings_defines(s, kOlsenTable);
   cl::Program& program = compute.program({"cl/models/olsen.cl"}, options);
   dissolve_ = Kernel(compute, program, "olsen_dissolve");
   outflow_ = Kernel(compute, program, "olsen_outflow");

@@ -7,10 +7,11 @@
 namespace runnel {
 
 struct OlsenSettings {
-  double rain = 0.01;        // K_r, m of water per iteration
-  double solubility = 0.01;  // K_s, fraction of the water depth dissolved per iteration
-  double evaporation = 0.5;  // K_e, fraction of the water evaporating per iteration
-  double capacity = 0.01;    // K_c, sediment capacity per unit water depth
+  // The olsen.* parameters (defaults, units, meaning: the table in olsen_model.cpp).
+  double rain;         // K_r, m of water per iteration
+  double solubility;   // K_s, fraction of the water depth dissolved per iteration
+  double evaporation;  // K_e, fraction of the water evaporating per iteration
+  double capacity;     // K_c, sediment capacity per unit water depth
   static OlsenSettings from(const Parameters& params);
 };
 

@@ -8,38 +8,49 @@
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/settings_table.hpp"
 
 namespace runnel {
 namespace {
 constexpr int kStatBlocks = 1024;
 }
 
+namespace {
+
+// clang-format off
+const SettingsTable<PipeSettings> kPipeTable = {
+      // pipe: virtual-pipe shallow water with erosion (Mei, Decaudin, Hu 2007)
+      {"pipe.rain", "0.01", "m/s", 0, 1e3, {}, "rain on every cell", &PipeSettings::rain, "PIPE_RAIN"},
+      {"pipe.area", "1", "m^2", 1e-6, 1e6, {}, "A, cross-section of the virtual pipes", &PipeSettings::area, "PIPE_AREA"},
+      {"pipe.gravity", "9.81", "m/s^2", 0, 100, {}, "gravity", &PipeSettings::gravity, "PIPE_GRAVITY"},
+      {"pipe.capacity", "0.05", "s", 0, 1e6, {}, "K_c: capacity = K_c · max(sin α, min_tilt) · |v| (m of height)", &PipeSettings::capacity, "PIPE_CAPACITY"},
+      {"pipe.dissolve", "100", "1/s", 0, 1e6, {}, "K_s, rate at which the free capacity is dissolved: (1 − exp(−K_s·Δt))(C − s) per step", &PipeSettings::dissolve, "PIPE_DISSOLVE"},
+      {"pipe.deposit", "100", "1/s", 0, 1e6, {}, "K_d, rate at which the excess load is deposited: (1 − exp(−K_d·Δt))(s − C) per step", &PipeSettings::deposit, "PIPE_DEPOSIT"},
+      {"pipe.evaporation", "0.05", "1/s", 0, 1e3, {}, "K_e, evaporation rate", &PipeSettings::evaporation, "PIPE_EVAPORATION"},
+      {"pipe.manning_n", "0.03", "s/m^(1/3)", 0, 1, {}, "Manning's n of the bed friction on the pipe flow (the SPH model's law; not in Mei 2007): without it thin films run as fast as the flux limiter lets them, whatever the time step; 0: Mei's frictionless pipes", &PipeSettings::manning_n},
+      {"pipe.min_tilt", "0.05", "1", 0, 1, {}, "smallest sin α in the capacity", &PipeSettings::min_tilt, "PIPE_MIN_TILT"},
+      {"pipe.cfl", "0.25", "1", 0.01, 1, {}, "Δt ≤ cfl · l / (sqrt(g d_max) + |v|_max)", &PipeSettings::cfl},
+      {"pipe.cfl_depth", "0.01", "m", 0, 1e3, {}, "water thinner than this does not count in the CFL limit (a thin film's flux over its depth is not a wave speed; the flux limit keeps it non-negative)", &PipeSettings::cfl_depth, "PIPE_CFL_DEPTH"},
+      {"pipe.dt_min", "1e-6", "s", 0, 100, {}, "smallest time step: a step the CFL limit would make shorter stops the run with an error (a collapsing step means the flow has blown up)", &PipeSettings::dt_min},
+      {"pipe.dt_max", "0.05", "s", 1e-9, 100, {}, "largest time step", &PipeSettings::dt_max},
+      {"pipe.transport", "\"upwind\"", "", 0, 0, {"upwind", "semi-lagrangian"}, "sediment transport: upwind (mass-conserving, sediment leaves with the water) or semi-lagrangian (Mei 2007's advection; not conserving, the loss is reported as lost_volume)", &PipeSettings::transport},
+      {"pipe.edges", "\"outflow\"", "", 0, 0, {"outflow", "closed"}, "outflow (outside cells have b = d = 0) or closed", &PipeSettings::edges},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<ParamSpec> pipe_parameters() {
+  return settings_specs(kPipeTable);
+}
+
 PipeSettings PipeSettings::from(const Parameters& p) {
-  PipeSettings s;
-  s.rain = p.real("pipe.rain");
-  s.area = p.real("pipe.area");
-  s.gravity = p.real("pipe.gravity");
-  s.capacity = p.real("pipe.capacity");
-  s.dissolve = p.real("pipe.dissolve");
-  s.deposit = p.real("pipe.deposit");
-  s.evaporation = p.real("pipe.evaporation");
-  s.manning_n = p.real("pipe.manning_n");
-  s.min_tilt = p.real("pipe.min_tilt");
-  s.cfl = p.real("pipe.cfl");
-  s.cfl_depth = p.real("pipe.cfl_depth");
-  s.dt_max = p.real("pipe.dt_max");
-  s.dt_min = p.real("pipe.dt_min");
-  s.closed = p.text("pipe.edges") == "closed";
-  s.semi_lagrangian = p.text("pipe.transport") == "semi-lagrangian";
-  return s;
+  return read_settings(p, kPipeTable);
 }
 
 std::string PipeSettings::build_options() const {
-  return float_define("PIPE_RAIN", rain) + float_define("PIPE_AREA", area) +
-         float_define("PIPE_GRAVITY", gravity) + float_define("PIPE_CAPACITY", capacity) +
-         float_define("PIPE_DISSOLVE", dissolve) + float_define("PIPE_DEPOSIT", deposit) +
-         float_define("PIPE_EVAPORATION", evaporation) + float_define("PIPE_MIN_TILT", min_tilt) +
-         float_define("PIPE_CFL_DEPTH", cfl_depth) + " -DPIPE_CLOSED=" + (closed ? "1" : "0") +
+  return settings_defines(*this, kPipeTable) + " -DPIPE_CLOSED=" + (closed() ? "1" : "0") +
          float_define("PIPE_GRAVITY_N2", gravity * manning_n * manning_n) +
          " -DPIPE_FRICTION_ON=" + (manning_n > 0 ? "1" : "0");
 }
@@ -98,7 +109,7 @@ double PipeModel::take_step() {
   cl::Buffer &depth = state_.buffer(depth_), &flux = state_.buffer(flux_),
              &velocity = state_.buffer(velocity_), &sediment = state_.buffer(sediment_);
   const cl_ulong seed = static_cast<cl_ulong>(params_.integer("run.seed")), step = steps();
-  Kernel& transport = settings_.semi_lagrangian ? advect_kernel_ : transport_kernel_;
+  Kernel& transport = settings_.semi_lagrangian() ? advect_kernel_ : transport_kernel_;
   for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_, &transport}) {
     k->set("nx", nx).set("ny", ny).set("dt", dt);
     if (k->has("cell")) k->set("cell", cell);
@@ -111,7 +122,7 @@ double PipeModel::take_step() {
   erode_kernel_.set("height", terrain.height_fixed()).set("height_view", terrain.height());
   erode_kernel_.set("sediment", sediment).set("depth", depth).set("velocity", velocity);
   transport.set("sediment", sediment).set("sediment_next", sediment_next_);
-  if (settings_.semi_lagrangian) {
+  if (settings_.semi_lagrangian()) {
     advect_kernel_.set("velocity", velocity).set("lost", lost_);
   } else {
     transport_kernel_.set("flux", flux).set("previous_depth", previous_depth_);
@@ -198,8 +209,8 @@ JsonObject PipeModel::diagnostics() {
   return JsonObject()
       .add("next_dt_s", dt_)
       .add("water_volume_m3", water_volume())
-      .add("edges", settings_.closed ? "closed" : "outflow")
-      .add("transport", settings_.semi_lagrangian ? "semi-lagrangian" : "upwind");
+      .add("edges", settings_.edges)
+      .add("transport", settings_.transport);
 }
 
 }  // namespace runnel

@@ -8,21 +8,25 @@
 namespace runnel {
 
 struct PipeSettings {
-  double rain = 0.01;         // m/s of water on every cell
-  double area = 1.0;          // A, pipe cross-section, m²
-  double gravity = 9.81;      // m/s²
-  double capacity = 0.05;     // K_c, s (capacity = K_c · sin α · |v|, in m of height)
-  double dissolve = 0.1;      // K_s, fraction of the free capacity dissolved per step
-  double deposit = 0.1;       // K_d, fraction of the excess deposited per step
-  double evaporation = 0.05;  // K_e, 1/s
-  double manning_n = 0;       // s/m^(1/3); 0: no bed friction (Mei 2007)
-  double min_tilt = 0.05;     // smallest sin α in the capacity
-  double cfl = 0.25;
-  double cfl_depth = 0.01;       // m: thinner water does not limit the step
-  double dt_min = 1e-6;          // s: a shorter step stops the run
-  double dt_max = 0.05;          // s
-  bool closed = false;           // closed edges; default outflow
-  bool semi_lagrangian = false;  // Mei's advection (not conserving; the loss is reported)
+  // The pipe.* parameters (defaults, units, meaning: the table in pipe_model.cpp).
+  double rain;         // m/s of water on every cell
+  double area;         // A, pipe cross-section, m²
+  double gravity;      // m/s²
+  double capacity;     // K_c, s (capacity = K_c · sin α · |v|, in m of height)
+  double dissolve;     // K_s, 1/s
+  double deposit;      // K_d, 1/s
+  double evaporation;  // K_e, 1/s
+  double manning_n;    // s/m^(1/3); 0: no bed friction (Mei 2007)
+  double min_tilt;     // smallest sin α in the capacity
+  double cfl;
+  double cfl_depth;       // m: thinner water does not limit the step
+  double dt_min;          // s: a shorter step stops the run
+  double dt_max;          // s
+  std::string transport;  // "upwind" or "semi-lagrangian"
+  std::string edges;      // "outflow" or "closed"
+  bool closed() const { return edges == "closed"; }
+  // Mei's advection (not conserving; the loss is reported)
+  bool semi_lagrangian() const { return transport == "semi-lagrangian"; }
   static PipeSettings from(const Parameters& params);
   std::string build_options() const;
 };

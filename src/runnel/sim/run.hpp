@@ -4,9 +4,9 @@
 #include <string>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/model.hpp"
-#include "runnel/sim/parameters.hpp"
 
 namespace runnel {
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "runnel/core/heightmap.hpp"
-#include "runnel/sim/parameters.hpp"
+#include "runnel/core/parameters.hpp"
 
 namespace runnel {
 

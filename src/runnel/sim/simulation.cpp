@@ -52,10 +52,10 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                                         static_cast<float>(sph.rho0));
   erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_,
                                        static_cast<std::uint64_t>(params.integer("run.seed")));
-  thermal_interval_ = params.real("thermal.interval");
+  const ThermalSettings thermal = ThermalSettings::from(params);
+  thermal_interval_ = thermal.interval;
   if (thermal_interval_ > 0) {
-    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(),
-                                                   ThermalSettings::from(params));
+    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal);
   }
 }
 

@@ -6,10 +6,10 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/io/checkpoint.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/mass_balance.hpp"
-#include "runnel/sim/parameters.hpp"
 #include "runnel/sph/erosion.hpp"
 #include "runnel/sph/rain_emitter.hpp"
 #include "runnel/sph/sph_solver.hpp"

@@ -7,43 +7,56 @@
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/settings_table.hpp"
 
 namespace runnel {
 
+namespace {
+
+// clang-format off
+const SettingsTable<ErosionSettings> kErosionTable = {
+      // erosion: dissolving and depositing sediment (physics.md §4)
+      {"erosion.model", "\"stream-power\"", "", 0, 0, {"stream-power", "acidity"}, "stream-power: detachment driven by the power the flow spends on its bed against a transport capacity, coupled as Foster & Meyer 1975 (docs/erosion.md); acidity: Fritz 2016's fixed erosion per contact", &ErosionSettings::model},
+      {"erosion.erodibility", "0.001", "s^2/m^2", 0, 1e6, {}, "K_ω: detachment K_ω (ω − ω_c) in kg/m²/s, ω the stream power on the bed in W/m²", &ErosionSettings::erodibility},
+      {"erosion.critical_power", "0", "W/m^2", 0, 1e9, {}, "ω_c, the stream power below which the flow detaches nothing", &ErosionSettings::critical_power, "EROSION_CRITICAL_POWER"},
+      {"erosion.transport_efficiency", "0.02", "s^2/m", 0, 1e6, {}, "k_T: transport capacity k_T ω per unit width (kg/m/s, ω the stream power; Bagnold 1966: about 0.16 × his efficiency, 0.01–0.15), carried as the concentration k_T ρ0 g S / ρ_b (S the sine of the slope)", &ErosionSettings::transport},
+      {"erosion.settling_velocity", "0.01", "m/s", 0, 100, {}, "w_s, the fall velocity of the sediment (fine sand about 0.01): deposition w_s (c − c_T)", &ErosionSettings::settling, "EROSION_SETTLING"},
+      {"erosion.bed_density", "1600", "kg/m^3", 1, 1e5, {}, "ρ_b, dry bulk density of the bed: converts mass rates into bed volume", &ErosionSettings::bed_density},
+      {"erosion.max_concentration", "0.2", "1", 0, 1, {}, "c_max, the most bed volume a particle carries per volume of its water", &ErosionSettings::max_concentration, "EROSION_MAX_CONCENTRATION"},
+      {"erosion.morphological_factor", "1", "1", 0, 1e9, {}, "morphological acceleration (Roelvink 2006): the bed changes as over this many seconds for each second of flow; detachment, transport capacity and the load limit scale with it, the water does not", &ErosionSettings::morphological_factor},
+      {"erosion.acidity", "0.001", "m", 0, 1e3, {}, "acidity model: depth eroded per contact (× cell²)", &ErosionSettings::acidity, "EROSION_ACIDITY"},
+      {"erosion.capacity_contacts", "10", "1", 0, 1e9, {}, "acidity model: erosion events per particle", &ErosionSettings::capacity_contacts},
+      {"erosion.deposit_fraction", "1", "1", 0, 1, {}, "share of the load deposited on evaporation; < 1 reproduces Fritz 2016 and books the rest as lost (non-conserving)", &ErosionSettings::deposit_fraction, "EROSION_DEPOSIT_FRACTION"},
+      {"erosion.height_quantum", "1e-6", "m", 1e-12, 1, {}, "fixed-point quantum of terrain heights; sediment is counted in quantum · cell²", &ErosionSettings::height_quantum},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<ParamSpec> erosion_parameters() {
+  return settings_specs(kErosionTable);
+}
+
 ErosionSettings ErosionSettings::from(const Parameters& p, const SphSettings& sph,
                                       double terrain_cell) {
-  ErosionSettings e;
-  e.model = p.text("erosion.model");
-  e.erodibility = p.real("erosion.erodibility");
-  e.critical_power = p.real("erosion.critical_power");
-  e.transport = p.real("erosion.transport_efficiency");
-  e.settling = p.real("erosion.settling_velocity");
-  e.bed_density = p.real("erosion.bed_density");
-  e.max_concentration = p.real("erosion.max_concentration");
-  e.morphological_factor = p.real("erosion.morphological_factor");
+  ErosionSettings e = read_settings(p, kErosionTable);
   e.footprint_radius = runnel::footprint_radius(sph, terrain_cell);
-  e.acidity = p.real("erosion.acidity");
-  e.capacity_contacts = p.integer("erosion.capacity_contacts");
-  e.deposit_fraction = p.real("erosion.deposit_fraction");
-  e.height_quantum = p.real("erosion.height_quantum");
   return e;
 }
 
 std::string ErosionSettings::build_options(const SphSettings& sph, double volume_quantum) const {
-  std::string o = std::string(" -DEROSION_MODEL=") + (model == "acidity" ? "1" : "0");
+  // The raw values from the table; then what the kernel needs combined with the fluid's.
+  std::string o = settings_defines(*this, kErosionTable);
+  o += std::string(" -DEROSION_MODEL=") + (model == "acidity" ? "1" : "0");
   const double volume = sph.spacing * sph.spacing * sph.spacing;
   o += float_define("EROSION_RHO_G_N2", sph.rho0 * sph.gravity * sph.manning_n * sph.manning_n);
-  o += float_define("EROSION_CRITICAL_POWER", critical_power);
   o += float_define("EROSION_DETACHMENT", erodibility / bed_density);
   o += float_define("EROSION_TRANSPORT_SLOPE", transport * sph.rho0 * sph.gravity / bed_density);
-  o += float_define("EROSION_MAX_CONCENTRATION", max_concentration);
-  o += float_define("EROSION_SETTLING", settling);
   o += float_define("EROSION_PARTICLE_RADIUS", sph.contact_radius);
   o += float_define("EROSION_PARTICLE_VOLUME", volume);
   o += float_define("FOOTPRINT_RADIUS", footprint_radius);
-  o += float_define("EROSION_ACIDITY", acidity);
   o += " -DEROSION_CAPACITY_CONTACTS=" + std::to_string(capacity_contacts) + "u";
-  o += float_define("EROSION_DEPOSIT_FRACTION", deposit_fraction);
   o += float_define("EROSION_VOLUME_QUANTUM", volume_quantum);
   return o;
 }

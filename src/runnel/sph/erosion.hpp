@@ -5,8 +5,8 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
-#include "runnel/sim/parameters.hpp"
 #include "runnel/sph/sph_solver.hpp"
 
 namespace runnel {
@@ -15,19 +15,21 @@ namespace runnel {
 // (docs/erosion.md): the stream-power model (Foster & Meyer 1975's coupling, Bagnold 1966's stream
 // power) or Fritz 2016's acidity model.
 struct ErosionSettings {
-  std::string model = "stream-power";  // or "acidity"
-  double erodibility = 0;              // K_ω, s²/m²
-  double critical_power = 0;           // ω_c, W/m²
-  double transport = 0;                // k_T, s²/m
-  double settling = 0;                 // w_s, m/s
-  double bed_density = 0;              // ρ_b, kg/m³
-  double max_concentration = 0;        // c_max, bed volume per water volume
-  double morphological_factor = 1;
-  double footprint_radius = 0;  // m, where an exchange is spread
-  double acidity = 0;           // m
-  long long capacity_contacts = 0;
-  double deposit_fraction = 1.0;
-  double height_quantum = 1e-6;  // m
+  // The erosion.* parameters (defaults, units, meaning: the table in erosion.cpp).
+  std::string model;         // "stream-power" or "acidity"
+  double erodibility;        // K_ω, s²/m²
+  double critical_power;     // ω_c, W/m²
+  double transport;          // k_T, s²/m
+  double settling;           // w_s, m/s
+  double bed_density;        // ρ_b, kg/m³
+  double max_concentration;  // c_max, bed volume per water volume
+  double morphological_factor;
+  double acidity;  // m
+  std::int64_t capacity_contacts;
+  double deposit_fraction;
+  double height_quantum;  // m
+  // Resolved from the fluid and the terrain:
+  double footprint_radius;  // m, where an exchange is spread
 
   static ErosionSettings from(const Parameters& p, const SphSettings& sph, double terrain_cell);
   // OpenCL build options (-DEROSION_...) for cl/erode.cl.

@@ -6,20 +6,48 @@
 
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/settings_table.hpp"
 
 namespace runnel {
 
+namespace {
+
+// clang-format off
+const SettingsTable<RainSettings> kRainTable = {
+      // rain: the emitter (physics.md §4)
+      {"rain.region", "\"terrain\"", "", 0, 0, {"terrain", "rectangle", "disc"}, "where rain falls: the whole terrain, rain.rect_*, or the disc rain.disc_*", &RainSettings::region_name},
+      {"rain.rect_x0", "0", "m", -1e9, 1e9, {}, "rectangle: west edge (x)", &RainSettings::rect_x0},
+      {"rain.rect_x1", "0", "m", -1e9, 1e9, {}, "rectangle: east edge (x)", &RainSettings::rect_x1},
+      {"rain.rect_z0", "0", "m", -1e9, 1e9, {}, "rectangle: north edge (z)", &RainSettings::rect_z0},
+      {"rain.rect_z1", "0", "m", -1e9, 1e9, {}, "rectangle: south edge (z)", &RainSettings::rect_z1},
+      {"rain.disc_x", "0", "m", -1e9, 1e9, {}, "disc: centre x", &RainSettings::disc_x},
+      {"rain.disc_z", "0", "m", -1e9, 1e9, {}, "disc: centre z", &RainSettings::disc_z},
+      {"rain.disc_radius", "0", "m", 0, 1e9, {}, "disc: radius", &RainSettings::disc_radius},
+      {"rain.rate", "0", "particles/s", 0, 1e9, {}, "particles spawned per second; 0: from rain.intensity, or if that is 0 too, max_particles / lifespan", &RainSettings::rate},
+      {"rain.intensity", "0", "mm/h", 0, 1e9, {}, "rain intensity over the region (converted through the particle volume dx³); used when rain.rate is 0", &RainSettings::intensity_mm_h},
+      {"rain.spawn_height", "0", "m", 0, 1e6, {}, "height above the terrain where drops appear; 0: 1 dx", &RainSettings::spawn_height},
+      {"rain.speed", "0", "m/s", 0, 1e4, {}, "initial downward speed of a drop", &RainSettings::speed},
+      {"rain.max_particles", "20000", "particles", 0, 1e8, {}, "particle budget: the emitter never lets more particles live at once", &RainSettings::max_particles},
+      {"rain.lifespan", "0", "s", 0, 1e9, {}, "mean lifespan of a drop before it evaporates; 0: the time to cross the terrain at a tenth of the reference speed (water under bed friction runs slower than a free fall)", &RainSettings::lifespan},
+      {"rain.lifespan_jitter", "0.25", "1", 0, 0.99, {}, "lifespans are uniform in mean·(1 ± jitter)", &RainSettings::lifespan_jitter},
+      {"rain.enabled", "true", "", 0, 0, {}, "rain on or off", &RainSettings::enabled},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<ParamSpec> rain_parameters() {
+  return settings_specs(kRainTable);
+}
+
 RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrain, double spacing,
                                 double reference_speed) {
-  RainSettings r;
-  const std::string region = p.text("rain.region");
+  RainSettings r = read_settings(p, kRainTable);
   const double lx = terrain.extent_x(), lz = terrain.extent_z();
-  if (region == "rectangle") {
+  if (r.region_name == "rectangle") {
     r.region = Region::kRectangle;
-    r.a = p.real("rain.rect_x0");
-    r.b = p.real("rain.rect_x1");
-    r.c = p.real("rain.rect_z0");
-    r.d = p.real("rain.rect_z1");
+    r.a = r.rect_x0, r.b = r.rect_x1, r.c = r.rect_z0, r.d = r.rect_z1;
     if (!(r.b > r.a) || !(r.d > r.c))
       throw input_error("rain.rect_x1, rain.rect_z1: the rectangle is empty");
     if (r.a < 0 || r.c < 0 || r.b > lx || r.d > lz) {
@@ -27,36 +55,40 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
                         "] x [0, " + std::to_string(lz) + "] m");
     }
     r.area = (r.b - r.a) * (r.d - r.c);
-  } else if (region == "disc") {
+  } else if (r.region_name == "disc") {
     r.region = Region::kDisc;
-    r.a = p.real("rain.disc_x");
-    r.c = p.real("rain.disc_z");
-    r.b = p.real("rain.disc_radius");
+    r.a = r.disc_x, r.c = r.disc_z, r.b = r.disc_radius;
     if (!(r.b > 0))
       throw input_error("rain.disc_radius: must be positive for rain.region = \"disc\"");
     r.area = M_PI * r.b * r.b;
   } else {
+    r.region = Region::kTerrain;
     r.area = lx * lz;
   }
-  r.enabled = p.boolean("rain.enabled");
-  r.max_particles = p.integer("rain.max_particles");
-  r.spawn_height = p.real("rain.spawn_height") > 0 ? p.real("rain.spawn_height") : spacing;
-  r.speed = p.real("rain.speed");
+  if (!(r.spawn_height > 0)) r.spawn_height = spacing;
   // By default a drop lives long enough to cross the terrain at a tenth of the reference speed:
   // water under bed friction runs several times slower than a free fall over the relief.
-  r.lifespan = p.real("rain.lifespan") > 0 ? p.real("rain.lifespan")
-                                           : 10.0 * std::max(lx, lz) / reference_speed;
-  r.lifespan_jitter = p.real("rain.lifespan_jitter");
+  if (!(r.lifespan > 0)) r.lifespan = 10.0 * std::max(lx, lz) / reference_speed;
   const double volume = spacing * spacing * spacing;
-  if (p.real("rain.rate") > 0) {
-    r.rate = p.real("rain.rate");
-  } else if (p.real("rain.intensity") > 0) {
-    r.rate = p.real("rain.intensity") / 1000.0 / 3600.0 * r.area / volume;
-  } else {
-    r.rate = static_cast<double>(r.max_particles) / r.lifespan;
+  if (!(r.rate > 0)) {
+    r.rate = r.intensity_mm_h > 0 ? r.intensity_mm_h / 1000.0 / 3600.0 * r.area / volume
+                                  : static_cast<double>(r.max_particles) / r.lifespan;
   }
   r.intensity_mm_h = r.rate * volume / r.area * 1000.0 * 3600.0;
   return r;
+}
+
+void RainSettings::rain_on_disc(double x, double z, double radius, double intensity,
+                                double spacing) {
+  region_name = "disc";
+  region = Region::kDisc;
+  a = disc_x = x;
+  c = disc_z = z;
+  b = disc_radius = radius;
+  area = M_PI * radius * radius;
+  intensity_mm_h = intensity;
+  rate = intensity / 1000.0 / 3600.0 * area / (spacing * spacing * spacing);
+  enabled = true;
 }
 
 JsonObject RainSettings::json() const {

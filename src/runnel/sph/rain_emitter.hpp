@@ -5,31 +5,40 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
-#include "runnel/sim/parameters.hpp"
 #include "runnel/sph/sph_solver.hpp"
 
 namespace runnel {
 
 // The rain of one run, resolved from the rain.* parameters and the terrain (no "auto" left).
 struct RainSettings {
+  // The rain.* parameters (defaults, units, meaning: the table in rain_emitter.cpp); from()
+  // resolves the automatic ones (0) in place.
+  std::string region_name;  // "terrain", "rectangle" or "disc"
+  double rect_x0, rect_x1, rect_z0, rect_z1;
+  double disc_x, disc_z, disc_radius;
+  double rate;            // particles/s
+  double intensity_mm_h;  // the same rate as rain depth per hour
+  double spawn_height;    // m
+  double speed;           // m/s
+  std::int64_t max_particles;
+  double lifespan;  // s
+  double lifespan_jitter;
+  bool enabled;
+  // Resolved: what the kernel reads.
   enum class Region { kTerrain = 0, kRectangle = 1, kDisc = 2 };
-  Region region = Region::kTerrain;
-  double a = 0, b = 0, c = 0, d = 0;  // rectangle x0, x1, z0, z1, or disc x, radius, z
-  double area = 0;                    // m²
-  double rate = 0;                    // particles/s
-  double intensity_mm_h = 0;          // the same rate as rain depth per hour
-  double spawn_height = 0;            // m
-  double speed = 0;                   // m/s
-  long long max_particles = 0;
-  double lifespan = 0;  // s
-  double lifespan_jitter = 0;
-  bool enabled = true;
+  Region region;
+  double a, b, c, d;  // rectangle x0, x1, z0, z1, or disc x, radius, z
+  double area;        // m²
 
   // `reference_speed` (m/s) and the particle spacing fill the automatic values.
   static RainSettings from(const Parameters& p, const DeviceTerrain& terrain, double spacing,
                            double reference_speed);
   JsonObject json() const;
+  // Rain of `intensity_mm_h` on the disc (x, z, radius), as rain.region = "disc" would resolve it
+  // with that rain.intensity (the viewer's brush).
+  void rain_on_disc(double x, double z, double radius, double intensity, double spacing);
 };
 
 // Host side of cl/rain.cl: spawns the particles of each step on the device. The count per step

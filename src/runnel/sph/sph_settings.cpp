@@ -7,33 +7,55 @@
 
 #include "runnel/compute/build_options.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/settings_table.hpp"
 
 namespace runnel {
 
+namespace {
+
+// clang-format off
+const SettingsTable<SphSettings> kSphTable = {
+      // sph: the weakly compressible SPH fluid (physics.md §2)
+      {"sph.spacing", "0", "m", 0, 1e4, {}, "particle spacing dx (particle volume dx³); 0: derived from the case (half the terrain's cell size for runs: several particles across a channel)", &SphSettings::spacing},
+      {"sph.h_factor", "1.2", "1", 0.8, 2.5, {}, "smoothing length h = h_factor · dx (support radius 2h)", &SphSettings::h_factor},
+      {"sph.rho0", "1000", "kg/m^3", 1, 1e5, {}, "rest density ρ0", &SphSettings::rho0, "SPH_RHO0"},
+      {"sph.c0", "0", "m/s", 0, 1e5, {}, "speed of sound; 0: 10 × the case's reference speed (free fall from the spawn height, or sqrt(g H))", &SphSettings::c0, "SPH_C0"},
+      {"sph.alpha_visc", "0.02", "1", 0, 10, {}, "Monaghan artificial viscosity α", &SphSettings::alpha_visc, "SPH_ALPHA_VISC"},
+      {"sph.delta", "0.1", "1", 0, 1, {}, "δ-SPH density diffusion coefficient (Molteni & Colagrossi 2009)", &SphSettings::delta, "SPH_DELTA"},
+      {"sph.cfl", "0.25", "1", 0.01, 0.5, {}, "time step factor: dt = cfl · min(h/(c0 + |v|max), sqrt(h/|a|max))", &SphSettings::cfl},
+      {"sph.dt_min", "1e-7", "s", 1e-12, 1, {}, "smallest time step: reaching it stops the run as unstable", &SphSettings::dt_min},
+      {"sph.dt_max", "0.01", "s", 1e-9, 10, {}, "largest time step", &SphSettings::dt_max},
+      {"sph.gravity", "9.81", "m/s^2", 0, 100, {}, "gravitational acceleration (along −y)", &SphSettings::gravity, "SPH_GRAVITY"},
+      {"sph.clamp_negative_pressure", "true", "", 0, 0, {}, "clamp negative pressure to 0 (free-surface rain: no tensile attraction between droplets)", &SphSettings::clamp_negative_pressure, "SPH_CLAMP_NEGATIVE_PRESSURE"},
+      {"sph.walls", "false", "", 0, 0, {}, "vertical walls at the domain edges; false: open edges, particles that leave are removed as outflow", &SphSettings::walls, "SPH_WALLS"},
+      {"sph.restitution", "0", "1", 0, 1, {}, "restitution e of the terrain and wall contact", &SphSettings::restitution, "SPH_RESTITUTION"},
+      {"sph.manning_n", "0.03", "s/m^(1/3)", 0, 1, {}, "Manning's roughness n of the terrain: bed shear stress ρ g n² |u|²/D^(1/3) on particles touching it (D the local flow depth); 0: frictionless", &SphSettings::manning_n},
+      {"sph.contact_radius", "0.5", "dx", 0, 2, {}, "particle radius for the terrain contact: a resting particle's centre sits this far above the terrain along the normal (0.5: the particle of volume dx³ rests on its lowest point)", &SphSettings::contact_radius, "SPH_CONTACT_RADIUS"},
+      {"sph.surface_eps", "0.01", "dx", 0, 0.5, {}, "ε, how far above the contact surface a particle is put after a hit", &SphSettings::surface_eps, "SPH_SURFACE_EPS"},
+      {"sph.density_min", "0.1", "1", 0.001, 1, {}, "smallest sane density as a fraction of ρ0: below it the run stops (rain drops that leave the ground expand; with clamped pressure that is harmless)", &SphSettings::density_min},
+      {"sph.density_max", "1.5", "1", 1, 100, {}, "largest sane density as a fraction of ρ0: above it the run stops", &SphSettings::density_max},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<ParamSpec> sph_parameters() {
+  return settings_specs(kSphTable);
+}
+
 SphSettings SphSettings::from(const Parameters& p, double default_spacing, double reference_speed) {
-  SphSettings s;
-  s.spacing = p.real("sph.spacing") > 0 ? p.real("sph.spacing") : default_spacing;
+  SphSettings s = read_settings(p, kSphTable);
+  // The automatic values and those given in multiples of dx, resolved in place.
+  if (!(s.spacing > 0)) s.spacing = default_spacing;
   if (!(s.spacing > 0)) throw input_error("sph.spacing: must be positive");
-  s.h = p.real("sph.h_factor") * s.spacing;
-  s.rho0 = p.real("sph.rho0");
-  s.c0 = p.real("sph.c0") > 0 ? p.real("sph.c0") : 10.0 * reference_speed;
+  s.h = s.h_factor * s.spacing;
+  if (!(s.c0 > 0)) s.c0 = 10.0 * reference_speed;
   if (!(s.c0 > 0))
     throw input_error("sph.c0: must be positive (no reference speed to derive it from)");
-  s.alpha_visc = p.real("sph.alpha_visc");
-  s.delta = p.real("sph.delta");
-  s.cfl = p.real("sph.cfl");
-  s.dt_min = p.real("sph.dt_min");
-  s.dt_max = p.real("sph.dt_max");
   if (s.dt_min >= s.dt_max) throw input_error("sph.dt_min: must be smaller than sph.dt_max");
-  s.gravity = p.real("sph.gravity");
-  s.restitution = p.real("sph.restitution");
-  s.manning_n = p.real("sph.manning_n");
-  s.contact_radius = p.real("sph.contact_radius") * s.spacing;
-  s.surface_eps = p.real("sph.surface_eps") * s.spacing;
-  s.density_min = p.real("sph.density_min");
-  s.density_max = p.real("sph.density_max");
-  s.clamp_negative_pressure = p.boolean("sph.clamp_negative_pressure");
-  s.walls = p.boolean("sph.walls");
+  s.contact_radius *= s.spacing;
+  s.surface_eps *= s.spacing;
   return s;
 }
 
@@ -42,21 +64,11 @@ double footprint_radius(const SphSettings& s, double terrain_cell) {
 }
 
 std::string SphSettings::build_options() const {
-  std::string o;
+  std::string o = settings_defines(*this, kSphTable);
   o += float_define("SPH_H", h);
   o += float_define("SPH_MASS", mass());
-  o += float_define("SPH_RHO0", rho0);
-  o += float_define("SPH_C0", c0);
   o += float_define("SPH_B", tait_b());
-  o += float_define("SPH_ALPHA_VISC", alpha_visc);
-  o += float_define("SPH_DELTA", delta);
-  o += float_define("SPH_GRAVITY", gravity);
-  o += float_define("SPH_RESTITUTION", restitution);
   o += float_define("SPH_MANNING_G_N2", gravity * manning_n * manning_n);
-  o += float_define("SPH_CONTACT_RADIUS", contact_radius);
-  o += float_define("SPH_SURFACE_EPS", surface_eps);
-  o += std::string(" -DSPH_CLAMP_NEGATIVE_PRESSURE=") + (clamp_negative_pressure ? "1" : "0");
-  o += std::string(" -DSPH_WALLS=") + (walls ? "1" : "0");
   return o;
 }
 

@@ -5,16 +5,32 @@
 #include <cmath>
 
 #include "runnel/compute/launch.hpp"
+#include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/settings_table.hpp"
 
 namespace runnel {
 
+namespace {
+
+// clang-format off
+const SettingsTable<ThermalSettings> kThermalTable = {
+      // thermal: talus relaxation during a run
+      {"thermal.interval", "0.5", "s", 0, 1e9, {}, "SPH runs: relax slopes steeper than the talus angle every this many simulated seconds; 0: off", &ThermalSettings::interval},
+      {"thermal.talus_angle", "40", "deg", 0, 89, {}, "talus angle", &ThermalSettings::talus_angle_deg},
+      {"thermal.rate", "0.5", "1", 0, 1, {}, "c, the fraction of the excess moved per relaxation", &ThermalSettings::rate},
+      {"thermal.height_aware", "false", "", 0, 0, {}, "height-aware talus (Fritz 2016): the threshold rises with height, keeping peaks sharp", &ThermalSettings::height_aware},
+      {"thermal.hardness", "1", "1", 0, 100, {}, "height-aware: threshold × (1 + hardness · normalised height)", &ThermalSettings::hardness},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<ParamSpec> thermal_parameters() {
+  return settings_specs(kThermalTable);
+}
+
 ThermalSettings ThermalSettings::from(const Parameters& p) {
-  ThermalSettings s;
-  s.talus_angle_deg = p.real("thermal.talus_angle");
-  s.rate = p.real("thermal.rate");
-  s.height_aware = p.boolean("thermal.height_aware");
-  s.hardness = p.real("thermal.hardness");
-  return s;
+  return read_settings(p, kThermalTable);
 }
 
 ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,

@@ -2,16 +2,18 @@
 #pragma once
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
-#include "runnel/sim/parameters.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
 namespace runnel {
 
 struct ThermalSettings {
-  double talus_angle_deg = 40.0;
-  double rate = 0.5;          // c: fraction of the excess moved per pass
-  bool height_aware = false;  // talus threshold rising with height (hardness)
-  double hardness = 1.0;      // height-aware: threshold × (1 + hardness · normalised height)
+  // The thermal.* parameters (their defaults, units and meaning: the table in thermal.cpp).
+  double interval;         // s between relaxations in SPH runs; 0: off
+  double talus_angle_deg;  // deg
+  double rate;             // c: fraction of the excess moved per pass
+  bool height_aware;       // talus threshold rising with height (hardness)
+  double hardness;         // height-aware: threshold × (1 + hardness · normalised height)
   static ThermalSettings from(const Parameters& params);  // the thermal.* parameters
 };
 

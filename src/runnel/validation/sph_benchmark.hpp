@@ -3,8 +3,8 @@
 #include <string>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
-#include "runnel/sim/parameters.hpp"
 
 namespace runnel {
 

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
-#include "runnel/sim/parameters.hpp"
 
 namespace runnel {
 

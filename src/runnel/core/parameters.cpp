@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "runnel/sim/parameters.hpp"
+#include "runnel/core/parameters.hpp"
 
 #include <algorithm>
 #include <charconv>
