@@ -86,4 +86,20 @@ double json_number(const std::string& json, const std::string& key) {
   return std::stod(json.substr(at + key.size() + 4));
 }
 
+QuantaComparison compare_quanta(const std::vector<std::int64_t>& device,
+                                const std::vector<std::int64_t>& reference,
+                                const std::vector<std::int64_t>& before) {
+  QuantaComparison c;
+  std::size_t exact = 0;
+  for (std::size_t k = 0; k < device.size(); ++k) {
+    const std::int64_t d =
+        device[k] > reference[k] ? device[k] - reference[k] : reference[k] - device[k];
+    c.worst = std::max(c.worst, d);
+    exact += d == 0;
+    c.changed += reference[k] != before[k];
+  }
+  c.exact_share = device.empty() ? 0.0 : static_cast<double>(exact) / device.size();
+  return c;
+}
+
 }  // namespace runnel::test

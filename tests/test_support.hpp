@@ -3,6 +3,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -41,5 +42,17 @@ std::string source_dir();
 
 // The number after "KEY": in a JSON text (the first occurrence); -1e300 if the key is absent.
 double json_number(const std::string& json, const std::string& key);
+
+// How a device result in integer quanta compares with its double-precision oracle: float and
+// double may round a floor() differently, so a vertex may differ by a quantum or a few; a wrong
+// algorithm differs by far more, and at most vertices.
+struct QuantaComparison {
+  std::int64_t worst = 0;    // largest |device − reference|, quanta
+  double exact_share = 0;    // share of the vertices that agree exactly
+  std::int64_t changed = 0;  // vertices the reference changed at all (the case is not trivial)
+};
+QuantaComparison compare_quanta(const std::vector<std::int64_t>& device,
+                                const std::vector<std::int64_t>& reference,
+                                const std::vector<std::int64_t>& before);
 
 }  // namespace runnel::test

@@ -5,9 +5,11 @@
 
 #include <cmath>
 #include <numeric>
+#include <random>
 
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/thermal.hpp"
+#include "runnel/terrain/thermal_reference.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -61,6 +63,41 @@ TEST(Thermal, HeightAwareVariantKeepsPeaksSharper) {
     peaks[variant] = terrain.download().max_height();
   }
   EXPECT_GT(peaks[1], peaks[0] + 1.0);
+}
+
+}  // namespace
+}  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// One pass on a random rough terrain against the plain C++ oracle (thermal_reference), plain and
+// height-aware.
+TEST(Thermal, OnePassMatchesThePlainCppReference) {
+  const int nx = 23, ny = 19;
+  const double quantum = 1e-6, cell = 0.5;
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<std::int64_t> relief(0, 2'000'000);  // 0–2 m: steep at 0.5 m cells
+  Heightmap rough(nx, ny, cell);
+  for (float& h : rough.h) h = static_cast<float>(relief(rng) * quantum);
+  for (bool height_aware : {false, true}) {
+    DeviceTerrain terrain(compute(), rough, quantum);
+    const std::vector<std::int64_t> before = terrain.download_fixed();
+    ThermalSettings s = ThermalSettings::from(Parameters());
+    s.talus_angle_deg = 30.0;
+    s.rate = 0.37;
+    s.height_aware = height_aware;
+    s.hardness = 0.8;
+    ThermalRelaxation(compute(), terrain, s).relax();
+    const std::int64_t talus =
+        std::llround(cell * std::tan(s.talus_angle_deg * M_PI / 180.0) / quantum);
+    const auto reference =
+        thermal_reference::relax(before, nx, ny, talus, s.rate, s.height_aware, s.hardness);
+    const auto c = test::compare_quanta(terrain.download_fixed(), reference, before);
+    EXPECT_GT(c.changed, nx * ny / 2) << "the case relaxes most vertices";
+    EXPECT_LE(c.worst, 8) << "at most a quantum per outflow and inflow apart (float vs double)";
+    EXPECT_GT(c.exact_share, 0.9);
+  }
 }
 
 }  // namespace
