@@ -36,6 +36,12 @@ GridSpec fluid_grid(const SphSettings& s, const Heightmap& floor, double top) {
 
 }  // namespace
 
+cl::Program& sph_program(ComputeContext& compute, const SphSettings& settings,
+                         double terrain_cell) {
+  return compute.program(kSphSources,
+                         settings.build_options() + footprint_options(settings, terrain_cell));
+}
+
 SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor,
                      double top, double height_quantum)
     : compute_(compute),
@@ -43,8 +49,7 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
       terrain_(compute, floor, height_quantum),
       store_(compute),
       hash_(compute, fluid_grid(settings, floor, top)) {
-  cl::Program& program = compute.program(
-      kSphSources, settings.build_options() + footprint_options(settings, floor.cell));
+  cl::Program& program = sph_program(compute, settings, floor.cell);
   forces_ = Kernel(compute, program, "sph_forces");
   continuity_ = Kernel(compute, program, "sph_continuity");
   drift_ = Kernel(compute, program, "drift");

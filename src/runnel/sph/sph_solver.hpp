@@ -32,6 +32,10 @@ struct SphCounters {
 };
 inline constexpr int kCounterCount = 6;
 
+// The program of the SPH pipeline's kernels (integrate, forces, continuity, water depth) for these
+// settings on a terrain of this cell size; kept by the context, built once.
+cl::Program& sph_program(ComputeContext& compute, const SphSettings& settings, double terrain_cell);
+
 // The weakly compressible SPH solver (physics.md §2) on a terrain floor, with kick-drift-kick
 // leapfrog and an adaptive time step. Host code of cl/sph_continuity.cl, cl/sph_forces.cl and
 // cl/integrate.cl (with cl/collide.cl).
