@@ -62,16 +62,6 @@ double brute_force_hit(const Heightmap& t, const double o[3], const double d[3])
   return best;
 }
 
-// The contact surface: the terrain with every vertex raised by radius / n_y (its normal's vertical
-// part, at least 0.2), as cl/terrain_sample.cl builds it.
-Heightmap contact_surface(const Heightmap& t, double radius) {
-  Heightmap c = t;
-  const std::vector<float> n = terrain_normals_reference(t);
-  for (std::size_t k = 0; k < c.size(); ++k)
-    c.h[k] += static_cast<float>(radius / std::max(0.2, static_cast<double>(n[3 * k + 1])));
-  return c;
-}
-
 TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
   // Segments up to 50 m long (50 m/s for a whole second) across a rough terrain: the tile walk
   // must find the same first crossing as testing every triangle, of the terrain itself and of the

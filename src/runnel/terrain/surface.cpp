@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "runnel/terrain/terrain_normals.hpp"
+
 namespace runnel {
 
 double surface_height(const Heightmap& t, double x, double z) {
@@ -15,6 +17,14 @@ double surface_height(const Heightmap& t, double x, double z) {
                h11 = t.at(i + 1, j + 1);
   if (fx >= fz) return h00 * (1 - fx) + h10 * (fx - fz) + h11 * fz;
   return h00 * (1 - fz) + h01 * (fz - fx) + h11 * fx;
+}
+
+Heightmap contact_surface(const Heightmap& t, double radius) {
+  Heightmap c = t;
+  const std::vector<float> n = terrain_normals_reference(t);
+  for (std::size_t k = 0; k < c.size(); ++k)
+    c.h[k] += static_cast<float>(radius / std::max(0.2, static_cast<double>(n[3 * k + 1])));
+  return c;
 }
 
 }  // namespace runnel

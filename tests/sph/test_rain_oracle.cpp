@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// rain_emit against its plain C++ oracle (rain_reference): every region, on a rough terrain where
+// the spawn height and the contact surface both decide the drop's height.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "runnel/sph/rain_emitter.hpp"
+#include "runnel/sph/rain_reference.hpp"
+#include "runnel/sph/sph_solver.hpp"
+#include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/surface.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::compute;
+
+TEST(RainOracle, EmittedDropsMatchThePlainCppReferenceInEveryRegion) {
+  const Heightmap rough = generate_terrain("diamond-square", 33, 29, 1.0, 4, {{"relief", 0.3}});
+  for (const char* region : {"terrain", "rectangle", "disc"}) {
+    Parameters p;
+    p.set("rain.region", std::string(region));
+    p.set("rain.rect_x0", 3.0), p.set("rain.rect_x1", 20.0);
+    p.set("rain.rect_z0", 5.0), p.set("rain.rect_z1", 26.0);
+    p.set("rain.disc_x", 14.0), p.set("rain.disc_z", 12.0), p.set("rain.disc_radius", 9.0);
+    p.set("rain.rate", 20000.0);
+    p.set("rain.spawn_height", 0.3);  // below the contact surface on the steepest slopes
+    p.set("rain.speed", 1.5);
+    const SphSettings sph = SphSettings::from(p, 0.5, 5.0);
+    SphSolver solver(compute(), sph, rough, 40.0);
+    const RainSettings settings = RainSettings::from(p, solver.terrain(), sph.spacing, 5.0);
+    const std::uint64_t seed = 99;
+    RainEmitter emitter(compute(), settings, seed, float(sph.rho0));
+    emitter.emit(solver, 0.01);  // 200 drops: the first counters
+    const std::size_t second = emitter.emit(solver, 0.0125);
+    const HostParticles drops = solver.particles().download();
+    ASSERT_EQ(drops.size(), 200u + second);
+    const auto reference = rain_reference::emit(settings, sph.contact_radius, sph.surface_eps,
+                                                rough, seed, 0, drops.size());
+    double worst_xz = 0, worst_y = 0, worst_life = 0;
+    int lifted = 0;
+    for (std::size_t k = 0; k < drops.size(); ++k) {
+      worst_xz = std::max({worst_xz, std::fabs(drops.f[kX][k] - reference[k].x),
+                           std::fabs(drops.f[kZ][k] - reference[k].z)});
+      worst_y = std::max(worst_y, std::fabs(drops.f[kY][k] - reference[k].y));
+      worst_life = std::max(worst_life, std::fabs(drops.f[kLifespan][k] - reference[k].lifespan));
+      lifted += reference[k].y > surface_height(rough, reference[k].x, reference[k].z) + 0.3 + 1e-4;
+      EXPECT_EQ(drops.id[k], k);
+      EXPECT_EQ(drops.f[kVy][k], -1.5f);
+    }
+    EXPECT_LT(worst_xz, 1e-4) << region << ": m, float against double over 30 m";
+    EXPECT_LT(worst_y, 1e-4) << region;
+    EXPECT_LT(worst_life, 1e-3 * settings.lifespan) << region;
+    EXPECT_GT(lifted, 0) << region << ": some drops are held up by the contact surface";
+  }
+}
+
+}  // namespace
+}  // namespace runnel
