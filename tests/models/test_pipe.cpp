@@ -3,11 +3,14 @@
 // terrain under heavy rain, conserving terrain + sediment + outflow exactly, deterministic.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <cmath>
 #include <numeric>
 
 #include "runnel/core/error.hpp"
 #include "runnel/models/pipe_model.hpp"
+#include "runnel/models/pipe_reference.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
 
@@ -96,6 +99,49 @@ TEST(PipeModel, SemiLagrangianReportsItsLossExactly) {
   EXPECT_NE(model.lost_quanta(), 0) << "advection by interpolation creates or destroys sediment";
   EXPECT_EQ(m.residual_quanta, 0) << "terrain + suspended + outflow + lost";
   EXPECT_DOUBLE_EQ(m.lost, model.lost_quanta() * model.state().terrain().volume_quantum());
+}
+
+// Five adaptive steps on a random rough terrain against the plain C++ oracle (pipe_reference),
+// with outflow edges and Manning friction (the defaults) and with closed edges.
+TEST(PipeModel, StepsMatchThePlainCppReference) {
+  const int nx = 19, ny = 15;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> relief(0.0f, 1.0f);
+  Heightmap rough(nx, ny, 1.0);
+  for (float& h : rough.h) h = relief(rng);
+  for (const char* edges : {"outflow", "closed"}) {
+    Parameters p;
+    p.set("pipe.edges", std::string(edges));
+    p.set("pipe.rain", 0.2);  // deep enough water after a few steps to carry sediment
+    PipeModel model(compute(), p, rough);
+    DeviceTerrain& terrain = model.state().terrain();
+    const std::size_t n = rough.size();
+    pipe_reference::State ref{terrain.download_fixed(), std::vector<std::int64_t>(n, 0),
+                              std::vector<double>(n, 0.0), std::vector<double>(4 * n, 0.0),
+                              std::vector<double>(2 * n, 0.0)};
+    const auto before = ref.height;
+    const auto seed = static_cast<std::uint64_t>(p.integer("run.seed"));
+    for (int k = 0; k < 5; ++k) {
+      const double dt = model.dt();
+      pipe_reference::step(ref, nx, ny, rough.cell, terrain.quantum(), PipeSettings::from(p), dt,
+                           seed, model.steps());
+      model.step();
+    }
+    const auto h = test::compare_quanta(terrain.download_fixed(), ref.height, before);
+    EXPECT_GT(h.changed, static_cast<std::int64_t>(n / 2)) << edges;
+    EXPECT_LE(h.worst, 2) << edges << ": stochastic rounding may tip a quantum either way";
+    EXPECT_GT(h.exact_share, 0.95) << edges;
+    const auto s = test::compare_quanta(model.state().download_int64(kSedimentSuspended),
+                                        ref.sediment, std::vector<std::int64_t>(n, 0));
+    EXPECT_LE(s.worst, 4) << edges;
+    const auto depth = model.depth();
+    double worst = 0;
+    for (std::size_t k = 0; k < n; ++k) worst = std::max(worst, std::fabs(depth[k] - ref.depth[k]));
+    EXPECT_LT(worst, 1e-5) << edges << ": m, float against double over five steps";
+    EXPECT_NEAR(static_cast<double>(model.outflow_quanta()), static_cast<double>(ref.outflow),
+                4.0 + 1e-3 * ref.outflow)
+        << edges;
+  }
 }
 
 }  // namespace

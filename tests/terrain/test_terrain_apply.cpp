@@ -26,8 +26,7 @@ TEST(TerrainApply, AddsTheDeltasExactlyAndRefreshesTheFloatView) {
   for (auto& h : fixed) h = height(rng);
   for (auto& d : delta) d = change(rng);
   terrain.upload_fixed(fixed);
-  compute().queue().enqueueWriteBuffer(terrain.delta(), CL_TRUE, 0, delta.size() * 8,
-                                       delta.data());
+  compute().queue().enqueueWriteBuffer(terrain.delta(), CL_TRUE, 0, delta.size() * 8, delta.data());
   terrain.apply();
   const std::vector<std::int64_t> after = terrain.download_fixed();
   const Heightmap view = terrain.download();
