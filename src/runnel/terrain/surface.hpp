@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <vector>
+
 #include "runnel/core/heightmap.hpp"
 
 namespace runnel {
@@ -7,6 +9,16 @@ namespace runnel {
 // The height of the terrain's triangle mesh at (x, z) in metres: the C++ reference of
 // cl/terrain_sample.cl (tiles split along (i, j)–(i+1, j+1)); points outside are clamped.
 double surface_height(const Heightmap& terrain, double x, double z);
+
+// Height and unit normal at (x, z) as cl/terrain_sample.cl's terrain_surface gives them: the
+// triangle's plane, and the vertex normals (terrain_normals_reference) interpolated
+// barycentrically.
+struct SurfacePointReference {
+  double height;
+  double normal[3];
+};
+SurfacePointReference surface_point(const Heightmap& terrain, const std::vector<float>& normals,
+                                    double x, double z);
 
 // The contact surface: the terrain with every vertex raised by radius / n_y (its normal's vertical
 // part, at least 0.2), as cl/terrain_sample.cl's offset_surface builds it.

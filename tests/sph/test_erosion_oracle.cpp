@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+// erode_exchange against its plain C++ oracle (erosion_reference): detachment below the transport
+// capacity, deposition above it, evaporation with a partial deposit, and the acidity model, on a
+// rough terrain with the footprint spreading every amount.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "runnel/sph/erosion.hpp"
+#include "runnel/sph/erosion_reference.hpp"
+#include "runnel/sph/sph_solver.hpp"
+#include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/surface.hpp"
+#include "runnel/terrain/terrain_normals.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::compute;
+
+TEST(ErosionOracle, ExchangeMatchesThePlainCppReference) {
+  const Heightmap rough = generate_terrain("diamond-square", 33, 29, 1.0, 7, {{"relief", 0.3}});
+  for (const char* model : {"stream-power", "acidity"}) {
+    Parameters p;
+    p.set("erosion.model", std::string(model));
+    p.set("erosion.deposit_fraction", 0.75);
+    p.set("erosion.erodibility", 0.05);  // about a hundred quanta per detaching particle and step
+    p.set("erosion.capacity_contacts", std::int64_t{5});
+    const SphSettings sph = SphSettings::from(p, 0.5, 5.0);
+    SphSolver solver(compute(), sph, rough, 40.0);
+    const ErosionSettings settings = ErosionSettings::from(p, sph, rough.cell);
+    const double Q = solver.terrain().volume_quantum();
+    const std::vector<float> normals = terrain_normals_reference(rough);
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> u(0.0, 1.0), sym(-1.0, 1.0);
+    HostParticles host;
+    std::vector<float> depth;
+    for (int k = 0; k < 3000; ++k) {
+      const double x = 1 + 30 * u(rng), z = 1 + 26 * u(rng);
+      const SurfacePointReference s = surface_point(rough, normals, x, z);
+      const double D = 0.05 + 0.3 * u(rng);
+      // Most within the water on the bed, a tenth falling above it.
+      const double gap = k % 10 == 0 ? D + 0.2 : D * u(rng);
+      const double lift = (sph.contact_radius + gap) / s.normal[1];
+      host.push(float(x), float(s.height + lift), float(z), float(3 * sym(rng)), float(sym(rng)),
+                float(3 * sym(rng)), float(sph.rho0), 10.0f);
+      host.f[kAge].back() = k % 7 == 0 ? 11.0f : 1.0f;  // a seventh at the end of their life
+      // Loads from empty to twice the transport capacity there: half detach, half deposit.
+      const double sin_slope = std::sqrt(1 - s.normal[1] * s.normal[1]);
+      const double c_t =
+          std::min(settings.transport * sph.rho0 * sph.gravity / settings.bed_density * sin_slope,
+                   settings.max_concentration);
+      host.sediment.back() =
+          static_cast<std::int32_t>(2 * u(rng) * c_t * std::pow(sph.spacing, 3) / Q);
+      host.contacts.back() = static_cast<std::uint32_t>(k % 8);
+      depth.push_back(float(D));
+      host.id.back() = static_cast<std::uint32_t>(k);  // as the store numbers them
+    }
+    solver.add(host);
+    const std::size_t n = host.size();
+    compute().queue().enqueueWriteBuffer(solver.particles().buffer(kDepth), CL_TRUE, 0, n * 4,
+                                         depth.data());
+    const double dt = 0.02;
+    const std::uint64_t seed = 5;
+    Erosion erosion(compute(), settings, solver, seed);
+    erosion.exchange(solver, dt);
+    const HostParticles after = solver.particles().download();
+    std::vector<std::int64_t> delta(rough.size());
+    compute().queue().enqueueReadBuffer(solver.terrain().delta(), CL_TRUE, 0, delta.size() * 8,
+                                        delta.data());
+    const auto ref =
+        erosion_reference::exchange(host, depth, rough, sph, settings, Q, dt, seed, solver.steps());
+    int agree = 0, exchanged = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      agree += std::abs(after.sediment[k] - ref.sediment[k]) <= 1 && after.id[k] == ref.id[k];
+      exchanged += ref.sediment[k] != host.sediment[k];
+    }
+    EXPECT_GT(exchanged, int(n) / 2) << model;
+    // Stochastic rounding floor(V/Q + u) in float and double parts now and then.
+    EXPECT_GE(agree, int(0.995 * n)) << model;
+    double differ = 0, moved = 0;
+    for (std::size_t k = 0; k < delta.size(); ++k) {
+      differ += std::abs(delta[k] - ref.delta[k]);
+      moved += std::abs(ref.delta[k]);
+    }
+    EXPECT_GT(moved, 1e4) << model;
+    EXPECT_LT(differ, 0.01 * moved) << model << ": quanta placed elsewhere or not at all";
+    const SphCounters c = solver.counters();
+    EXPECT_EQ(c.evaporated_particles, ref.evaporated) << model;
+    EXPECT_NEAR(double(c.lost_sediment), double(ref.lost), 0.01 * ref.evaporated) << model;
+  }
+}
+
+}  // namespace
+}  // namespace runnel
