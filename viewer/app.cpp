@@ -19,11 +19,14 @@
 #include "camera.hpp"
 #include "renderers.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/io/checkpoint.hpp"
+#include "runnel/core/scenario.hpp"
+#include "runnel/core/vertex_normals.hpp"
 #include "runnel/io/images.hpp"
 #include "runnel/io/json.hpp"
-#include "runnel/sim/scenario.hpp"
+#include "runnel/models/checkpoint.hpp"
+#include "runnel/models/sph_model.hpp"
 #include "runnel/terrain/ray_pick.hpp"
+#include "runnel/terrain/terrain_source.hpp"
 
 namespace runnel::viewer {
 namespace {
@@ -75,7 +78,7 @@ class Viewer {
   std::unique_ptr<CheckpointData> start_checkpoint_;
   Parameters params_;
   Heightmap start_terrain_;
-  std::unique_ptr<Simulation> sim_;
+  std::unique_ptr<SphModel> sim_;  // the SPH model, driven through Model
   RainSettings global_rain_;
   std::unique_ptr<TerrainRenderer> terrain_;
   std::unique_ptr<ParticleRenderer> particles_;
@@ -108,9 +111,13 @@ void Viewer::load() {
 }
 
 void Viewer::reset() {
-  sim_ = start_checkpoint_ ? Simulation::from_checkpoint(compute_, *start_checkpoint_)
-                           : std::make_unique<Simulation>(compute_, params_, start_terrain_);
-  global_rain_ = sim_->rain().settings();
+  if (start_checkpoint_) {  // the model restores itself from its checkpoint
+    sim_ = std::make_unique<SphModel>(compute_, params_, start_checkpoint_->initial_terrain());
+    sim_->restore(*start_checkpoint_);
+  } else {
+    sim_ = std::make_unique<SphModel>(compute_, params_, start_terrain_);
+  }
+  global_rain_ = sim_->rain();
   const Heightmap& t = sim_->initial_terrain();
   min_height_ = t.min_height();
   max_height_ = std::max(t.max_height(), min_height_ + 1e-3f);
@@ -118,7 +125,7 @@ void Viewer::reset() {
   frame_camera();
   brush_.radius = 0.05 * extent;
   // A brush intensity that rains about 300 particles per second at the starting radius.
-  const double dx = sim_->solver().settings().spacing;
+  const double dx = sim_->particle_spacing();
   brush_.intensity = 300.0 * dx * dx * dx / (M_PI * brush_.radius * brush_.radius) * 3.6e6;
   terrain_ = std::make_unique<TerrainRenderer>(t);
   particles_ = std::make_unique<ParticleRenderer>();
@@ -218,8 +225,8 @@ void Viewer::handle_input() {
 // Painting replaces the rain region by the brush disc; the rate is the brush's intensity over its
 // area, so the water painted depends neither on mouse speed nor on the frame rate.
 void Viewer::update_rain() {
-  RainSettings& rain = sim_->rain().settings();
-  const double dx = sim_->solver().settings().spacing;
+  RainSettings rain = sim_->rain();
+  const double dx = sim_->particle_spacing();
   if (painting_) {
     rain.rain_on_disc(brush_.x, brush_.z, brush_.radius, brush_.intensity, dx);
   } else {
@@ -228,6 +235,7 @@ void Viewer::update_rain() {
     rain.max_particles = carry_budget;
     rain.enabled = global_rain_on_;
   }
+  sim_->set_rain(rain);
 }
 
 void Viewer::advance() {
@@ -248,15 +256,12 @@ void Viewer::advance() {
 }
 
 void Viewer::upload() {
-  DeviceTerrain& t = sim_->solver().terrain();
-  const std::size_t n = static_cast<std::size_t>(t.nx()) * t.ny();
-  std::vector<float> height(n), normal(3 * n);
-  compute_.queue().enqueueReadBuffer(t.height(), CL_TRUE, 0, n * sizeof(float), height.data());
-  compute_.queue().enqueueReadBuffer(t.normal(), CL_TRUE, 0, 3 * n * sizeof(float), normal.data());
-  terrain_->update(height, normal);
-  const HostParticles p = sim_->solver().particles().download();
+  const Heightmap t = sim_->terrain();
+  const std::size_t n = t.size();
+  terrain_->update(t.h, terrain_normals_reference(t));
+  const HostParticles p = sim_->particles();
   std::vector<float> xyzv(4 * p.size());
-  const double q = t.volume_quantum(), volume = std::pow(sim_->solver().settings().spacing, 3);
+  const double q = sim_->volume_quantum(), volume = std::pow(sim_->particle_spacing(), 3);
   for (std::size_t i = 0; i < p.size(); ++i) {
     xyzv[4 * i] = p.f[kX][i];
     xyzv[4 * i + 1] = p.f[kY][i];
@@ -274,8 +279,8 @@ void Viewer::upload() {
   }
   particles_->update(xyzv);
   // Water depth and flow speed per vertex: each particle's volume spread over its nearest vertex.
-  const int nx = t.nx(), ny = t.ny();
-  const float cell = t.cell();
+  const int nx = t.nx, ny = t.ny;
+  const float cell = static_cast<float>(t.cell);
   std::vector<float> water(2 * n, 0.0f);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const int a = std::clamp(static_cast<int>(std::lround(p.f[kX][i] / cell)), 0, nx - 1);
@@ -290,7 +295,7 @@ void Viewer::upload() {
       water[2 * k + 1] /= static_cast<float>(water[2 * k] * cell * cell / volume);
   }
   terrain_->update_water(water);
-  terrain_->set_depth_scale(static_cast<float>(2.0 * sim_->solver().settings().spacing));
+  terrain_->set_depth_scale(static_cast<float>(2.0 * sim_->particle_spacing()));
 }
 
 void Viewer::draw_panel() {
@@ -330,7 +335,7 @@ void Viewer::draw_panel() {
   overlay_ = static_cast<TerrainOverlay>(overlay);
   particle_colour_ = static_cast<ParticleColour>(colour);
   ImGui::Separator();
-  ImGui::Text("particles: %zu", sim_->particles());
+  ImGui::Text("particles: %zu", sim_->particle_count());
   ImGui::Text("steps/s: %.0f   step %llu", steps_per_second_,
               static_cast<unsigned long long>(sim_->steps()));
   ImGui::Text("simulated time: %.2f s", sim_->time());
@@ -357,7 +362,7 @@ void Viewer::draw_panel() {
 void Viewer::print_stats(long long frame, double fps) {
   std::printf("%s\n", JsonObject()
                           .add("frame", frame)
-                          .add("particles", static_cast<long long>(sim_->particles()))
+                          .add("particles", static_cast<long long>(sim_->particle_count()))
                           .add("steps", static_cast<long long>(sim_->steps()))
                           .add("steps_per_second", steps_per_second_)
                           .add("eroded_volume", balance_.eroded)
@@ -396,8 +401,8 @@ int Viewer::loop() {
     const float scale = static_cast<float>(std::max(1e-3, 0.02 * (max_height_ - min_height_)));
     terrain_->draw(vp, min_height_, max_height_, overlay_, scale,
                    glm::vec3(brush_.x, brush_.z, brush_.radius), brush_.over_terrain);
-    particles_->draw(vp, static_cast<float>(sim_->solver().settings().spacing),
-                     static_cast<float>(h), particle_colour_);
+    particles_->draw(vp, static_cast<float>(sim_->particle_spacing()), static_cast<float>(h),
+                     particle_colour_);
     draw_panel();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

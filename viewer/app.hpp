@@ -4,7 +4,7 @@
 #include <string>
 
 #include "runnel/compute/context.hpp"
-#include "runnel/sim/simulation.hpp"
+#include "runnel/models/sph_simulation.hpp"
 
 namespace runnel::viewer {
 

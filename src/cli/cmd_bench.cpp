@@ -4,7 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/sim/scenario.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/validation/sph_benchmark.hpp"
 
 namespace runnel::cli {

@@ -4,8 +4,9 @@
 
 #include "cli/commands.hpp"
 #include "runnel/compare/compare.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/models/registry.hpp"
-#include "runnel/sim/scenario.hpp"
+#include "runnel/terrain/terrain_source.hpp"
 
 namespace runnel::cli {
 namespace {

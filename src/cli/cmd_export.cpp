@@ -6,7 +6,7 @@
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
-#include "runnel/io/checkpoint.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
 
 namespace runnel::cli {

@@ -7,8 +7,9 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/sim/scenario.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/terrain_source.hpp"
 
 namespace runnel::cli {
 namespace {

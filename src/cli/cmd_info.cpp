@@ -6,8 +6,8 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
-#include "runnel/io/checkpoint.hpp"
 #include "runnel/io/json.hpp"
+#include "runnel/models/checkpoint.hpp"
 
 namespace runnel::cli {
 namespace {

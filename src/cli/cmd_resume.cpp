@@ -4,7 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/io/checkpoint.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
 

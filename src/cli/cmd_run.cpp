@@ -5,9 +5,10 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
-#include "runnel/sim/scenario.hpp"
+#include "runnel/terrain/terrain_source.hpp"
 
 namespace runnel::cli {
 

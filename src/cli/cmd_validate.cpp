@@ -6,7 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/sim/scenario.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/validation/validation.hpp"
 
 namespace runnel::cli {

@@ -8,9 +8,11 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
-#include "runnel/io/checkpoint.hpp"
 #include "runnel/io/hdf5_file.hpp"
-#include "runnel/sim/simulation.hpp"
+#include "runnel/models/checkpoint.hpp"
+#include "runnel/models/registry.hpp"
+#include "runnel/models/sph_model.hpp"
+#include "runnel/models/sph_simulation.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
 
@@ -84,7 +86,7 @@ TEST(Checkpoint, EveryDatasetRoundTrips) {
   EXPECT_EQ(r.counters.collisions, d.counters.collisions);
   EXPECT_EQ(r.counters.lost_sediment, d.counters.lost_sediment);
   // The parameters read back to the same values.
-  const Parameters p = Simulation::from_checkpoint(compute(), r)->parameters();
+  const Parameters p = make_model_from_checkpoint(compute(), r)->parameters();
   EXPECT_EQ(p.values(), sim->parameters().values());
   EXPECT_EQ(p.generator_values(), sim->parameters().generator_values());
 }
@@ -97,10 +99,11 @@ TEST(Checkpoint, ResumedRunEqualsAnUninterruptedOne) {
   for (int k = 0; k < 120; ++k) first_half->step();
   write_checkpoint(dir.path("half.h5"), first_half->checkpoint());
   first_half.reset();
-  auto resumed = Simulation::from_checkpoint(compute(), read_checkpoint(dir.path("half.h5")));
-  for (int k = 0; k < 120; ++k) resumed->step();
-  expect_same_state(*straight, *resumed);
-  EXPECT_EQ(resumed->mass_balance().residual_quanta, 0);
+  // The model restores itself through the Model interface, as runnel resume and the viewer do.
+  auto model = make_model_from_checkpoint(compute(), read_checkpoint(dir.path("half.h5")));
+  for (int k = 0; k < 120; ++k) model->step();
+  expect_same_state(*straight, static_cast<SphModel&>(*model).simulation());
+  EXPECT_EQ(model->mass_balance().residual_quanta, 0);
 }
 
 // Expects read_checkpoint to refuse `file` with a one-line input error containing `fragment`.

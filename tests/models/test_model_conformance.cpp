@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "runnel/io/checkpoint.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/models/grid_model.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "runnel/metrics/terrain_metrics.hpp"
-#include "runnel/sim/simulation.hpp"
+#include "runnel/models/sph_simulation.hpp"
 #include "runnel/sph/footprint.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/validation/validation.hpp"

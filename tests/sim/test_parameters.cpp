@@ -6,7 +6,8 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/sim/scenario.hpp"
+#include "runnel/core/scenario.hpp"
+#include "runnel/terrain/terrain_source.hpp"
 #include "test_support.hpp"
 
 namespace runnel {

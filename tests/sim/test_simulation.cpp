@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "runnel/sim/simulation.hpp"
+#include "runnel/models/sph_simulation.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/surface.hpp"
 #include "test_support.hpp"

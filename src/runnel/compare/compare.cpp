@@ -23,12 +23,11 @@ RainBudget rain_budget(ComputeContext& compute, const Parameters& params,
   // The SPH model resolves its automatic rain (rate from the particle budget and lifespan,
   // spacing from the cell) exactly as its run will.
   SphModel model(compute, sph, terrain);
-  Simulation& sim = model.simulation();
   RainBudget b;
-  const double spacing = sim.solver().settings().spacing;
+  const double spacing = model.particle_spacing();
   b.particle_volume = spacing * spacing * spacing;
   b.duration = params.real("run.sim_time");
-  b.sph_rate = sim.rain().settings().enabled ? sim.rain().settings().rate : 0.0;
+  b.sph_rate = model.rain().enabled ? model.rain().rate : 0.0;
   b.volume = b.sph_rate * b.particle_volume * b.duration;
   return b;
 }

@@ -10,9 +10,9 @@
 #include <cstring>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/vertex_normals.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/font5x7.hpp"
-#include "runnel/terrain/terrain_normals.hpp"
 
 namespace runnel {
 namespace {

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/grid_model.hpp"
+#include "runnel/core/scenario.hpp"
 
 #include <numeric>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/core/version.hpp"
 
 namespace runnel {

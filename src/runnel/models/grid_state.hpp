@@ -6,7 +6,7 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
-#include "runnel/io/checkpoint.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
 namespace runnel {

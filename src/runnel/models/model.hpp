@@ -6,8 +6,8 @@
 
 #include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/io/checkpoint.hpp"
 #include "runnel/io/json.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/models/fields.hpp"
 #include "runnel/models/mass_balance.hpp"
 

@@ -2,12 +2,12 @@
 #include "runnel/models/registry.hpp"
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/models/droplet_model.hpp"
 #include "runnel/models/olsen_model.hpp"
 #include "runnel/models/pipe_model.hpp"
 #include "runnel/models/sph_model.hpp"
 #include "runnel/models/thermal_model.hpp"
-#include "runnel/sim/scenario.hpp"
 
 namespace runnel {
 namespace {
@@ -50,7 +50,6 @@ std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& par
 
 std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute,
                                                   const CheckpointData& d) {
-  if (d.model == "sph") return std::make_unique<SphModel>(Simulation::from_checkpoint(compute, d));
   Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
   params.set("run.model", d.model);
   std::unique_ptr<Model> model = model_entry(d.model).make(compute, params, d.initial_terrain());

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
-#include "runnel/io/checkpoint.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/models/model.hpp"
 
 namespace runnel {

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "runnel/models/model.hpp"
-#include "runnel/sim/simulation.hpp"
+#include "runnel/models/sph_simulation.hpp"
 
 namespace runnel {
 
@@ -32,6 +32,16 @@ class SphModel final : public Model {
   const char* work_unit() const override { return "particle_steps"; }
 
   Simulation& simulation() { return *sim_; }
+
+  // What an interactive front end (runnel-viewer) needs beyond Model: the particles as they are,
+  // their size, and the rain, which a brush may replace.
+  HostParticles particles() { return sim_->solver().particles().download(); }
+  std::size_t particle_count() const { return sim_->particles(); }
+  std::uint64_t drops_spawned() { return sim_->rain().spawned(); }
+  double particle_spacing() const { return sim_->solver().settings().spacing; }
+  double volume_quantum() { return sim_->solver().terrain().volume_quantum(); }
+  const RainSettings& rain() { return sim_->rain().settings(); }
+  void set_rain(const RainSettings& rain) { sim_->rain().settings() = rain; }
 
  private:
   std::unique_ptr<Simulation> sim_;

@@ -11,11 +11,11 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/io/atomic_file.hpp"
-#include "runnel/io/checkpoint.hpp"
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/io/images.hpp"
 #include "runnel/io/progress.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {

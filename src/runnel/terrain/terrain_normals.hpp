@@ -5,12 +5,9 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
 #include "runnel/core/heightmap.hpp"
+#include "runnel/core/vertex_normals.hpp"  // the kernel's oracle
 
 namespace runnel {
-
-// Vertex normals (physics.md §1), 3 floats per vertex. The plain C++ reference (double precision)
-// is the oracle for the kernel in cl/terrain_normals.cl.
-std::vector<float> terrain_normals_reference(const Heightmap& terrain);
 
 // Host side of cl/terrain_normals.cl.
 class TerrainNormals {

@@ -12,7 +12,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "runnel/sim/simulation.hpp"
+#include "runnel/models/sph_model.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/validation/validation.hpp"
 
@@ -29,14 +29,14 @@ struct ErosionRun {
 ErosionRun run_rain(ComputeContext& compute, const Parameters& params, const Heightmap& terrain,
                     double sim_time) {
   const auto start = std::chrono::steady_clock::now();
-  Simulation sim(compute, params, terrain);
-  while (sim.time() < sim_time) sim.step();
+  SphModel model(compute, params, terrain);
+  model.advance(sim_time);
   ErosionRun r;
-  r.before = sim.initial_terrain();
-  r.after = sim.terrain();
-  r.eroded = sim.mass_balance().eroded;
-  r.spawned = static_cast<long long>(sim.rain().spawned());
-  r.steps = static_cast<long long>(sim.steps());
+  r.before = model.initial_terrain();
+  r.after = model.terrain();
+  r.eroded = model.mass_balance().eroded;
+  r.spawned = static_cast<long long>(model.drops_spawned());
+  r.steps = static_cast<long long>(model.steps());
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -62,7 +62,4 @@ void write_checkpoint(const std::string& path, const CheckpointData& data);
 // Throws an input error (exit code 2) naming the file and the problem.
 CheckpointData read_checkpoint(const std::string& path);
 
-// The parameter set as TOML text that load_scenario reads back to the same values.
-std::string parameters_toml(const Parameters& params);
-
 }  // namespace runnel

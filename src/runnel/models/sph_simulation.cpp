@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-#include "runnel/sim/simulation.hpp"
+#include "runnel/models/sph_simulation.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/core/version.hpp"
-#include "runnel/sim/scenario.hpp"
 
 namespace runnel {
 namespace {
@@ -134,17 +134,6 @@ void Simulation::restore(const CheckpointData& d) {
   solver_->restore_clock(d.time, d.dt, d.steps);
   solver_->restore_counters(d.counters);
   rain_->restore(d.rain_spawned, d.rain_carry);
-}
-
-std::unique_ptr<Simulation> Simulation::from_checkpoint(ComputeContext& compute,
-                                                        const CheckpointData& d) {
-  if (d.model != "sph")
-    throw input_error("checkpoint: it holds the " + d.model +
-                      " model; only the SPH model runs here (runnel resume runs every model)");
-  const Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
-  auto sim = std::make_unique<Simulation>(compute, params, d.initial_terrain());
-  sim->restore(d);
-  return sim;
 }
 
 Heightmap Simulation::terrain() {

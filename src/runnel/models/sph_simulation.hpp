@@ -7,8 +7,8 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/io/checkpoint.hpp"
 #include "runnel/io/json.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/models/mass_balance.hpp"
 #include "runnel/sph/erosion.hpp"
 #include "runnel/sph/rain_emitter.hpp"
@@ -41,11 +41,9 @@ class Simulation {
   JsonObject effective_settings() const;
 
   // The whole state for an exact restart, and back. restore() expects a Simulation built from the
-  // checkpoint's parameters and terrain (Simulation::from_checkpoint does both).
+  // checkpoint's parameters and initial terrain (make_model_from_checkpoint does both).
   CheckpointData checkpoint();
   void restore(const CheckpointData& data);
-  static std::unique_ptr<Simulation> from_checkpoint(ComputeContext& compute,
-                                                     const CheckpointData& data);
 
   SphSolver& solver() { return *solver_; }
   RainEmitter& rain() { return *rain_; }

@@ -1,15 +1,16 @@
 // SPDX-License-Identifier: MIT
-#include "runnel/sim/scenario.hpp"
+#include "runnel/core/scenario.hpp"
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <variant>
 
 #include "runnel/core/error.hpp"
-#include "runnel/terrain/generators.hpp"
-#include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
 namespace {
@@ -85,27 +86,37 @@ void apply_overrides(Parameters& params, const std::vector<std::string>& assignm
   }
 }
 
-Heightmap load_terrain(const Parameters& params) {
-  const std::string& file = params.text("terrain.file");
-  if (!file.empty()) {
-    ReadOptions options;
-    options.nodata =
-        params.text("terrain.nodata") == "refuse" ? NodataPolicy::kRefuse : NodataPolicy::kFill;
-    if (!params.boolean("terrain.cell_from_file")) options.cell = params.real("terrain.cell");
-    Heightmap terrain = read_terrain(file, options);
-    return terrain;
+std::string parameters_toml(const Parameters& params) {
+  // Group keys by their table: "a.b" → [a] b, "terrain.set.x" → [terrain.set] x.
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> tables;
+  for (auto& [key, value] : params.values()) {
+    const auto dot = key.rfind('.');
+    std::string text = Parameters::to_text(value);
+    if (std::holds_alternative<std::string>(value)) {
+      std::string quoted = "\"";
+      for (char c : text) {
+        if (c == '"' || c == '\\') quoted += '\\';
+        quoted += c;
+      }
+      text = quoted + "\"";
+    } else if (std::holds_alternative<double>(value) &&
+               text.find_first_of(".eEn") == std::string::npos) {
+      text += ".0";  // keep reals real in TOML
+    }
+    tables[key.substr(0, dot)].emplace_back(key.substr(dot + 1), text);
   }
-  const int size = static_cast<int>(params.integer("terrain.size"));
-  try {
-    return generate_terrain(
-        params.text("terrain.generator"), size, size, params.real("terrain.cell"),
-        static_cast<std::uint64_t>(params.integer("terrain.seed")), params.generator_values());
-  } catch (const Error& e) {
-    // Name the scenario key rather than the CLI flag the generator speaks of.
-    std::string msg = e.what();
-    if (msg.rfind("--set ", 0) == 0) msg = "terrain.set." + msg.substr(6);
-    throw Error(e.code(), msg);
+  for (auto& [key, value] : params.generator_values()) {
+    std::ostringstream s;
+    s.precision(17);
+    s << value;
+    tables["terrain.set"].emplace_back(key, s.str());
   }
+  std::string out;
+  for (auto& [table, entries] : tables) {
+    out += "[" + table + "]\n";
+    for (auto& [k, v] : entries) out += k + " = " + v + "\n";
+  }
+  return out;
 }
 
 }  // namespace runnel

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // HDF5 checkpoints (docs/hdf5-schema.md).
-#include "runnel/io/checkpoint.hpp"
+#include "runnel/models/checkpoint.hpp"
 
 #include <cmath>
 #include <map>
@@ -71,39 +71,6 @@ Heightmap CheckpointData::initial_terrain() const {
   for (std::size_t k = 0; k < initial.size(); ++k)
     initial.h[k] = static_cast<float>(static_cast<double>(initial_fixed[k]) * height_quantum);
   return initial;
-}
-
-std::string parameters_toml(const Parameters& params) {
-  // Group keys by their table: "a.b" → [a] b, "terrain.set.x" → [terrain.set] x.
-  std::map<std::string, std::vector<std::pair<std::string, std::string>>> tables;
-  for (auto& [key, value] : params.values()) {
-    const auto dot = key.rfind('.');
-    std::string text = Parameters::to_text(value);
-    if (std::holds_alternative<std::string>(value)) {
-      std::string quoted = "\"";
-      for (char c : text) {
-        if (c == '"' || c == '\\') quoted += '\\';
-        quoted += c;
-      }
-      text = quoted + "\"";
-    } else if (std::holds_alternative<double>(value) &&
-               text.find_first_of(".eEn") == std::string::npos) {
-      text += ".0";  // keep reals real in TOML
-    }
-    tables[key.substr(0, dot)].emplace_back(key.substr(dot + 1), text);
-  }
-  for (auto& [key, value] : params.generator_values()) {
-    std::ostringstream s;
-    s.precision(17);
-    s << value;
-    tables["terrain.set"].emplace_back(key, s.str());
-  }
-  std::string out;
-  for (auto& [table, entries] : tables) {
-    out += "[" + table + "]\n";
-    for (auto& [k, v] : entries) out += k + " = " + v + "\n";
-  }
-  return out;
 }
 
 void write_checkpoint(const std::string& path, const CheckpointData& d) {

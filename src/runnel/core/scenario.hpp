@@ -3,7 +3,6 @@
 #include <string>
 #include <vector>
 
-#include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
 
 namespace runnel {
@@ -19,7 +18,8 @@ Parameters parse_scenario(const std::string& toml_text, const std::string& origi
 // Applies `--set key=value` overrides in order.
 void apply_overrides(Parameters& params, const std::vector<std::string>& assignments);
 
-// The terrain a scenario asks for: its file, or its generator.
-Heightmap load_terrain(const Parameters& params);
+// The parameter set as TOML text that parse_scenario reads back to the same values (checkpoints
+// store it).
+std::string parameters_toml(const Parameters& params);
 
 }  // namespace runnel
