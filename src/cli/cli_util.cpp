@@ -1,29 +1,64 @@
 // SPDX-License-Identifier: MIT
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
 
 namespace runnel::cli {
 
+CLI::Validator at_least(double min) {
+  char rule[64];
+  std::snprintf(rule, sizeof rule, "must be at least %g", min);
+  return CLI::Validator(
+      [min, rule = std::string(rule)](std::string& text) -> std::string {
+        double v = 0;
+        const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v) || v < min)
+          return rule + " (got " + text + ")";
+        return "";
+      },
+      "");
+}
+
+CLI::Validator cell_size() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || p != text.data() + text.size() || !(v >= 1e-6 && v <= 1e6))
+          return "a cell size must be 1e-6 to 1e6 m (got " + text + ")";
+        return "";
+      },
+      "");
+}
+
 void add_output_flags(CLI::App& cmd, OutputFlags& flags) {
   cmd.add_option(
          "--checkpoint-every", flags.checkpoint_every,
          "write DIR/checkpoints/step_XXXXXXXX.h5 every N steps (final.h5 is always written)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(at_least(0));
   cmd.add_option("--keep-checkpoints", flags.keep_checkpoints, "keep the newest K checkpoints")
-      ->check(CLI::PositiveNumber)
+      ->check(at_least(1))
       ->capture_default_str();
   cmd.add_option("--series-every", flags.series_every,
                  "append the heightmap to DIR/series.h5 every N steps")
-      ->check(CLI::NonNegativeNumber);
+      ->check(at_least(0));
 }
 
 void OutputFlags::apply(RunOptions& options) const {
   options.checkpoint_every = checkpoint_every;
   options.keep_checkpoints = keep_checkpoints;
   options.series_every = series_every;
+}
+
+void refuse_same_file(const std::string& input, const std::string& output) {
+  std::error_code ec;
+  const bool same =
+      std::filesystem::exists(output, ec) && std::filesystem::equivalent(input, output, ec);
+  if (same) throw input_error(output + ": is the input file; write the output to another file");
 }
 
 HeightRange parse_range(const std::string& text, const std::string& flag) {

@@ -23,12 +23,18 @@ void add_convert_command(CLI::App& app) {
                   "PNG heights MIN:MAX in metres: how a PNG input is read, and the range a "
                   "PNG output is quantised to (default: stored in runnel PNGs / the terrain's)");
   cmd->add_option("--cell", opt->cell,
-                  "cell size in metres (NPY and foreign PNG carry none; default 1)");
+                  "cell size in metres (NPY and foreign PNG carry none; default 1)")
+      ->check(cell_size());
   cmd->add_option("--nodata", opt->nodata, "ASC NODATA cells: fill (from neighbours) or refuse")
       ->check(CLI::IsMember({"fill", "refuse"}))
       ->capture_default_str();
   cmd->callback([opt, cmd] {
     terrain_format_from_path(opt->output);  // fail on a bad output name before reading anything
+    refuse_same_file(opt->input, opt->output);
+    const bool png = terrain_format_from_path(opt->input) == TerrainFormat::kPng ||
+                     terrain_format_from_path(opt->output) == TerrainFormat::kPng;
+    if (!opt->range.empty() && !png)
+      throw input_error("--range: only a PNG input or output has a height range");
     ReadOptions read;
     WriteOptions write;
     read.nodata = opt->nodata == "refuse" ? NodataPolicy::kRefuse : NodataPolicy::kFill;

@@ -52,6 +52,9 @@ void add_export_command(CLI::App& app) {
   cmd->add_option("-o,--output", opt->output, "file to write")->required();
   cmd->add_option("--range", opt->range, "png: heights MIN:MAX in metres mapped to 0..65535");
   cmd->callback([opt] {
+    if (!opt->range.empty() && opt->format != "png")
+      throw input_error("--range: only a png export has a height range (--format " + opt->format +
+                        ")");
     const CheckpointData data = read_checkpoint(opt->file);
     if (opt->format == "obj") {
       write_obj(opt->output, data.terrain);

@@ -61,8 +61,9 @@ void add_generate_command(CLI::App& app) {
   cmd->add_option("name", opt->name, "generator name (see below); omit with --scenario");
   cmd->add_option("--size", opt->size, "vertices per side N, or NXxNY")->capture_default_str();
   cmd->add_option("--cell", opt->cell, "cell size (vertex spacing) in metres")
+      ->check(cell_size())
       ->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "random seed")->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "random seed")->check(at_least(0))->capture_default_str();
   cmd->add_option("--set", opt->sets, "generator parameter key=value (repeatable)");
   cmd->add_option("-o,--output", opt->output, "output file (.asc, .png, .npy)")->required();
   cmd->add_option("--range", opt->range,
@@ -101,6 +102,8 @@ void add_generate_command(CLI::App& app) {
       terrain = generate_terrain(opt->name, nx, ny, opt->cell, opt->seed, values);
     }
     WriteOptions write;
+    if (!opt->range.empty() && terrain_format_from_path(opt->output) != TerrainFormat::kPng)
+      throw input_error("--range: only a PNG output has a height range");
     if (!opt->range.empty()) write.png_range = parse_range(opt->range, "--range");
     write_terrain(opt->output, terrain, write);
     std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, cell %g m, heights %.3f..%.3f m)\n",

@@ -24,7 +24,7 @@ void add_resume_command(CLI::App& app) {
                          "result equals an uninterrupted run bit for bit");
   cmd->add_option("checkpoint", opt->file, "checkpoint file (final.h5 or checkpoints/step_*.h5)")
       ->required();
-  cmd->add_option("--steps", opt->steps, "steps to add")->required()->check(CLI::PositiveNumber);
+  cmd->add_option("--steps", opt->steps, "steps to add")->required()->check(at_least(1));
   cmd->add_option("--out", opt->out, "output folder (created)")->capture_default_str();
   cmd->add_option("--device", opt->device,
                   "OpenCL device (see 'runnel devices'); the same device as the "

@@ -39,9 +39,12 @@ void add_run_command(CLI::App& app) {
                   "erosion model (run.model): sph, droplet, pipe, olsen or thermal; see "
                   "docs/models.md")
       ->check(CLI::IsMember(model_names()));
-  auto* steps = cmd->add_option("--steps", opt->steps, "number of steps (run.steps)");
-  cmd->add_option("--sim-time", opt->sim_time, "simulated seconds (run.sim_time)")->excludes(steps);
-  cmd->add_option("--seed", opt->seed, "random seed of the rain (run.seed)");
+  auto* steps =
+      cmd->add_option("--steps", opt->steps, "number of steps (run.steps)")->check(at_least(1));
+  cmd->add_option("--sim-time", opt->sim_time, "simulated seconds (run.sim_time)")
+      ->excludes(steps)
+      ->check(at_least(1e-9));
+  cmd->add_option("--seed", opt->seed, "random seed of the rain (run.seed)")->check(at_least(0));
   cmd->add_option("--out", opt->out, "output folder (created)")->capture_default_str();
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");

@@ -40,13 +40,15 @@ void add_validate_command(CLI::App& app) {
   cmd->add_option("--out", opt->out, "folder for pressure.csv / front.csv (created)");
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
-  cmd->callback([opt] {
+  cmd->callback([opt, cmd] {
     ValidationOptions v;
     v.resolution = opt->resolution;
-    if (opt->resolution < 0 || opt->resolution > 2000)
-      throw input_error("--resolution: must be in 1..2000");
-    if (!(opt->settle >= 0 && opt->settle <= 1e4))
-      throw input_error("--settle: must be in 0..10000 s");
+    // Given, they must be meaningful; absent (0), each case uses its default.
+    if (cmd->count("--resolution") && (opt->resolution < 2 || opt->resolution > 2000))
+      throw input_error("--resolution: must be 2 to 2000 (got " + std::to_string(opt->resolution) +
+                        ")");
+    if (cmd->count("--settle") && !(opt->settle > 0 && opt->settle <= 1e4))
+      throw input_error("--settle: must be more than 0 and at most 10000 s");
     v.settle_time = opt->settle;
     apply_overrides(v.params, opt->sets);
     if (!opt->out.empty()) {

@@ -31,6 +31,17 @@ struct OutputFlags {
 };
 void add_output_flags(CLI::App& cmd, OutputFlags& flags);
 
+// A flag's number must be finite and at least `min` (integers: whole too). The message is one line
+// that states the rule and echoes the value: "--steps: must be at least 1 (got -3)". (CLI11's own
+// range checks print "not in range 0.000000 to 1797…".)
+CLI::Validator at_least(double min);
+// A cell size in metres: finite, within 1e-6 .. 1e6 m (terrain.cell's range).
+CLI::Validator cell_size();
+
+// Refuses to write `output` over `input` (the same file by another name included): the input
+// would be gone if the conversion failed half-way, and is gone anyway once replaced.
+void refuse_same_file(const std::string& input, const std::string& output);
+
 // "MIN:MAX" → a height range; throws an input error naming `flag`.
 HeightRange parse_range(const std::string& text, const std::string& flag);
 

@@ -6,8 +6,10 @@
 
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
+#include "runnel/core/error.hpp"
 #include "runnel/core/parameter_groups.hpp"
 #include "runnel/core/settings_table.hpp"
+#include "runnel/core/text.hpp"
 
 namespace runnel {
 
@@ -60,6 +62,23 @@ const ModelInfo& DropletModel::model_info() {
   return info;
 }
 
+namespace {
+
+// The bytes of a batch's droplet state (6 floats each), refused with the key's name when one
+// device buffer cannot hold them.
+std::size_t state_bytes(const ComputeContext& compute, long long batch) {
+  const double bytes = static_cast<double>(batch) * 6 * sizeof(float);
+  if (bytes > static_cast<double>(compute.info().max_alloc)) {
+    throw input_error("droplet.batch: " + std::to_string(batch) + " droplets need " +
+                      format_number(bytes / 1e6) + " MB in one device buffer; " +
+                      compute.info().name + " allows " +
+                      format_number(static_cast<double>(compute.info().max_alloc) / 1e6) + " MB");
+  }
+  return static_cast<std::size_t>(bytes);
+}
+
+}  // namespace
+
 DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
                            const Heightmap& terrain)
     : GridModel(compute, params, terrain),
@@ -69,8 +88,7 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
               compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings_.build_options()),
               "droplet_step"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long)),
-      droplet_state_(compute.context(), CL_MEM_READ_WRITE,
-                     static_cast<std::size_t>(batch_size()) * 6 * sizeof(float)),
+      droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, batch_size())),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
                     static_cast<std::size_t>(batch_size()) * sizeof(cl_long)) {
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 2 * sizeof(cl_long));

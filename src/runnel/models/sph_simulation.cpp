@@ -6,6 +6,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/core/version.hpp"
 
 namespace runnel {
@@ -38,6 +39,14 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
 
   const ErosionSettings erosion = ErosionSettings::from(params, sph, terrain.cell);
   const double top = terrain.max_height() + spawn + 4.0 * spacing;
+  // The fluid's hash grid spans the relief and the spawn height in cells of 2h, at most 1024.
+  const double most = 1000.0 * 2.0 * sph.h - relief - 4.0 * spacing - 4.0 * sph.h;
+  if (spawn > relief && spawn > most) {
+    throw input_error("rain.spawn_height: " + format_number(spawn) +
+                      " m above the terrain needs more than the fluid grid's 1024 cells of 2h = " +
+                      format_number(2.0 * sph.h) + " m; at most " +
+                      format_number(std::max(0.0, most)) + " m at this sph.spacing");
+  }
   solver_ = std::make_unique<SphSolver>(compute, sph, terrain, top, erosion.height_quantum);
   initial_fixed_ = to_fixed(terrain, erosion.height_quantum);
   // The initial terrain as the run sees it: rounded to the quantum.

@@ -60,6 +60,14 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
     r.a = r.disc_x, r.c = r.disc_z, r.b = r.disc_radius;
     if (!(r.b > 0))
       throw input_error("rain.disc_radius: must be positive for rain.region = \"disc\"");
+    // The nearest point of the terrain to the centre must lie inside the disc.
+    const double dx = r.a - std::clamp(r.a, 0.0, lx), dz = r.c - std::clamp(r.c, 0.0, lz);
+    if (std::hypot(dx, dz) >= r.b) {
+      throw input_error(
+          "rain.disc_x, rain.disc_z, rain.disc_radius: the disc lies entirely off the "
+          "terrain [0, " +
+          std::to_string(lx) + "] x [0, " + std::to_string(lz) + "] m");
+    }
     r.area = M_PI * r.b * r.b;
   } else {
     r.region = Region::kTerrain;

@@ -54,6 +54,11 @@ SphSettings SphSettings::from(const Parameters& p, double default_spacing, doubl
   if (!(s.c0 > 0))
     throw input_error("sph.c0: must be positive (no reference speed to derive it from)");
   if (s.dt_min >= s.dt_max) throw input_error("sph.dt_min: must be smaller than sph.dt_max");
+  if (!(s.density_min < 1.0 && s.density_max > 1.0)) {
+    throw input_error(
+        "sph.density_min, sph.density_max: the sane range must contain the rest "
+        "density (density_min below 1, density_max above 1)");
+  }
   s.contact_radius *= s.spacing;
   s.surface_eps *= s.spacing;
   return s;

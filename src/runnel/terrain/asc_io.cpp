@@ -88,14 +88,23 @@ Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
     if (std::find_if(std::begin(known), std::end(known),
                      [&](const char* k) { return name == k; }) == std::end(known)) {
       throw input_error(path + ": line " + std::to_string(line) +
-                        ": unknown header key or non-numeric value '" + std::string(key) + "'");
+                        ": unknown header key or non-numeric value " + quoted(key));
     }
     double number = 0.0;
-    if (!tokens.next(value) || !parse_double(value, number)) {
-      throw input_error(path + ": line " + std::to_string(line) + ": header key '" +
-                        std::string(key) + "' has no numeric value");
+    if (!tokens.next(value) || !parse_double(value, number) || !std::isfinite(number)) {
+      throw input_error(path + ": line " + std::to_string(line) + ": header key " + quoted(key) +
+                        " has no finite numeric value");
     }
-    header[name] = number;
+    if (!header.emplace(name, number).second) {
+      throw input_error(path + ": line " + std::to_string(line) + ": header key " + quoted(key) +
+                        " appears twice");
+    }
+  }
+  // The origin is given by its corner or by its centre, both coordinates the same way.
+  if (header.count("xllcenter") + header.count("xllcorner") > 1 ||
+      header.count("yllcenter") + header.count("yllcorner") > 1 ||
+      header.count("xllcenter") != header.count("yllcenter")) {
+    throw input_error(path + ": the header mixes xllcorner/yllcorner with xllcenter/yllcenter");
   }
   for (const char* required : {"ncols", "nrows", "cellsize"}) {
     if (!header.count(required))
@@ -105,10 +114,16 @@ Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
   if (ncols != std::floor(ncols) || nrows != std::floor(nrows) || ncols < 0 || nrows < 0) {
     throw input_error(path + ": ncols and nrows must be non-negative integers");
   }
+  if (ncols > 1e9 || nrows > 1e9) {  // before the conversion to an integer can overflow
+    throw input_error(path + ": ncols " + format_number(ncols) + " x nrows " +
+                      format_number(nrows) + " is far beyond the size limit");
+  }
   check_terrain_size(path, static_cast<long long>(ncols), static_cast<long long>(nrows));
   const double cell = header["cellsize"];
-  if (!(cell > 0.0) || !std::isfinite(cell))
-    throw input_error(path + ": cellsize must be positive");
+  if (!(cell >= kMinCell && cell <= kMaxCell)) {
+    throw input_error(path + ": cellsize " + format_number(cell) + " is outside " +
+                      format_number(kMinCell) + " to " + format_number(kMaxCell) + " m");
+  }
 
   Heightmap terrain(static_cast<int>(ncols), static_cast<int>(nrows), cell);
   const double half = header.count("xllcenter") ? 0.5 * cell : 0.0;
@@ -127,17 +142,18 @@ Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
     }
     double v = 0.0;
     if (!parse_double(value, v)) {
-      throw input_error(path + ": line " + std::to_string(tokens.line()) +
-                        ": non-numeric height '" + std::string(value.substr(0, 32)) + "'");
+      throw input_error(path + ": line " + std::to_string(tokens.line()) + ": non-numeric height " +
+                        quoted(value));
     }
     if (has_nodata && v == nodata_value) {
       ++holes;
       terrain.h[k] = std::nanf("");
       continue;
     }
-    if (!std::isfinite(v)) {
-      throw input_error(path + ": line " + std::to_string(tokens.line()) + ": height '" +
-                        std::string(value) + "' is not finite");
+    if (!(std::fabs(v) <= kMaxAbsHeight)) {
+      throw input_error(path + ": line " + std::to_string(tokens.line()) + ": height " +
+                        quoted(value) + " is not a finite number within ±" +
+                        format_number(kMaxAbsHeight) + " m");
     }
     terrain.h[k] = static_cast<float>(v);
   }

@@ -5,6 +5,7 @@
 
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/text.hpp"
 
 namespace runnel {
 
@@ -28,11 +29,25 @@ DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, 
 
 void DeviceTerrain::upload(const Heightmap& terrain) {
   std::vector<std::int64_t> fixed(terrain.size());
-  for (std::size_t k = 0; k < fixed.size(); ++k) fixed[k] = std::llround(terrain.h[k] / quantum_);
+  for (std::size_t k = 0; k < fixed.size(); ++k) {
+    const double quanta = terrain.h[k] / quantum_;
+    if (!(std::fabs(quanta) <= kMaxHeightQuanta)) {
+      throw input_error("terrain height " + format_number(terrain.h[k]) +
+                        " m is not a finite multiple of erosion.height_quantum = " +
+                        format_number(quantum_) + " m within 2^53 quanta (the fixed-point " +
+                        "heights' range with headroom for the run): raise erosion.height_quantum");
+    }
+    fixed[k] = std::llround(quanta);
+  }
   upload_fixed(fixed);
 }
 
 void DeviceTerrain::upload_fixed(const std::vector<std::int64_t>& fixed) {
+  for (std::int64_t h : fixed) {
+    if (h > kMaxHeightQuanta || h < -kMaxHeightQuanta)
+      throw input_error("fixed-point height " + std::to_string(h) +
+                        " quanta is beyond 2^53 (no headroom left for the run)");
+  }
   auto& q = compute_.queue();
   q.enqueueWriteBuffer(height_fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_long), fixed.data());
   const cl_long zero = 0;

@@ -15,6 +15,10 @@ namespace runnel {
 // terrain volume is an exact integer sum. Kernels read a float view (height) and vertex normals,
 // refreshed after each application of the per-step changes (`apply`), and add their changes to
 // `delta` with 64-bit integer atomics. Host side of cl/terrain_apply.cl.
+// Heights are at most 2^53 quanta from zero: exact in a double, and 1000 times below the 64-bit
+// limit, so no run's erosion and deposition can wrap them.
+inline constexpr std::int64_t kMaxHeightQuanta = std::int64_t{1} << 53;
+
 class DeviceTerrain {
  public:
   DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, double quantum = 1e-6);

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
@@ -61,31 +62,44 @@ Heightmap read_npy(const std::string& path) {
   std::string header(header_len, '\0');
   in.read(header.data(), header_len);
 
+  // The header is a Python dict literal, '{' ... '}', padded with spaces and a final newline.
+  const auto first = header.find_first_not_of(" \t");
+  const auto last = header.find_last_not_of(" \t\n\0");
+  if (first == std::string::npos || header[first] != '{' || header[last] != '}')
+    throw input_error(path + ": .npy header is not a complete {...} dictionary");
   std::smatch m;
-  static const std::regex descr_re(R"('descr'\s*:\s*'([<>|=])([a-z])(\d+)')");
-  static const std::regex order_re(R"('fortran_order'\s*:\s*(True|False))");
-  static const std::regex shape_re(R"('shape'\s*:\s*\(([^)]*)\))");
+  static const std::regex descr_re(R"('descr'\s*:\s*('[^']*'|\[))");
+  static const std::regex float_re(R"('([<>|=])f(4|8)')");
+  static const std::regex order_re(R"('fortran_order'\s*:\s*(True|False)\s*[,}])");
+  static const std::regex shape_re(R"('shape'\s*:\s*\(([^()]*)\))");
   if (!std::regex_search(header, m, descr_re))
     throw input_error(path + ": .npy header has no 'descr'");
-  const char byte_order = m[1].str()[0];
-  const std::string kind = m[2].str();
-  const int item_size = std::stoi(m[3].str());
-  if (kind != "f" || (item_size != 4 && item_size != 8)) {
-    throw input_error(path + ": .npy dtype '" + m[2].str() + m[3].str() +
-                      "' is not float32 or float64");
+  const std::string descr = m[1].str();
+  if (descr == "[")
+    throw input_error(path + ": .npy dtype is structured (fields), not float32 or float64");
+  if (!std::regex_match(descr, m, float_re)) {
+    throw input_error(path + ": .npy dtype " + quoted(descr.substr(1, descr.size() - 2)) +
+                      " is not float32 or float64");
   }
+  const char byte_order = m[1].str()[0];
+  const int item_size = m[2].str() == "4" ? 4 : 8;
   if (!std::regex_search(header, m, order_re))
     throw input_error(path + ": .npy header has no 'fortran_order'");
   const bool fortran = m[1].str() == "True";
   if (!std::regex_search(header, m, shape_re))
-    throw input_error(path + ": .npy header has no 'shape'");
+    throw input_error(path + ": .npy header has no flat 'shape' tuple");
+  // Exactly two whole non-negative numbers, "(rows, columns)" with an optional trailing comma.
   std::vector<long long> shape;
-  static const std::regex dim_re(R"(\d+)");
-  const std::string dims = m[1].str();
-  for (auto it = std::sregex_iterator(dims.begin(), dims.end(), dim_re);
-       it != std::sregex_iterator(); ++it) {
-    if (it->str().size() > 12) throw input_error(path + ": .npy shape is too large");
-    shape.push_back(std::stoll(it->str()));
+  std::stringstream dims(m[1].str());
+  for (std::string item; std::getline(dims, item, ',');) {
+    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+    if (b == std::string::npos) continue;  // the trailing comma of a 1-tuple
+    const std::string digits = item.substr(b, e - b + 1);
+    if (digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos) {
+      throw input_error(path + ": .npy shape entry " + quoted(digits) +
+                        " is not a non-negative integer of at most 12 digits");
+    }
+    shape.push_back(std::stoll(digits));
   }
   if (shape.size() != 2) {
     throw input_error(path + ": .npy array has " + std::to_string(shape.size()) +

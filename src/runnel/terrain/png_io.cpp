@@ -5,6 +5,8 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
@@ -36,8 +38,9 @@ void on_png_warning(png_structp, png_const_charp) {}
 struct PngReadResult {
   png_uint_32 width = 0, height = 0;
   int bit_depth = 0, color_type = 0;
+  // The runnel tEXt chunks as written; parsed strictly once libpng is done.
   bool has_range = false, has_cell = false;
-  double range_min = 0, range_max = 0, cell = 1.0;
+  std::string range_text, cell_text;
   // Buffers live in the caller's object so a longjmp out of libpng skips no destructor.
   std::vector<png_byte> pixels;
   std::vector<png_bytep> rows;
@@ -66,9 +69,11 @@ std::string png_read(std::FILE* f, PngReadResult& r, std::vector<std::uint16_t>*
   png_get_text(png, info, &text, &num_text);
   for (int t = 0; t < num_text; ++t) {
     if (std::strcmp(text[t].key, kRangeKey) == 0) {
-      r.has_range = std::sscanf(text[t].text, "%lf %lf", &r.range_min, &r.range_max) == 2;
+      r.has_range = true;
+      r.range_text.assign(text[t].text, std::min<std::size_t>(text[t].text_length, 200));
     } else if (std::strcmp(text[t].key, kCellKey) == 0) {
-      r.has_cell = std::sscanf(text[t].text, "%lf", &r.cell) == 1;
+      r.has_cell = true;
+      r.cell_text.assign(text[t].text, std::min<std::size_t>(text[t].text_length, 200));
     }
   }
   if (samples) {
@@ -96,6 +101,23 @@ std::string png_read(std::FILE* f, PngReadResult& r, std::vector<std::uint16_t>*
   }
   png_destroy_read_struct(&png, &info, nullptr);
   return "";
+}
+
+// Whitespace-separated finite numbers, the whole text and nothing else ("1 2abc" is not).
+bool parse_numbers(const std::string& text, std::vector<double>& out) {
+  out.clear();
+  std::size_t at = 0;
+  while (at < text.size()) {
+    while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+    if (at == text.size()) break;
+    double v = 0;
+    const auto [p, ec] = std::from_chars(text.data() + at, text.data() + text.size(), v);
+    if (ec != std::errc() || !std::isfinite(v)) return false;
+    at = static_cast<std::size_t>(p - text.data());
+    if (at < text.size() && !std::isspace(static_cast<unsigned char>(text[at]))) return false;
+    out.push_back(v);
+  }
+  return !out.empty();
 }
 
 }  // namespace
@@ -127,19 +149,30 @@ Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& 
 
   const double max_sample = header.bit_depth == 16 ? 65535.0 : 255.0;
   double lo = 0.0, hi = max_sample;  // raw sample values in metres
+  std::vector<double> numbers;
+  if (header.has_range && (!parse_numbers(header.range_text, numbers) || numbers.size() != 2)) {
+    throw input_error(path + ": tEXt " + kRangeKey + " " + quoted(header.range_text) +
+                      " is not two numbers MIN MAX");
+  }
   if (range) {
     lo = range->min;
     hi = range->max;
   } else if (header.has_range) {
-    lo = header.range_min;
-    hi = header.range_max;
+    lo = numbers[0];
+    hi = numbers[1];
   }
-  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo)) {
-    throw input_error(path + ": invalid height range " + std::to_string(lo) + ":" +
-                      std::to_string(hi));
+  check_height_range(path, {lo, hi});
+  double cell = 1.0;
+  if (header.has_cell) {
+    if (!parse_numbers(header.cell_text, numbers) || numbers.size() != 1 ||
+        !(numbers[0] >= kMinCell && numbers[0] <= kMaxCell)) {
+      throw input_error(path + ": tEXt " + kCellKey + " " + quoted(header.cell_text) +
+                        " is not a cell size of " + format_number(kMinCell) + " to " +
+                        format_number(kMaxCell) + " m");
+    }
+    cell = numbers[0];
   }
-  Heightmap terrain(static_cast<int>(header.width), static_cast<int>(header.height),
-                    header.has_cell && header.cell > 0 ? header.cell : 1.0);
+  Heightmap terrain(static_cast<int>(header.width), static_cast<int>(header.height), cell);
   for (std::size_t k = 0; k < samples.size(); ++k) {
     terrain.h[k] = static_cast<float>(lo + (hi - lo) * (samples[k] / max_sample));
   }

@@ -38,16 +38,18 @@ Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
       terrain = read_npy(path);
       break;
   }
-  if (options.cell) {
-    if (!(*options.cell > 0.0) || !std::isfinite(*options.cell)) {
-      throw input_error(path + ": cell size must be a positive number of metres");
-    }
-    terrain.cell = *options.cell;
-  }
+  if (options.cell) terrain.cell = *options.cell;
+  check_terrain_values(path, terrain);
   return terrain;
 }
 
 void write_terrain(const std::string& path, const Heightmap& terrain, const WriteOptions& options) {
+  // Never write what no reader would take back. (Grids of other quantities, such as the drainage
+  // area in m², go through here too: finite, not a height's range.)
+  if (!(terrain.cell >= kMinCell && terrain.cell <= kMaxCell))
+    throw input_error(path + ": cell size " + format_number(terrain.cell) + " m is out of range");
+  check_finite_heights(path, terrain);
+  if (options.png_range) check_height_range(path, *options.png_range);
   switch (terrain_format_from_path(path)) {
     case TerrainFormat::kAsc:
       write_asc(path, terrain);
@@ -70,6 +72,34 @@ void check_terrain_size(const std::string& path, long long nx, long long ny) {
     throw input_error(path + ": terrain of " + std::to_string(nx) + " x " + std::to_string(ny) +
                       " vertices exceeds the limit (" + std::to_string(kMaxSide) + " per side, " +
                       std::to_string(kMaxVertices) + " in all)");
+  }
+}
+
+void check_height_range(const std::string& path, const HeightRange& range) {
+  if (!(std::fabs(range.min) <= kMaxAbsHeight && std::fabs(range.max) <= kMaxAbsHeight &&
+        range.max > range.min)) {
+    throw input_error(path + ": height range " + format_number(range.min) + ":" +
+                      format_number(range.max) + " m is not an increasing range within ±" +
+                      format_number(kMaxAbsHeight) + " m");
+  }
+}
+
+void check_terrain_values(const std::string& path, const Heightmap& terrain) {
+  if (!(terrain.cell >= kMinCell && terrain.cell <= kMaxCell)) {
+    throw input_error(path + ": cell size " + format_number(terrain.cell) + " m is outside " +
+                      format_number(kMinCell) + " to " + format_number(kMaxCell) + " m");
+  }
+  if (!(std::fabs(terrain.origin_x) <= kMaxAbsOrigin &&
+        std::fabs(terrain.origin_z) <= kMaxAbsOrigin))
+    throw input_error(path + ": the grid's origin is not a finite coordinate within ±1e12 m");
+  for (int j = 0; j < terrain.ny; ++j) {
+    for (int i = 0; i < terrain.nx; ++i) {
+      if (!(std::fabs(terrain.at(i, j)) <= kMaxAbsHeight)) {
+        throw input_error(path + ": height " + format_number(terrain.at(i, j)) + " m at column " +
+                          std::to_string(i) + ", row " + std::to_string(j) +
+                          " is not a finite number within ±" + format_number(kMaxAbsHeight) + " m");
+      }
+    }
   }
 }
 

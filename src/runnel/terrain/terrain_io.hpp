@@ -4,6 +4,7 @@
 #include <string>
 
 #include "runnel/core/heightmap.hpp"
+#include "runnel/core/text.hpp"
 
 namespace runnel {
 
@@ -29,6 +30,15 @@ struct WriteOptions {
 };
 
 enum class TerrainFormat { kAsc, kPng, kNpy };
+
+// What every terrain read or written must satisfy: heights finite and within ±1e7 m (the deepest
+// trench is 11 km; far beyond, the fixed-point heights lose their headroom), the cell size within
+// terrain.cell's range, the origin a finite coordinate.
+inline constexpr double kMaxAbsHeight = 1e7;              // m
+inline constexpr double kMinCell = 1e-6, kMaxCell = 1e6;  // m
+inline constexpr double kMaxAbsOrigin = 1e12;             // m
+void check_terrain_values(const std::string& path, const Heightmap& terrain);
+void check_height_range(const std::string& path, const HeightRange& range);
 
 // The format from the file name's extension (.asc, .png, .npy; any case). Throws an input error.
 TerrainFormat terrain_format_from_path(const std::string& path);

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace runnel {
+
+// A number for a message: %g, so 1e+300 and nan read as themselves.
+inline std::string format_number(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  return buf;
+}
+
+// Text from a file or a flag, safe to echo in a one-line message: in single quotes, control bytes
+// (escape sequences, newlines) and bytes ≥ 0x7f written as \xNN, and cut after 40 characters. A
+// hostile file then cannot clear the terminal or split the message over lines.
+inline std::string quoted(std::string_view text) {
+  std::string out = "'";
+  std::size_t shown = 0;
+  for (unsigned char c : text) {
+    if (++shown > 40) {
+      out += "...";
+      break;
+    }
+    if (c < 0x20 || c >= 0x7f || c == '\\' || c == '\'') {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "'";
+}
+
+}  // namespace runnel

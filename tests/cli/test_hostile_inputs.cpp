@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+// Hostile and absurd inputs (issue 14): each gets exit 2 and one line naming the thing and the
+// problem, with nothing written; bytes from the file are echoed escaped.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <fstream>
+
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::run_cli;
+using test::ScratchDir;
+
+// Exit 2, one line, containing every fragment, and no terminal control byte.
+void expect_refused(const test::CliResult& r, const std::vector<std::string>& fragments,
+                    const std::string& what) {
+  EXPECT_EQ(r.exit_code, 2) << what << ": " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << ": " << r.err;
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << what;
+  for (const auto& f : fragments)
+    EXPECT_NE(r.err.find(f), std::string::npos) << what << ": " << r.err;
+}
+
+const std::string kHeader = "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+
+TEST(HostileInputs, BadFlagValuesAreRefusedNotIgnored) {
+  ScratchDir dir;
+  expect_refused(run_cli({"run", "--steps", "-3", "--out", dir.path("a")}), {"--steps", "-3"},
+                 "--steps -3");
+  expect_refused(run_cli({"run", "--sim-time", "-1", "--out", dir.path("a")}), {"--sim-time"},
+                 "--sim-time -1");
+  expect_refused(run_cli({"run", "--sim-time", "nan", "--out", dir.path("a")}), {"--sim-time"},
+                 "--sim-time nan");
+  expect_refused(run_cli({"run", "--seed", "-5", "--out", dir.path("a")}), {"--seed"}, "--seed");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("a"))) << "nothing written";
+  expect_refused(run_cli({"validate", "dambreak", "--resolution", "0"}), {"--resolution"},
+                 "validate --resolution 0");
+  expect_refused(run_cli({"generate", "fbm", "--cell", "1e300", "-o", dir.path("t.asc")}),
+                 {"--cell", "1e300"}, "generate --cell 1e300");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("t.asc")));
+  expect_refused(
+      run_cli({"generate", "fbm", "--size", "9", "--range", "0:1", "-o", dir.path("t.npy")}),
+      {"--range"}, "generate --range for npy");
+  // CLI11's own wording ("not in range 0.000000 to 1797…") is gone.
+  const auto r = run_cli({"run", "--keep-checkpoints", "0", "--out", dir.path("a")});
+  expect_refused(r, {"--keep-checkpoints", "at least 1"}, "--keep-checkpoints 0");
+  EXPECT_EQ(r.err.find("1797"), std::string::npos) << r.err;
+}
+
+TEST(HostileInputs, NonFiniteAndAbsurdNumbersInTerrainFiles) {
+  ScratchDir dir;
+  const std::pair<const char*, std::string> files[] = {
+      {"huge.asc", kHeader + "1 2 3\n4 5e38 6\n7 8 9\n"},
+      {"cell_inf.asc",
+       "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1e300\n1 2 3 4 5 6 7 8 9\n"},
+      {"cell_tiny.asc",
+       "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1e-300\n1 2 3 4 5 6 7 8 9\n"},
+      {"origin_nan.asc",
+       "ncols 3\nnrows 3\nxllcorner nan\nyllcorner 0\ncellsize 1\n1 2 3 4 5 6 7 8 9\n"},
+      {"twice.asc",
+       "ncols 3\nnrows 3\nncols 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3 4 5 6 7 8 9\n"},
+      {"mixed.asc", "ncols 3\nnrows 3\nxllcenter 0\nyllcorner 0\ncellsize 1\n1 2 3 4 5 6 7 8 9\n"},
+      {"wide.asc",
+       "ncols 99999999999999999999999\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n1\n"},
+  };
+  for (const auto& [name, text] : files) {
+    test::write_text(dir.path(name), text);
+    const auto r = run_cli({"convert", dir.path(name), dir.path("out.npy")});
+    expect_refused(r, {name}, name);
+    EXPECT_EQ(r.err.find("-9223372036854775808"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("out.npy"))) << name;
+  }
+}
+
+TEST(HostileInputs, EchoedBytesAreEscaped) {
+  ScratchDir dir;
+  test::write_text(dir.path("escape.asc"), kHeader + "1 2 3\n4 \x1b[2J\x1b[31mred 6\n7 8 9\n");
+  const auto r = run_cli({"convert", dir.path("escape.asc"), dir.path("out.npy")});
+  expect_refused(r, {"escape.asc", "\\x1b[2J"}, "escape sequence");
+}
+
+// A minimal .npy file with `header` as its dictionary.
+void write_npy(const std::string& path, const std::string& dict, std::size_t data_bytes) {
+  std::string header = dict;
+  while ((10 + header.size() + 1) % 64) header += ' ';
+  header += '\n';
+  std::ofstream f(path, std::ios::binary);
+  f.write("\x93NUMPY\x01\x00", 8);
+  const std::uint16_t len = static_cast<std::uint16_t>(header.size());
+  f.write(reinterpret_cast<const char*>(&len), 2);
+  f << header << std::string(data_bytes, '\0');
+}
+
+TEST(HostileInputs, NpyHeadersAreParsedStrictly) {
+  ScratchDir dir;
+  const std::pair<const char*, std::string> cases[] = {
+      {"negative", "{'descr': '<f4', 'fortran_order': False, 'shape': (-17, -19), }"},
+      {"nested", "{'descr': '<f4', 'fortran_order': False, 'shape': ((3, 3), 3), }"},
+      {"unterminated", "{'descr': '<f4', 'fortran_order': False, 'shape': (3, 3), "},
+      {"object", "{'descr': '|O', 'fortran_order': False, 'shape': (3, 3), }"},
+      {"unicode", "{'descr': '<U2', 'fortran_order': False, 'shape': (3, 3), }"},
+      {"structured", "{'descr': [('a', '<f4')], 'fortran_order': False, 'shape': (3, 3), }"},
+  };
+  for (const auto& [name, dict] : cases) {
+    const std::string file = dir.path(std::string(name) + ".npy");
+    write_npy(file, dict, 36);
+    expect_refused(run_cli({"info", file}), {name}, name);
+  }
+  // The dtype is named as it is, not reported missing.
+  expect_refused(run_cli({"info", dir.path("object.npy")}), {"'|O'", "not float32"}, "|O");
+  expect_refused(run_cli({"info", dir.path("structured.npy")}), {"structured"}, "structured");
+}
+
+TEST(HostileInputs, OutputEqualToInputIsRefused) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli({"generate", "fbm", "--size", "9", "-o", dir.path("in.png")}).exit_code, 0);
+  const std::string before = test::read_text(dir.path("in.png"));
+  expect_refused(run_cli({"convert", dir.path("in.png"), dir.path("in.png"), "--range", "0:10"}),
+                 {"in.png", "input"}, "same file");
+  expect_refused(run_cli({"convert", dir.path("in.png"), dir.path("./in.png")}), {"input"},
+                 "same file by another name");
+  EXPECT_EQ(test::read_text(dir.path("in.png")), before);
+}
+
+TEST(HostileInputs, FixedPointOverflowIsRefusedUpFront) {
+  ScratchDir dir;
+  test::write_text(dir.path("tall.asc"), kHeader + "1e6 1e6 1e6\n1e6 1e6 1e6\n1e6 1e6 1e6\n");
+  expect_refused(run_cli({"run", "--terrain", dir.path("tall.asc"), "--steps", "1", "--set",
+                          "erosion.height_quantum=1e-12", "--out", dir.path("o")}),
+                 {"erosion.height_quantum"}, "1e6 m at 1e-12 m quanta");
+  test::write_text(dir.path("huge.asc"), kHeader + "1e13 1 1\n1 1 1\n1 1 1\n");
+  expect_refused(
+      run_cli({"run", "--terrain", dir.path("huge.asc"), "--steps", "1", "--out", dir.path("o")}),
+      {"huge.asc"}, "1e13 m");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("o")));
+}
+
+TEST(HostileInputs, ScenarioContradictionsAreRefusedWithTheirKeys) {
+  ScratchDir dir;
+  const std::vector<std::string> base = {"run", "--generate", "plane",      "--steps",
+                                         "1",   "--out",      dir.path("o")};
+  auto with = [&](std::vector<std::string> sets) {
+    std::vector<std::string> args = base;
+    for (auto& s : sets) args.insert(args.end(), {"--set", s});
+    return run_cli(args);
+  };
+  expect_refused(with({"terrain.size=33", "rain.region=\"disc\"", "rain.disc_x=500",
+                       "rain.disc_z=500", "rain.disc_radius=5"}),
+                 {"rain.disc", "off the terrain"}, "disc off the terrain");
+  expect_refused(with({"sph.density_min=1", "sph.density_max=1"}), {"sph.density_min"},
+                 "density_min = density_max");
+  expect_refused(with({"terrain.size=33", "rain.spawn_height=1e6"}), {"rain.spawn_height"},
+                 "spawn height 1e6");
+  expect_refused(run_cli({"run", "--generate", "plane", "--model", "droplet", "--steps", "1",
+                          "--set", "droplet.batch=100000000", "--out", dir.path("o")}),
+                 {"droplet.batch"}, "droplet.batch 1e8");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("o")));
+}
+
+}  // namespace
+}  // namespace runnel
