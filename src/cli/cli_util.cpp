@@ -46,12 +46,15 @@ void add_output_flags(CLI::App& cmd, OutputFlags& flags) {
   cmd.add_option("--series-every", flags.series_every,
                  "append the heightmap to DIR/series.h5 every N steps")
       ->check(at_least(0));
+  cmd.add_flag("--overwrite", flags.overwrite,
+               "replace checkpoints of another run found in DIR/checkpoints (refused otherwise)");
 }
 
 void OutputFlags::apply(RunOptions& options) const {
   options.checkpoint_every = checkpoint_every;
   options.keep_checkpoints = keep_checkpoints;
   options.series_every = series_every;
+  options.overwrite = overwrite;
 }
 
 void refuse_same_file(const std::string& input, const std::string& output) {

@@ -41,8 +41,16 @@ void write_path_atomically(const std::string& path,
   hidden_name.append(target.filename().string()).append(".tmpXXXXXX");
   std::string tmp_name = (dir / hidden_name).string();
   const int fd = mkstemp(tmp_name.data());
-  if (fd < 0)
-    throw runtime_error(path + ": cannot create a temporary file: " + std::strerror(errno));
+  if (fd < 0) {
+    // The exit-code rule (README): a path the user gave that cannot be written is bad input (2);
+    // a failure while writing (a full disk, an I/O error) is a runtime failure (1).
+    const int e = errno;
+    const std::string message = path + ": cannot write here: " + std::strerror(e);
+    if (e == EACCES || e == EPERM || e == EROFS || e == ENOTDIR || e == ENOENT ||
+        e == ENAMETOOLONG || e == EISDIR)
+      throw input_error(message);
+    throw runtime_error(message);
+  }
   close(fd);
   try {
     write(tmp_name);
@@ -52,6 +60,13 @@ void write_path_atomically(const std::string& path,
       throw runtime_error(path + ": sync failed: " + std::strerror(errno));
     }
     close(sync_fd);
+  } catch (const Error& e) {
+    unlink(tmp_name.c_str());
+    // Name the file the user asked for, not the hidden temporary.
+    std::string message = e.what();
+    for (auto at = message.find(tmp_name); at != std::string::npos; at = message.find(tmp_name))
+      message.replace(at, tmp_name.size(), path);
+    throw Error(e.code(), message);
   } catch (...) {
     unlink(tmp_name.c_str());
     throw;
@@ -61,10 +76,33 @@ void write_path_atomically(const std::string& path,
                       fs::perms::others_read,
                   ec);
   if (std::rename(tmp_name.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
+    const int e = errno;
     unlink(tmp_name.c_str());
-    throw runtime_error(path + ": cannot rename the temporary file into place: " + reason);
+    const std::string message = path + ": cannot put the file in place: " + std::strerror(e);
+    if (e == EISDIR || e == EACCES || e == EPERM || e == EROFS) throw input_error(message);
+    throw runtime_error(message);
   }
+  // The rename is durable only once the directory entry is on disk too.
+  const int dir_fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (dir_fd >= 0) {
+    const bool synced = fsync(dir_fd) == 0;
+    close(dir_fd);
+    if (!synced) throw runtime_error(path + ": sync of its folder failed: " + std::strerror(errno));
+  }
+}
+
+int remove_stale_temporaries(const std::string& dir, const std::string& prefix) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  int removed = 0;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("." + prefix, 0) == 0 && name.find(".tmp") != std::string::npos &&
+        entry.is_regular_file(ec) && fs::remove(entry.path(), ec)) {
+      ++removed;
+    }
+  }
+  return removed;
 }
 
 }  // namespace runnel

@@ -16,4 +16,8 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 void write_path_atomically(const std::string& path,
                            const std::function<void(const std::string& temporary)>& write);
 
+// Removes the hidden temporaries (".PREFIX….tmpXXXXXX") a killed writer left in `dir`; returns
+// how many. Call it where this process alone writes files of that prefix.
+int remove_stale_temporaries(const std::string& dir, const std::string& prefix);
+
 }  // namespace runnel

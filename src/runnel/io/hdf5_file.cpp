@@ -11,6 +11,10 @@ namespace {
 // HDF5 prints its own error stack by default; runnel reports one line of its own instead.
 void silence_hdf5() {
   static const bool silenced = [] {
+    // No library shutdown at exit: after a write failed on a full disk, HDF5 keeps the file it
+    // could not close, and closing it again from its atexit handler crashes (SIGSEGV in
+    // H5F__close_cb). Every file runnel opens is closed by its H5File, so nothing is lost.
+    H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
   }();
@@ -302,6 +306,8 @@ void H5File::append_frame(const std::string& name, const std::vector<float>& fra
                frame.data()) < 0) {
     throw runtime_error(path_ + ": cannot append to " + name);
   }
+  // On disk now, or an error now: a frame the disk had no room for must not pass silently.
+  flush();
 }
 
 }  // namespace runnel

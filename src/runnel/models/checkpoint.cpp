@@ -3,6 +3,7 @@
 #include "runnel/models/checkpoint.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <sstream>
 
@@ -81,6 +82,7 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.attribute("/", "source_revision", d.source_revision);
     f.attribute("/", "model", d.model);
     f.attribute("/", "parameters_toml", d.parameters_toml);
+    f.attribute("/", "run_id", run_identity(d.parameters_toml));
 
     const Heightmap& t = d.terrain;
     const std::vector<hsize_t> grid = {static_cast<hsize_t>(t.ny), static_cast<hsize_t>(t.nx)};
@@ -154,6 +156,30 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.attribute("/fields", "names", field_names);
     f.flush();
   });
+}
+
+std::string run_identity(const std::string& parameters_toml) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;  // FNV-1a
+  std::istringstream lines(parameters_toml);
+  for (std::string line; std::getline(lines, line);) {
+    bool length_only = false;
+    for (const char* key : {"steps =", "sim_time =", "iterations =", "report_every ="})
+      length_only = length_only || line.rfind(key, 0) == 0;
+    if (length_only) continue;
+    for (unsigned char c : line + "\n") hash = (hash ^ c) * 0x100000001b3ULL;
+  }
+  char id[17];
+  std::snprintf(id, sizeof id, "%016llx", static_cast<unsigned long long>(hash));
+  return id;
+}
+
+std::string checkpoint_run_id(const std::string& path) {
+  try {
+    const H5File f = H5File::open_read(path);
+    return f.read_string_attribute("/", "run_id");
+  } catch (const std::exception&) {
+    return "";
+  }
 }
 
 CheckpointData read_checkpoint(const std::string& path) {

@@ -55,6 +55,13 @@ struct CheckpointData {
   Heightmap initial_terrain() const;
 };
 
+// Which run a checkpoint belongs to: a hash of the model and its parameters, less the keys that
+// only say how long to run (run.steps, run.sim_time, run.iterations, run.report_every), so a
+// resumed run is the same run. Written as the root attribute run_id.
+std::string run_identity(const std::string& parameters_toml);
+// The run_id of a checkpoint file, or "" when it has none or cannot be read.
+std::string checkpoint_run_id(const std::string& path);
+
 // Writes atomically (temporary file, sync, rename): an interrupted write leaves the old file
 // intact.
 void write_checkpoint(const std::string& path, const CheckpointData& data);

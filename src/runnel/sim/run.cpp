@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/scenario.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/hdf5_file.hpp"
@@ -68,24 +69,50 @@ void require_run_length(const Parameters& params, ModelClock clock) {
 
 namespace {
 
-// Writes DIR/checkpoints/step_XXXXXXXX.h5 and removes all but the newest `keep`.
-void write_rolling_checkpoint(Model& model, const std::filesystem::path& out, int keep) {
-  namespace fs = std::filesystem;
-  const fs::path dir = out / "checkpoints";
-  fs::create_directories(dir);
-  char name[64];
-  std::snprintf(name, sizeof name, "step_%08llu.h5",
-                static_cast<unsigned long long>(model.steps()));
-  write_checkpoint((dir / name).string(), model.checkpoint());
-  std::vector<fs::path> existing;
-  for (auto& e : fs::directory_iterator(dir)) {
-    const std::string f = e.path().filename().string();
-    if (f.rfind("step_", 0) == 0 && e.path().extension() == ".h5") existing.push_back(e.path());
+// The checkpoints this run writes into DIR/checkpoints. Rotation only ever removes files this run
+// wrote; checkpoints of another run (another run_id) in the folder are refused up front, or
+// removed with --overwrite, so a reused --out never mixes two runs.
+class RollingCheckpoints {
+ public:
+  RollingCheckpoints(const std::filesystem::path& out, const Model& model, int keep, bool overwrite)
+      : dir_(out / "checkpoints"), keep_(keep) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::is_directory(dir_, ec)) return;
+    remove_stale_temporaries(dir_.string(), "step_");  // left by a writer that was killed
+    const std::string id = run_identity(parameters_toml(model.parameters()));
+    for (auto& e : fs::directory_iterator(dir_)) {
+      const std::string f = e.path().filename().string();
+      if (f.rfind("step_", 0) != 0 || e.path().extension() != ".h5") continue;
+      if (checkpoint_run_id(e.path().string()) == id) continue;  // this run's, before a resume
+      if (!overwrite) {
+        throw input_error(e.path().string() +
+                          ": a checkpoint of another run (other parameters) is in the output "
+                          "folder; choose another --out, or --overwrite to replace them");
+      }
+      fs::remove(e.path());
+    }
   }
-  std::sort(existing.begin(), existing.end());
-  for (std::size_t k = 0; k + static_cast<std::size_t>(keep) < existing.size(); ++k)
-    fs::remove(existing[k]);
-}
+
+  void write(Model& model) {
+    namespace fs = std::filesystem;
+    fs::create_directories(dir_);
+    char name[64];
+    std::snprintf(name, sizeof name, "step_%08llu.h5",
+                  static_cast<unsigned long long>(model.steps()));
+    write_checkpoint((dir_ / name).string(), model.checkpoint());
+    written_.push_back(dir_ / name);
+    while (written_.size() > static_cast<std::size_t>(keep_)) {
+      fs::remove(written_.front());
+      written_.erase(written_.begin());
+    }
+  }
+
+ private:
+  std::filesystem::path dir_;
+  int keep_;
+  std::vector<std::filesystem::path> written_;
+};
 
 }  // namespace
 
@@ -97,6 +124,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
     throw input_error("--out " + options.out_dir + ": cannot create the output folder");
   }
   const fs::path out(options.out_dir);
+  RollingCheckpoints checkpoints(out, model, options.keep_checkpoints, options.overwrite);
   const auto start = std::chrono::steady_clock::now();
   compute.profiler().reset();
   compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") ==
@@ -106,9 +134,12 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   double work = 0;  // particle-, cell- or droplet-steps
   const std::uint64_t first_step = model.steps();
   const double first_time = model.time();
+  // The series grows during the run as series.h5.partial and becomes series.h5 when the run
+  // ends: a killed or failed run leaves no partial file under the final name.
   std::unique_ptr<H5File> series;
+  const fs::path series_partial = out / "series.h5.partial";
   if (options.series_every > 0) {
-    series = std::make_unique<H5File>(H5File::create((out / "series.h5").string()));
+    series = std::make_unique<H5File>(H5File::create(series_partial.string()));
     series->attribute("/", "series_every_steps", static_cast<std::int64_t>(options.series_every));
   }
   auto done = [&] {
@@ -138,7 +169,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                             .add("balance", m.json()));
     }
     if (options.checkpoint_every > 0 && model.steps() % options.checkpoint_every == 0) {
-      write_rolling_checkpoint(model, out, options.keep_checkpoints);
+      checkpoints.write(model);
     }
     if (series && model.steps() % options.series_every == 0) {
       const Heightmap t = model.terrain();
@@ -146,7 +177,12 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
     }
     progress.update(fraction, status, report);
   }
-  series.reset();
+  if (series) {
+    series.reset();
+    write_path_atomically((out / "series.h5").string(), [&](const std::string& temporary) {
+      fs::rename(series_partial, temporary);
+    });
+  }
   compute.queue().finish();
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
