@@ -34,7 +34,7 @@ void add_resume_command(CLI::App& app) {
   cmd->callback([opt] {
     const CheckpointData data = read_checkpoint(opt->file);
     ComputeContext compute(opt->device);
-    const std::unique_ptr<Model> model = make_model_from_checkpoint(compute, data);
+    const std::unique_ptr<Model> model = make_model_from_checkpoint(compute, data, opt->file);
     RunOptions options = run_options_from(model->parameters(), model->info().clock);
     options.until_step = model->steps() + static_cast<std::uint64_t>(opt->steps);
     options.out_dir = opt->out;

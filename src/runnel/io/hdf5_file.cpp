@@ -175,6 +175,10 @@ void H5File::attribute(const std::string& object, const std::string& name,
   }
 }
 
+bool H5File::has_attribute(const std::string& object, const std::string& name) const {
+  return H5Aexists_by_name(file_.get(), object.c_str(), name.c_str(), H5P_DEFAULT) > 0;
+}
+
 bool H5File::exists(const std::string& name) const {
   return H5Lexists(file_.get(), name.c_str(), H5P_DEFAULT) > 0;
 }

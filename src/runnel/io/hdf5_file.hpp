@@ -55,6 +55,7 @@ class H5File {
   // Reading; `expected` (if not empty) must equal the dataset's dimensions.
   std::vector<hsize_t> dims(const std::string& name) const;
   bool exists(const std::string& name) const;
+  bool has_attribute(const std::string& object, const std::string& name) const;
   // Whether a dataset holds integers (else floating point).
   bool is_integer(const std::string& name) const;
   std::vector<float> read_float(const std::string& name,

@@ -10,6 +10,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/hdf5_file.hpp"
+#include "runnel/models/fields.hpp"
 
 namespace runnel {
 namespace {
@@ -65,6 +66,86 @@ void read_model_state(const H5File& f, const std::string& path, const std::vecto
   }
 }
 
+// FNV-1a over the bytes of every value a restart reads, in one fixed order: written as the root
+// attribute `digest` and checked on read, so a flipped byte anywhere in the data is a refusal, not
+// a different run.
+class Digest {
+ public:
+  template <typename T>
+  Digest& add(const std::vector<T>& values) {
+    return bytes(values.data(), values.size() * sizeof(T));
+  }
+  template <typename T>
+  Digest& add(const T& value) {
+    return bytes(&value, sizeof value);
+  }
+  Digest& add(const std::string& text) { return bytes(text.data(), text.size()); }
+  std::string hex() const {
+    char out[17];
+    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(hash_));
+    return out;
+  }
+
+ private:
+  Digest& bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < n; ++k) hash_ = (hash_ ^ p[k]) * 0x100000001b3ULL;
+    hash_ = (hash_ ^ 0xff) * 0x100000001b3ULL;  // a separator, so ("ab", "c") ≠ ("a", "bc")
+    return *this;
+  }
+  std::uint64_t hash_ = 0xcbf29ce484222325ULL;
+};
+
+std::string digest_of(const CheckpointData& d) {
+  Digest g;
+  g.add(d.model).add(d.parameters_toml).add(d.terrain.h).add(d.terrain.cell);
+  g.add(d.terrain.origin_x).add(d.terrain.origin_z).add(d.height_quantum);
+  g.add(d.height_fixed).add(d.initial_fixed);
+  for (const auto& field : d.particles.f) g.add(field);
+  g.add(d.particles.sediment).add(d.particles.contacts).add(d.particles.id);
+  g.add(d.ax).add(d.ay).add(d.az).add(d.drho).add(d.depth).add(d.next_id);
+  g.add(d.time).add(d.dt).add(d.steps).add(d.rain_spawned).add(d.rain_carry).add(d.seed);
+  const SphCounters& c = d.counters;
+  for (long long v : {c.surface_projections, c.outflow_particles, c.collisions, c.outflow_sediment,
+                      c.evaporated_particles, c.lost_sediment})
+    g.add(v);
+  for (const auto& f : d.fields) g.add(f.name).add(f.components).add(f.f32).add(f.i64);
+  for (const auto& [name, value] : d.model_counters) g.add(name).add(value);
+  return g.hex();
+}
+
+// What the writer guarantees, checked on read: one line naming the file and the field.
+void check_invariants(const std::string& path, const CheckpointData& d) {
+  auto refuse = [&](const std::string& what) {
+    throw input_error(path + ": " + what + " (the file is damaged or was not written by runnel)");
+  };
+  if (d.parameters_toml.empty()) refuse("@parameters_toml is empty");
+  if (!(d.time >= 0) || d.steps > (std::uint64_t{1} << 62))
+    refuse("/state time or steps out of range");
+  if (d.rain_spawned > (std::uint64_t{1} << 62)) refuse("/state@rain_spawned is negative");
+  if (!(d.rain_carry >= 0 && d.rain_carry < 1)) refuse("/state@rain_carry is not in [0, 1)");
+  if (d.seed < 0) refuse("/state@seed is negative");
+  const SphCounters& c = d.counters;
+  for (long long v : {c.surface_projections, c.outflow_particles, c.collisions, c.outflow_sediment,
+                      c.evaporated_particles, c.lost_sediment})
+    if (v < 0) refuse("/state/counters holds a negative count");
+  for (const auto& [name, value] : d.model_counters)
+    if (value < 0) refuse("/state@counter_" + name + " is negative");
+  for (std::size_t k = 0; k < d.height_fixed.size(); ++k) {
+    const double exact = static_cast<double>(d.height_fixed[k]) * d.height_quantum;
+    if (!(std::fabs(d.terrain.h[k] - exact) <= 1e-6 * std::fabs(exact) + 2 * d.height_quantum))
+      refuse("/terrain/height disagrees with /terrain/height_fixed at vertex " + std::to_string(k));
+  }
+  for (std::size_t k = 0; k < d.particles.size(); ++k) {
+    if (d.particles.sediment[k] < 0) refuse("/particles/sediment is negative");
+    if ((d.particles.id[k] & ~kDeadFlag) >= d.next_id) refuse("/particles/id is not below next_id");
+  }
+  for (const auto& field : d.fields)
+    for (std::int64_t v : field.i64)
+      if (v < 0 && field.name == kSedimentSuspended)
+        refuse("/fields/" + field.name + " is negative");
+}
+
 }  // namespace
 
 Heightmap CheckpointData::initial_terrain() const {
@@ -83,6 +164,7 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.attribute("/", "model", d.model);
     f.attribute("/", "parameters_toml", d.parameters_toml);
     f.attribute("/", "run_id", run_identity(d.parameters_toml));
+    f.attribute("/", "digest", digest_of(d));
 
     const Heightmap& t = d.terrain;
     const std::vector<hsize_t> grid = {static_cast<hsize_t>(t.ny), static_cast<hsize_t>(t.nx)};
@@ -223,6 +305,9 @@ CheckpointData read_checkpoint(const std::string& path) {
   const std::int64_t count = f.read_int_attribute("/particles", "count");
   if (count < 0) throw input_error(path + ": /particles@count is negative");
   const std::vector<hsize_t> n = {static_cast<hsize_t>(count)};
+  // The count must be what the datasets hold before anything is allocated for it.
+  if (f.dims("/particles/x") != n)
+    throw input_error(path + ": /particles@count disagrees with the size of /particles/x");
   d.particles.resize(static_cast<std::size_t>(count));
   for (ParticleField field : kFloatFields) {
     const std::string name = dataset_path("particles", particle_field_info(field).name);
@@ -245,13 +330,22 @@ CheckpointData read_checkpoint(const std::string& path) {
   d.dt = f.read_double_attribute("/state", "dt");
   if (!std::isfinite(d.time) || !(d.dt > 0) || !std::isfinite(d.dt))
     throw input_error(path + ": /state time or dt is invalid");
-  d.steps = static_cast<std::uint64_t>(f.read_int_attribute("/state", "steps"));
-  d.rain_spawned = static_cast<std::uint64_t>(f.read_int_attribute("/state", "rain_spawned"));
+  const std::int64_t steps = f.read_int_attribute("/state", "steps");
+  const std::int64_t spawned = f.read_int_attribute("/state", "rain_spawned");
+  if (steps < 0 || spawned < 0)
+    throw input_error(path + ": /state@steps or @rain_spawned is negative");
+  d.steps = static_cast<std::uint64_t>(steps);
+  d.rain_spawned = static_cast<std::uint64_t>(spawned);
   d.rain_carry = f.read_double_attribute("/state", "rain_carry");
   d.seed = f.read_int_attribute("/state", "seed");
   const auto c = f.read_int64("/state/counters", {6});
   d.counters = {c[0], c[1], c[2], c[3], c[4], c[5]};
   read_model_state(f, path, grid, d);
+  check_invariants(path, d);
+  // Files from before the digest (schema 3 as first written) cannot be verified this way.
+  if (f.has_attribute("/", "digest") && f.read_string_attribute("/", "digest") != digest_of(d)) {
+    throw input_error(path + ": the data do not match the file's digest (the file is damaged)");
+  }
   return d;
 }
 

@@ -48,12 +48,18 @@ std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& par
   return model_entry(params.text("run.model")).make(compute, params, terrain);
 }
 
-std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute,
-                                                  const CheckpointData& d) {
+std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute, const CheckpointData& d,
+                                                  const std::string& origin) {
   Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
   params.set("run.model", d.model);
   std::unique_ptr<Model> model = model_entry(d.model).make(compute, params, d.initial_terrain());
   model->restore(d);
+  const MassBalance m = model->mass_balance();
+  if (m.residual_quanta != 0) {
+    throw input_error(origin + ": the stored state does not balance (" +
+                      std::to_string(m.residual_quanta) +
+                      " quanta unaccounted for): the file is damaged");
+  }
   return model;
 }
 

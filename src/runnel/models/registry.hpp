@@ -25,8 +25,11 @@ const ModelEntry& model_entry(const std::string& name);
 // The model run.model names, on `terrain`, with `params`.
 std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& params,
                                   const Heightmap& terrain);
-// The model a checkpoint holds, in the state it was saved in.
+// The model a checkpoint holds, in the state it was saved in. A state whose mass does not balance
+// (terrain change ≠ suspended + outflow + lost, to the quantum) is refused as damaged, naming
+// `origin` (the file).
 std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute,
-                                                  const CheckpointData& data);
+                                                  const CheckpointData& data,
+                                                  const std::string& origin = "checkpoint");
 
 }  // namespace runnel

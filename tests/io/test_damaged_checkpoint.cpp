@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: MIT
+// A damaged checkpoint is refused, not believed (issue 14, item 5): every invariant the writer
+// guarantees is checked on read, the data carry a digest, and a state that does not balance is
+// not resumed. Edits are made with the HDF5 C API, as a hostile or broken tool would.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "runnel/core/error.hpp"
+#include "runnel/models/checkpoint.hpp"
+#include "runnel/models/registry.hpp"
+#include "runnel/models/sph_model.hpp"
+#include "runnel/terrain/generators.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::compute;
+using test::ScratchDir;
+
+// A small SPH run's checkpoint with particles carrying sediment.
+std::string write_sample(const ScratchDir& dir) {
+  Parameters p;
+  p.set("rain.rate", 3000.0);
+  p.set("rain.lifespan", 0.5);
+  p.set("erosion.erodibility", 0.05);
+  const Heightmap t = generate_terrain("fbm", 33, 29, 1.0, 5, {{"relief", 0.3}});
+  SphModel model(compute(), p, t);
+  for (int k = 0; k < 80; ++k) model.step();
+  const std::string path = dir.path("sample.h5");
+  write_checkpoint(path, model.checkpoint());
+  return path;
+}
+
+// The checkpoint at `path` copied to `name`, with `edit` applied to the open file.
+template <typename Edit>
+std::string edited(const ScratchDir& dir, const std::string& path, const std::string& name,
+                   Edit edit) {
+  const std::string out = dir.path(name);
+  std::filesystem::copy_file(path, out, std::filesystem::copy_options::overwrite_existing);
+  const hid_t f = H5Fopen(out.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  EXPECT_GE(f, 0);
+  edit(f);
+  H5Fclose(f);
+  return out;
+}
+
+// Replaces a scalar attribute (deleted and created again: HDF5 1.10 cannot rewrite some in place).
+void replace_attribute(hid_t f, const char* object, const char* name, hid_t type,
+                       const void* value) {
+  ASSERT_GE(H5Adelete_by_name(f, object, name, H5P_DEFAULT), 0) << object << "@" << name;
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t a =
+      H5Acreate_by_name(f, object, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(H5Awrite(a, type, value), 0) << object << "@" << name;
+  H5Aclose(a);
+  H5Sclose(space);
+}
+void set_int_attribute(hid_t f, const char* object, const char* name, std::int64_t value) {
+  replace_attribute(f, object, name, H5T_NATIVE_INT64, &value);
+}
+void set_double_attribute(hid_t f, const char* object, const char* name, double value) {
+  replace_attribute(f, object, name, H5T_NATIVE_DOUBLE, &value);
+}
+
+void expect_refused(const std::string& file, const std::string& fragment) {
+  try {
+    const CheckpointData d = read_checkpoint(file);
+    make_model_from_checkpoint(compute(), d, file);
+    FAIL() << file << " was accepted (" << fragment << ")";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kUsage) << e.what();
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(file), std::string::npos) << msg;
+    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
+TEST(DamagedCheckpoint, BrokenInvariantsAreRefusedNamingFileAndField) {
+  ScratchDir dir;
+  const std::string good = write_sample(dir);
+  ASSERT_NO_THROW(make_model_from_checkpoint(compute(), read_checkpoint(good), good));
+  expect_refused(
+      edited(dir, good, "steps.h5", [](hid_t f) { set_int_attribute(f, "/state", "steps", -5); }),
+      "steps");
+  expect_refused(edited(dir, good, "carry.h5",
+                        [](hid_t f) { set_double_attribute(f, "/state", "rain_carry", NAN); }),
+                 "rain_carry");
+  expect_refused(
+      edited(dir, good, "count.h5",
+             [](hid_t f) { set_int_attribute(f, "/particles", "count", std::int64_t{1} << 40); }),
+      "count");
+  expect_refused(edited(dir, good, "toml.h5",
+                        [](hid_t f) {
+                          const hid_t a =
+                              H5Aopen_by_name(f, "/", "parameters_toml", H5P_DEFAULT, H5P_DEFAULT);
+                          const hid_t type = H5Aget_type(a);
+                          std::vector<char> empty(H5Tget_size(type), '\0');
+                          H5Awrite(a, type, empty.data());
+                          H5Tclose(type);
+                          H5Aclose(a);
+                        }),
+                 "parameters_toml");
+  // A value changed consistently with every other invariant: only the digest tells.
+  expect_refused(edited(dir, good, "value.h5",
+                        [](hid_t f) {
+                          const hid_t d = H5Dopen2(f, "/particles/vx", H5P_DEFAULT);
+                          const hid_t space = H5Dget_space(d);
+                          std::vector<float> v(H5Sget_simple_extent_npoints(space));
+                          H5Dread(d, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+                          v[0] += 0.5f;
+                          H5Dwrite(d, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+                          H5Sclose(space);
+                          H5Dclose(d);
+                        }),
+                 "digest");
+}
+
+TEST(DamagedCheckpoint, NegativeSedimentAndAnUnbalancedStateAreRefused) {
+  ScratchDir dir;
+  const std::string good = write_sample(dir);
+  CheckpointData d = read_checkpoint(good);
+  // Written through runnel's own writer (so the digest matches): only the invariants can tell.
+  CheckpointData negative = d;
+  ASSERT_GT(negative.particles.size(), 0u);
+  negative.particles.sediment[0] = -7;
+  write_checkpoint(dir.path("negative.h5"), negative);
+  expect_refused(dir.path("negative.h5"), "sediment");
+  CheckpointData unbalanced = d;
+  unbalanced.height_fixed[100] += 4;  // 4 quanta of terrain from nowhere
+  unbalanced.terrain.h[100] =
+      static_cast<float>(static_cast<double>(unbalanced.height_fixed[100]) * d.height_quantum);
+  write_checkpoint(dir.path("unbalanced.h5"), unbalanced);
+  expect_refused(dir.path("unbalanced.h5"), "balance");
+}
+
+TEST(DamagedCheckpoint, FlippedBytesAreRefusedOrChangeNothing) {
+  ScratchDir dir;
+  const std::string good = write_sample(dir);
+  const CheckpointData original = read_checkpoint(good);
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::mt19937 rng(44);
+  int refused = 0, harmless = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    std::string flipped = bytes;
+    const std::size_t at = std::uniform_int_distribution<std::size_t>(0, bytes.size() - 1)(rng);
+    flipped[at] = static_cast<char>(flipped[at] ^ (1 << (trial % 8)));
+    const std::string file = dir.path("flip" + std::to_string(trial) + ".h5");
+    std::ofstream(file, std::ios::binary) << flipped;
+    try {
+      const CheckpointData d = read_checkpoint(file);
+      make_model_from_checkpoint(compute(), d, file);
+      // Accepted: then the flip hit bytes the data do not depend on (padding, free space).
+      EXPECT_EQ(d.height_fixed, original.height_fixed) << "byte " << at;
+      EXPECT_EQ(d.particles.f[kX], original.particles.f[kX]) << "byte " << at;
+      EXPECT_EQ(d.parameters_toml, original.parameters_toml) << "byte " << at;
+      ++harmless;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::kUsage) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      ++refused;
+    }
+  }
+  EXPECT_GT(refused, 0);
+  std::printf("flipped bytes: %d refused, %d harmless\n", refused, harmless);
+}
+
+}  // namespace
+}  // namespace runnel
