@@ -126,17 +126,40 @@ TEST(HostileInputs, OutputEqualToInputIsRefused) {
   EXPECT_EQ(test::read_text(dir.path("in.png")), before);
 }
 
+// An n x n ESRI grid of `height`, with `corner` at (0, 0).
+std::string flat_asc(int n, const std::string& height, const std::string& corner) {
+  std::string s = "ncols " + std::to_string(n) + "\nnrows " + std::to_string(n) +
+                  "\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+  for (int k = 0; k < n * n; ++k) s += (k == 0 ? corner : height) + (k % n == n - 1 ? "\n" : " ");
+  return s;
+}
+
 TEST(HostileInputs, FixedPointOverflowIsRefusedUpFront) {
   ScratchDir dir;
-  test::write_text(dir.path("tall.asc"), kHeader + "1e6 1e6 1e6\n1e6 1e6 1e6\n1e6 1e6 1e6\n");
+  test::write_text(dir.path("tall.asc"), flat_asc(16, "1e6", "1e6"));
   expect_refused(run_cli({"run", "--terrain", dir.path("tall.asc"), "--steps", "1", "--set",
                           "erosion.height_quantum=1e-12", "--out", dir.path("o")}),
                  {"erosion.height_quantum"}, "1e6 m at 1e-12 m quanta");
-  test::write_text(dir.path("huge.asc"), kHeader + "1e13 1 1\n1 1 1\n1 1 1\n");
+  test::write_text(dir.path("huge.asc"), flat_asc(16, "1", "1e13"));
   expect_refused(
       run_cli({"run", "--terrain", dir.path("huge.asc"), "--steps", "1", "--out", dir.path("o")}),
       {"huge.asc"}, "1e13 m");
   EXPECT_FALSE(std::filesystem::exists(dir.path("o")));
+}
+
+TEST(HostileInputs, TerrainsTooSmallForTheSphModelAreRefusedWithTheSmallestSize) {
+  ScratchDir dir;
+  for (const char* size : {"2", "3", "9"}) {
+    expect_refused(
+        run_cli({"run", "--generate", "plane", "--set", std::string("terrain.size=") + size,
+                 "--steps", "5", "--out", dir.path("o")}),
+        {"too small", "at least 16 x 16"}, size);
+  }
+  // The grid models run on the smallest terrain there is.
+  EXPECT_EQ(run_cli({"run", "--generate", "plane", "--model", "pipe", "--set", "terrain.size=2",
+                     "--steps", "5", "--quiet", "--out", dir.path("p")})
+                .exit_code,
+            0);
 }
 
 TEST(HostileInputs, ScenarioContradictionsAreRefusedWithTheirKeys) {

@@ -106,7 +106,7 @@ TEST(OutputSafety, AnOutputPathThatCannotBeWrittenIsExitTwoForEveryWriter) {
   ScratchDir dir;
   test::write_text(dir.path("file"), "a file, not a folder");
   ASSERT_EQ(run_cli({"generate", "fbm", "--size", "9", "-o", dir.path("t.asc")}).exit_code, 0);
-  ASSERT_EQ(run_cli({"run", "--generate", "plane", "--set", "terrain.size=9", "--steps", "2",
+  ASSERT_EQ(run_cli({"run", "--generate", "plane", "--set", "terrain.size=17", "--steps", "2",
                      "--quiet", "--out", dir.path("o")})
                 .exit_code,
             0);
@@ -115,7 +115,7 @@ TEST(OutputSafety, AnOutputPathThatCannotBeWrittenIsExitTwoForEveryWriter) {
       {"generate", "fbm", "--size", "9", "-o", bad + ".asc"},
       {"convert", dir.path("t.asc"), bad + ".npy"},
       {"export", dir.path("o/final.h5"), "--format", "asc", "-o", bad + ".asc"},
-      {"run", "--generate", "plane", "--set", "terrain.size=9", "--steps", "2", "--out", bad},
+      {"run", "--generate", "plane", "--set", "terrain.size=17", "--steps", "2", "--out", bad},
       {"resume", dir.path("o/final.h5"), "--steps", "1", "--out", bad},
   };
   for (const auto& args : writers) {

@@ -20,6 +20,9 @@ namespace runnel {
 // One SPH rain-erosion run: the terrain, the fluid, the rain, erosion and talus, advanced together.
 // Defaults that depend on the terrain (particle spacing, rain, spawn height, c0) are derived here
 // from its cell size and relief (docs/erosion.md).
+// The smallest terrain (vertices per side) the SPH model runs on.
+inline constexpr int kMinSphVertices = 16;
+
 class Simulation {
  public:
   Simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
