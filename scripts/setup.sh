@@ -12,6 +12,7 @@ packages=(
   python3 python3-numpy python3-h5py
   xvfb xdotool x11-utils libgl1-mesa-dri
   clang-format
+  clang libclang-rt-14-dev  # scripts/sanitize.sh: ASan + UBSan build and the libFuzzer targets
 )
 
 missing=()

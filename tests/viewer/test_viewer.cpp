@@ -93,6 +93,9 @@ Picture read_rgb_png(const std::string& path) {
 
 #define REQUIRE_X_TOOLS()                                                                          \
   do {                                                                                             \
+    if (!std::filesystem::exists(RUNNEL_VIEWER_BINARY))                                            \
+      GTEST_SKIP()                                                                                 \
+          << "runnel-viewer is not built here (RUNNEL_BUILD_VIEWER=OFF, as in build-asan)";        \
     for (const char* tool : {"Xvfb", "xdotool", "xdpyinfo"}) {                                     \
       if (!have(tool)) GTEST_SKIP() << tool << " is not installed (scripts/setup.sh installs it)"; \
     }                                                                                              \

@@ -210,7 +210,12 @@ std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsi
                       dims_text(expected));
   }
   hsize_t total = 1;
-  for (auto v : d) total *= v;
+  for (auto v : d) {
+    // Refuse before allocating: a damaged header can claim terabytes.
+    if (v > 0 && total > (hsize_t{1} << 32) / sizeof(T) / v)
+      throw input_error(path_ + ": dataset " + name + " is " + dims_text(d) + ", too large");
+    total *= v;
+  }
   std::vector<T> out(total);
   H5Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
   if (total > 0 && H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {

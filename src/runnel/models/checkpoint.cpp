@@ -11,6 +11,7 @@
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/models/fields.hpp"
+#include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
 namespace {
@@ -289,6 +290,7 @@ CheckpointData read_checkpoint(const std::string& path) {
   const std::vector<hsize_t> grid = f.dims("/terrain/height");
   if (grid.size() != 2 || grid[0] < 2 || grid[1] < 2)
     throw input_error(path + ": /terrain/height is not a 2-D grid");
+  check_terrain_size(path, static_cast<long long>(grid[1]), static_cast<long long>(grid[0]));
   d.terrain = Heightmap(static_cast<int>(grid[1]), static_cast<int>(grid[0]),
                         f.read_double_attribute("/terrain", "cell"));
   if (!(d.terrain.cell > 0)) throw input_error(path + ": /terrain@cell is not positive");

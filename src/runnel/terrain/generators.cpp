@@ -350,7 +350,9 @@ Heightmap generate_terrain(const std::string& name, int nx, int ny, double cell,
     throw input_error("--cell: must be a positive number of metres");
   GeneratorRequest request{nx, ny, cell, seed, {}};
   for (auto& p : spec.params) request.values[p.key] = p.default_value;
-  for (auto& [key, value] : overrides) {
+  for (const auto& entry : overrides) {
+    const std::string& key = entry.first;  // not a structured binding: lambdas capture it
+    const double value = entry.second;
     auto it =
         std::find_if(spec.params.begin(), spec.params.end(), [&](auto& p) { return p.key == key; });
     if (it == spec.params.end()) {

@@ -42,8 +42,7 @@ struct PngReadResult {
   bool has_range = false, has_cell = false;
   std::string range_text, cell_text;
   // Buffers live in the caller's object so a longjmp out of libpng skips no destructor.
-  std::vector<png_byte> pixels;
-  std::vector<png_bytep> rows;
+  std::vector<png_byte> row;
 };
 
 // Returns an empty string on success, else libpng's message. `samples` is filled by the second
@@ -59,6 +58,11 @@ std::string png_read(std::FILE* f, PngReadResult& r, std::vector<std::uint16_t>*
     return errors.message[0] ? errors.message : "corrupt PNG";
   }
   png_init_io(png, f);
+  // Limits before libpng reads anything: the image within runnel's terrain limits, and no
+  // ancillary chunk (text, ICC profile) inflating to more than 4 MiB.
+  png_set_user_limits(png, kMaxSide, kMaxSide);
+  png_set_chunk_malloc_max(png, 4u << 20);
+  png_set_chunk_cache_max(png, 1000);
   png_read_info(png, info);
   r.width = png_get_image_width(png, info);
   r.height = png_get_image_height(png, info);
@@ -83,21 +87,24 @@ std::string png_read(std::FILE* f, PngReadResult& r, std::vector<std::uint16_t>*
              std::to_string(r.color_type) + " at " + std::to_string(r.bit_depth) + " bits)";
     }
     if (r.bit_depth == 16) png_set_swap(png);  // PNG is big-endian; we read native uint16
+    if (png_get_interlace_type(png, info) != PNG_INTERLACE_NONE) {
+      png_destroy_read_struct(&png, &info, nullptr);
+      return "interlaced (Adam7) PNGs are not read; save the heightmap non-interlaced";
+    }
     png_read_update_info(png, info);
-    const std::size_t row_bytes = png_get_rowbytes(png, info);
-    r.pixels.resize(row_bytes * r.height);
-    r.rows.resize(r.height);
-    for (png_uint_32 y = 0; y < r.height; ++y) r.rows[y] = r.pixels.data() + y * row_bytes;
-    png_read_image(png, r.rows.data());
-    png_read_end(png, nullptr);
-    samples->resize(static_cast<std::size_t>(r.width) * r.height);
-    for (std::size_t k = 0; k < samples->size(); ++k) {
-      if (r.bit_depth == 16) {
-        std::memcpy(&(*samples)[k], r.pixels.data() + 2 * k, 2);
-      } else {
-        (*samples)[k] = r.pixels[k];
+    // Row by row, the samples growing as rows actually decode: a header that claims a huge image
+    // over a few bytes of data fails at its first missing row, not at a huge allocation.
+    r.row.resize(png_get_rowbytes(png, info));
+    samples->clear();
+    for (png_uint_32 y = 0; y < r.height; ++y) {
+      png_read_row(png, r.row.data(), nullptr);
+      for (png_uint_32 x = 0; x < r.width; ++x) {
+        std::uint16_t v = r.row[x];
+        if (r.bit_depth == 16) std::memcpy(&v, r.row.data() + 2 * x, 2);
+        samples->push_back(v);
       }
     }
+    png_read_end(png, nullptr);
   }
   png_destroy_read_struct(&png, &info, nullptr);
   return "";
@@ -120,6 +127,29 @@ bool parse_numbers(const std::string& text, std::vector<double>& out) {
   return !out.empty();
 }
 
+// Walks the chunk list before libpng sees the file: every chunk must lie inside the file. (libpng
+// allocates a text chunk's claimed length, up to 2 GiB, before it finds the data missing.)
+// Returns "" or what is wrong.
+std::string check_chunks(std::FILE* f) {
+  if (std::fseek(f, 0, SEEK_END) != 0) return "cannot seek";
+  const long size = std::ftell(f);
+  long at = 8;  // after the signature
+  while (at + 12 <= size) {
+    unsigned char header[8];
+    if (std::fseek(f, at, SEEK_SET) != 0 || std::fread(header, 1, 8, f) != 8) return "truncated";
+    const std::uint32_t length =
+        (std::uint32_t{header[0]} << 24) | (header[1] << 16) | (header[2] << 8) | header[3];
+    const std::string type(reinterpret_cast<const char*>(header + 4), 4);
+    if (static_cast<long long>(at) + 12 + length > size) {
+      return "chunk " + quoted(type) + " claims " + std::to_string(length) +
+             " bytes, past the end of the file";
+    }
+    if (type == "IEND") return "";
+    at += 12 + static_cast<long>(length);
+  }
+  return "no IEND chunk (truncated)";
+}
+
 }  // namespace
 
 Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& range) {
@@ -130,9 +160,10 @@ Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& 
     std::fclose(f);
     throw input_error(path + ": not a PNG file");
   }
+  std::string err = check_chunks(f);
   std::rewind(f);
   PngReadResult header;
-  std::string err = png_read(f, header, nullptr);
+  if (err.empty()) err = png_read(f, header, nullptr);
   if (err.empty()) {
     try {
       check_terrain_size(path, header.width, header.height);

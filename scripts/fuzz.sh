@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Fuzzes every reader for longer than the test suite does: SECONDS per target (default 600),
+# growing build-asan/fuzz/corpus/<reader> from the committed seeds. Findings (crash-*, leak-*,
+# timeout-*) land in build-asan/fuzz/findings/<reader>/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-600}"
+RUNNEL_FUZZ_SECONDS=1 bash scripts/sanitize.sh >/dev/null 2>&1 || true  # builds the targets
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0}"
+for reader in asc png npy checkpoint scenario; do
+  mkdir -p "build-asan/fuzz/corpus/$reader" "build-asan/fuzz/findings/$reader"
+  echo "fuzzing $reader for ${seconds} s"
+  "build-asan/fuzz/fuzz_$reader" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -print_final_stats=1 -artifact_prefix="build-asan/fuzz/findings/$reader/" \
+    "build-asan/fuzz/corpus/$reader" "fuzz/corpus/$reader" 2>&1 | grep -E "stat::|ERROR|SUMMARY" || true
+done
