@@ -76,6 +76,18 @@ TEST(HostileInputs, NonFiniteAndAbsurdNumbersInTerrainFiles) {
   }
 }
 
+TEST(HostileInputs, HeightRangesBeyondAnyTerrainAreRefused) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli({"generate", "fbm", "--size", "9", "-o", dir.path("in.png")}).exit_code, 0);
+  expect_refused(
+      run_cli({"convert", dir.path("in.png"), dir.path("out.asc"), "--range", "-1e300:1e300"}),
+      {"in.png", "range"}, "PNG read range ±1e300");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("out.asc")));
+  expect_refused(run_cli({"convert", dir.path("in.png"), dir.path("out.png"), "--range", "0:1e39"}),
+                 {"range"}, "--range 0:1e39");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("out.png")));
+}
+
 TEST(HostileInputs, EchoedBytesAreEscaped) {
   ScratchDir dir;
   test::write_text(dir.path("escape.asc"), kHeader + "1 2 3\n4 \x1b[2J\x1b[31mred 6\n7 8 9\n");
