@@ -277,7 +277,13 @@ std::string H5File::read_string_attribute(const std::string& object,
     throw input_error(path_ + ": attribute " + object + "@" + name +
                       " is not a fixed-length string");
   }
-  std::string out(H5Tget_size(type.get()), '\0');
+  // runnel's longest string attribute is the parameter set, a few kB: a damaged type may claim GB.
+  const std::size_t size = H5Tget_size(type.get());
+  if (size > (std::size_t{16} << 20)) {
+    throw input_error(path_ + ": attribute " + object + "@" + name + " claims " +
+                      std::to_string(size) + " bytes, more than any runnel string");
+  }
+  std::string out(size, '\0');
   if (H5Aread(a.get(), type.get(), out.data()) < 0)
     throw input_error(path_ + ": unreadable attribute " + name);
   while (!out.empty() && out.back() == '\0') out.pop_back();
