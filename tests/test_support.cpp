@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -76,7 +77,9 @@ std::string source_dir() {
 namespace runnel::test {
 
 ComputeContext& compute() {
-  static ComputeContext context("cpu");
+  // RUNNEL_TEST_DEVICE runs the OpenCL tests on another device (scripts/gpu-check.sh: the GPU).
+  static ComputeContext context(std::getenv("RUNNEL_TEST_DEVICE") ? std::getenv("RUNNEL_TEST_DEVICE")
+                                                                  : "cpu");
   return context;
 }
 

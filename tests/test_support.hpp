@@ -12,7 +12,8 @@
 
 namespace runnel::test {
 
-// The CPU device (PoCL) every OpenCL test runs on, created once per test process.
+// The device every OpenCL test runs on, created once per test process: the CPU (PoCL), or
+// $RUNNEL_TEST_DEVICE.
 ComputeContext& compute();
 
 // A fresh, empty folder for one test, removed when the test ends.

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# One prepared run on a machine with a GPU (issue 15): builds runnel, lists the OpenCL devices, runs
+# `runnel bench sph` at 1 M and 4 M particles and the grid benchmarks at 4096² on the GPU, the test
+# suite with its OpenCL tests on the GPU, and reports the viewer's frame rate where a display is
+# there; each step under its own time limit so the whole fits in 8 minutes. Writes
+# ${OUT:-gpu-check-out}/gpu-check.json (one object: each step's JSON, or why it did not run).
+#   DEVICE=gpu        the device to measure (see `runnel devices`)
+#   SCALE=1           1: the sizes above; e.g. SCALE=0.01 for a dry run on a CPU
+set -uo pipefail
+cd "$(dirname "$0")/.."
+out="${OUT:-gpu-check-out}"
+device="${DEVICE:-gpu}"
+scale="${SCALE:-1}"
+mkdir -p "$out"
+summary="$out/gpu-check.json"
+log="$out/gpu-check.log"
+: >"$log"
+entries=()
+
+# Runs a step under a time limit; its stdout (JSON) becomes the entry, else the reason it failed.
+step() {
+  local name="$1" limit="$2"
+  shift 2
+  local start end output rc
+  start=$(date +%s.%N)
+  output=$(timeout "$limit" "$@" 2>>"$log")
+  rc=$?
+  end=$(date +%s.%N)
+  local seconds
+  seconds=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f", b - a }')
+  if [ $rc -eq 0 ] && [ -n "$output" ]; then
+    entries+=("\"$name\": {\"seconds\": $seconds, \"result\": $output}")
+  else
+    local why="exit $rc"
+    [ $rc -eq 124 ] && why="timed out after $limit s"
+    entries+=("\"$name\": {\"seconds\": $seconds, \"failed\": \"$why (see gpu-check.log)\"}")
+  fi
+  echo "gpu-check: $name: rc $rc, $seconds s" >&2
+}
+scaled() { awk -v n="$1" -v s="$scale" 'BEGIN { v = int(n * s); if (v < 1) v = 1; print v }'; }
+
+# 1. Build (no package installation: the machine may have no network; missing tools are reported).
+if ! command -v cmake >/dev/null; then
+  echo '{"failed": "cmake is not installed on this machine"}' >"$summary"
+  exit 1
+fi
+step build 240 bash -c 'cmake -S . -B build-gpu -DCMAKE_BUILD_TYPE=Release -DRUNNEL_BUILD_VIEWER=ON >&2 &&
+  cmake --build build-gpu -j "$(nproc)" >&2 && echo "{\"ok\": true}"'
+runnel=build-gpu/runnel
+
+# 2. Devices.
+step devices 30 bash -c "$runnel devices --json 2>/dev/null || $runnel devices | python3 -c 'import json,sys; print(json.dumps(sys.stdin.read()))'"
+
+# 3. SPH at 1 M and 4 M particles.
+for n in 1000000 4000000; do
+  step "sph_$n" 120 "$runnel" bench sph --particles "$(scaled $n)" --steps 20 --device "$device"
+done
+
+# 4. Grid models at 4096².
+size=$(scaled 4096)
+[ "$size" -lt 64 ] && size=64
+for model in pipe olsen thermal droplet; do
+  step "${model}_${size}" 60 "$runnel" bench "$model" --size "$size" --steps 10 --device "$device"
+done
+
+# 5. The test suite, its OpenCL tests on the GPU (the CLI picks the first GPU by itself).
+step tests 180 bash -c "cd build-gpu && RUNNEL_TEST_DEVICE=$device ctest -j \"\$(nproc)\" -LE fuzz >&2 &&
+  echo '{\"all_passed\": true}'"
+
+# 6. The viewer under the GPU's own OpenGL needs a display; a headless machine has none.
+if [ -n "${DISPLAY:-}" ]; then
+  step viewer 90 bash -c "build-gpu/runnel-viewer --frames 300 --stats-every 100 data/scenarios/default.toml 2>/dev/null | tail -1"
+else
+  entries+=("\"viewer\": {\"skipped\": \"no display on this machine (DISPLAY unset): the frame rate needs the GPU's OpenGL on a screen\"}")
+fi
+
+{
+  echo "{"
+  echo "  \"device\": \"$device\", \"scale\": $scale, \"date\": \"$(date -u +%FT%TZ)\","
+  for k in "${!entries[@]}"; do
+    sep=","
+    [ "$k" -eq $((${#entries[@]} - 1)) ] && sep=""
+    echo "  ${entries[$k]}$sep"
+  done
+  echo "}"
+} >"$summary"
+echo "gpu-check: wrote $summary" >&2
