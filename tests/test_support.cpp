@@ -78,8 +78,8 @@ namespace runnel::test {
 
 ComputeContext& compute() {
   // RUNNEL_TEST_DEVICE runs the OpenCL tests on another device (scripts/gpu-check.sh: the GPU).
-  static ComputeContext context(std::getenv("RUNNEL_TEST_DEVICE") ? std::getenv("RUNNEL_TEST_DEVICE")
-                                                                  : "cpu");
+  static ComputeContext context(
+      std::getenv("RUNNEL_TEST_DEVICE") ? std::getenv("RUNNEL_TEST_DEVICE") : "cpu");
   return context;
 }
 

@@ -190,6 +190,10 @@ TEST(HostileInputs, ScenarioContradictionsAreRefusedWithTheirKeys) {
                  "density_min = density_max");
   expect_refused(with({"terrain.size=33", "rain.spawn_height=1e6"}), {"rain.spawn_height"},
                  "spawn height 1e6");
+  // 10^8 particles of 132 bytes (20 GB) fit no device this suite runs on; refused with the figures.
+  expect_refused(with({"terrain.size=33", "rain.max_particles=100000000"}),
+                 {"rain.max_particles", "MB of device memory"},
+                 "a particle budget beyond the device");
   expect_refused(run_cli({"run", "--generate", "plane", "--model", "droplet", "--steps", "1",
                           "--set", "droplet.batch=100000000", "--out", dir.path("o")}),
                  {"droplet.batch"}, "droplet.batch 1e8");

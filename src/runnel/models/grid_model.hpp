@@ -32,6 +32,7 @@ class GridModel : public Model {
   std::string status() override;
   double step_work() override { return static_cast<double>(state_.vertices()); }
   const char* work_unit() const override { return "cell_steps"; }
+  double device_bytes() const override { return state_.device_bytes(); }
 
   GridState& state() { return state_; }
   // Height quanta that left the map (outflow edges), and that the model has in suspension.

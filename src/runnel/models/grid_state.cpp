@@ -20,6 +20,12 @@ void GridState::set_initial_fixed(const std::vector<std::int64_t>& fixed) {
     initial_.h[k] = static_cast<float>(static_cast<double>(fixed[k]) * terrain_.quantum());
 }
 
+double GridState::device_bytes() const {
+  double bytes = 32.0 * static_cast<double>(vertices_);  // fixed point, deltas, float view, normals
+  for (const Field& f : fields_) bytes += static_cast<double>(vertices_ * f.bytes());
+  return bytes;
+}
+
 std::size_t GridState::Field::bytes() const {
   return static_cast<std::size_t>(components) * (is_int64 ? 8 : 4);
 }

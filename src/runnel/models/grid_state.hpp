@@ -37,6 +37,8 @@ class GridState {
   std::vector<float> download_float(const std::string& name);
   std::vector<std::int64_t> download_int64(const std::string& name);
   std::size_t vertices() const { return static_cast<std::size_t>(terrain_.nx()) * terrain_.ny(); }
+  // Device memory of the terrain and every field (bytes).
+  double device_bytes() const;
 
  private:
   struct Field {

@@ -68,6 +68,8 @@ class Model {
   // throughput in metrics.json.
   virtual double step_work() = 0;
   virtual const char* work_unit() const = 0;  // "particle_steps", "cell_steps", "droplet_steps"
+  // The most device memory the model will hold (bytes), printed before a run starts.
+  virtual double device_bytes() const = 0;
 };
 
 }  // namespace runnel

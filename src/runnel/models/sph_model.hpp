@@ -30,6 +30,7 @@ class SphModel final : public Model {
   std::string status() override;
   double step_work() override { return static_cast<double>(sim_->particles()); }
   const char* work_unit() const override { return "particle_steps"; }
+  double device_bytes() const override { return sim_->device_bytes(); }
 
   Simulation& simulation() { return *sim_; }
 

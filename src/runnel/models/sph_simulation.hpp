@@ -38,6 +38,8 @@ class Simulation {
   double dt() const { return solver_->dt(); }
   std::uint64_t steps() const { return solver_->steps(); }
   std::size_t particles() const { return solver_->particles().size(); }
+  // The most device memory the run will hold (bytes), checked against the device when built.
+  double device_bytes() const { return device_bytes_; }
   SphCounters counters() { return solver_->counters(); }
   const Parameters& parameters() const { return params_; }
   // The values the run actually uses, automatic ones resolved.
@@ -63,6 +65,7 @@ class Simulation {
   std::unique_ptr<Erosion> erosion_;
   std::unique_ptr<ThermalRelaxation> thermal_;
   double thermal_interval_ = 0;  // s
+  double device_bytes_ = 0;      // see device_bytes()
 };
 
 }  // namespace runnel

@@ -125,6 +125,12 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   }
   const fs::path out(options.out_dir);
   RollingCheckpoints checkpoints(out, model, options.keep_checkpoints, options.overwrite);
+  if (!options.quiet) {
+    std::fprintf(stderr,
+                 "runnel: %s on %s: at most %.1f MB of device memory (the device has %.0f MB)\n",
+                 model.info().name.c_str(), compute.info().name.c_str(), model.device_bytes() / 1e6,
+                 static_cast<double>(compute.info().global_memory) / 1e6);
+  }
   const auto start = std::chrono::steady_clock::now();
   compute.profiler().reset();
   compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") ==
