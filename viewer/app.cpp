@@ -20,7 +20,6 @@
 #include "renderers.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
-#include "runnel/core/vertex_normals.hpp"
 #include "runnel/io/images.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
@@ -258,7 +257,7 @@ void Viewer::advance() {
 void Viewer::upload() {
   const Heightmap t = sim_->terrain();
   const std::size_t n = t.size();
-  terrain_->update(t.h, terrain_normals_reference(t));
+  terrain_->update(t.h, sim_->terrain_normals());
   const HostParticles p = sim_->particles();
   std::vector<float> xyzv(4 * p.size());
   const double q = sim_->volume_quantum(), volume = std::pow(sim_->particle_spacing(), 3);

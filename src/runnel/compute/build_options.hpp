@@ -1,16 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include <cstdio>
-#include <string>
+#include "runnel/core/text.hpp"
 
 namespace runnel {
 
-// One OpenCL build option that defines a float constant, " -DNAME=((float)(value))": the double
-// written with 17 digits and cast to float by the kernel compiler, exactly as the host rounds it.
-inline std::string float_define(const char* name, double value) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, " -D%s=((float)(%.17g))", name, value);
-  return buf;
-}
+// float_define, the one way a float constant reaches a kernel, lives in core/text.hpp so that the
+// settings tables (core/) write their defines with it too.
 
 }  // namespace runnel

@@ -9,6 +9,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/core/text.hpp"
 
 namespace runnel {
 
@@ -77,14 +78,14 @@ std::string settings_defines(const S& s, const SettingsTable<S>& table) {
         [&](auto member) {
           using V = std::remove_cvref_t<decltype(s.*member)>;
           if constexpr (std::is_same_v<V, double>) {
-            std::snprintf(buf, sizeof buf, " -D%s=((float)(%.17g))", row.define, s.*member);
+            o += float_define(row.define, s.*member);
           } else if constexpr (std::is_same_v<V, std::string>) {
             throw runtime_error(row.key + ": a text parameter cannot be a kernel define");
           } else {
             std::snprintf(buf, sizeof buf, " -D%s=%lld", row.define,
                           static_cast<long long>(s.*member));
+            o += buf;
           }
-          o += buf;
         },
         row.member);
   }

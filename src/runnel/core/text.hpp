@@ -6,6 +6,14 @@
 
 namespace runnel {
 
+// One OpenCL build option that defines a float constant, " -DNAME=((float)(value))": the double
+// written with 17 digits and cast to float by the kernel compiler, exactly as the host rounds it.
+inline std::string float_define(const char* name, double value) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, " -D%s=((float)(%.17g))", name, value);
+  return buf;
+}
+
 // A number for a message: %g, so 1e+300 and nan read as themselves.
 inline std::string format_number(double value) {
   char buf[32];

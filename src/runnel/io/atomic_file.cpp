@@ -11,6 +11,18 @@
 #include "runnel/core/error.hpp"
 
 namespace runnel {
+namespace {
+
+// The exit-code rule (README): a path the user gave that cannot be written is bad input (2); a
+// failure while writing (a full disk, an I/O error) is a runtime failure (1).
+[[noreturn]] void throw_write_error(const std::string& message, int e) {
+  if (e == EACCES || e == EPERM || e == EROFS || e == ENOTDIR || e == ENOENT || e == ENAMETOOLONG ||
+      e == EISDIR)
+    throw input_error(message);
+  throw runtime_error(message);
+}
+
+}  // namespace
 
 void write_file_atomically(const std::string& path, const std::function<void(std::FILE*)>& write) {
   write_path_atomically(path, [&](const std::string& temporary) {
@@ -42,14 +54,8 @@ void write_path_atomically(const std::string& path,
   std::string tmp_name = (dir / hidden_name).string();
   const int fd = mkstemp(tmp_name.data());
   if (fd < 0) {
-    // The exit-code rule (README): a path the user gave that cannot be written is bad input (2);
-    // a failure while writing (a full disk, an I/O error) is a runtime failure (1).
     const int e = errno;
-    const std::string message = path + ": cannot write here: " + std::strerror(e);
-    if (e == EACCES || e == EPERM || e == EROFS || e == ENOTDIR || e == ENOENT ||
-        e == ENAMETOOLONG || e == EISDIR)
-      throw input_error(message);
-    throw runtime_error(message);
+    throw_write_error(path + ": cannot write here: " + std::strerror(e), e);
   }
   close(fd);
   try {
@@ -78,9 +84,7 @@ void write_path_atomically(const std::string& path,
   if (std::rename(tmp_name.c_str(), path.c_str()) != 0) {
     const int e = errno;
     unlink(tmp_name.c_str());
-    const std::string message = path + ": cannot put the file in place: " + std::strerror(e);
-    if (e == EISDIR || e == EACCES || e == EPERM || e == EROFS) throw input_error(message);
-    throw runtime_error(message);
+    throw_write_error(path + ": cannot put the file in place: " + std::strerror(e), e);
   }
   // The rename is durable only once the directory entry is on disk too.
   const int dir_fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY);

@@ -242,18 +242,15 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
 }
 
 std::string run_identity(const std::string& parameters_toml) {
-  std::uint64_t hash = 0xcbf29ce484222325ULL;  // FNV-1a
+  Digest id;
   std::istringstream lines(parameters_toml);
   for (std::string line; std::getline(lines, line);) {
     bool length_only = false;
     for (const char* key : {"steps =", "sim_time =", "iterations =", "report_every ="})
       length_only = length_only || line.rfind(key, 0) == 0;
-    if (length_only) continue;
-    for (unsigned char c : line + "\n") hash = (hash ^ c) * 0x100000001b3ULL;
+    if (!length_only) id.add(line);
   }
-  char id[17];
-  std::snprintf(id, sizeof id, "%016llx", static_cast<unsigned long long>(hash));
-  return id;
+  return id.hex();
 }
 
 std::string checkpoint_run_id(const std::string& path) {

@@ -41,6 +41,8 @@ class SphModel final : public Model {
   std::uint64_t drops_spawned() { return sim_->rain().spawned(); }
   double particle_spacing() const { return sim_->solver().settings().spacing; }
   double volume_quantum() { return sim_->solver().terrain().volume_quantum(); }
+  // The terrain's vertex normals as the device has them (3 floats a vertex): no host recompute.
+  std::vector<float> terrain_normals() { return sim_->solver().terrain().download_normals(); }
   const RainSettings& rain() { return sim_->rain().settings(); }
   void set_rain(const RainSettings& rain) { sim_->rain().settings() = rain; }
 

@@ -21,12 +21,6 @@ std::vector<std::int64_t> to_fixed(const Heightmap& t, double quantum) {
 
 }  // namespace
 
-namespace {
-bool thermal_interval_enabled(const Parameters& params) {
-  return ThermalSettings::from(params).interval > 0;
-}
-}  // namespace
-
 Simulation::Simulation(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
     : compute_(compute), params_(params), initial_(terrain) {
   // Measured (docs/sph.md): with the default rain, terrains of 10 x 10 vertices and fewer flood
@@ -76,6 +70,8 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                                         static_cast<float>(sph.rho0));
   erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_,
                                        static_cast<std::uint64_t>(params.integer("run.seed")));
+  const ThermalSettings thermal = ThermalSettings::from(params);
+  thermal_interval_ = thermal.interval;
   // The most device memory the run will hold: the particle store at its largest (the budget with
   // the store's growth margin), the terrain (fixed point, deltas, float view, normals, water
   // depth, talus outflows) and the hash grid's cell ranges. Refused now, with the figures, rather
@@ -87,7 +83,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
       std::min(static_cast<double>(rain.max_particles),
                std::ceil(rain.rate * rain.lifespan * (1.0 + rain.lifespan_jitter)) + 1.0);
   device_bytes_ = 1.5 * most_alive * static_cast<double>(ParticleStore::bytes_per_particle() + 4) +
-                  vertices * (32 + 8 + (thermal_interval_enabled(params) ? 32 : 0)) +
+                  vertices * (32 + 8 + (thermal_interval_ > 0 ? 32 : 0)) +
                   8.0 * static_cast<double>(solver_->hash().grid().cell_count());
   const double available = static_cast<double>(compute.info().global_memory);
   if (available > 0 && device_bytes_ > available) {
@@ -98,8 +94,6 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                       " bytes each, with growth margin, plus the terrain); " + compute.info().name +
                       " has " + format_number(available / 1e6) + " MB");
   }
-  const ThermalSettings thermal = ThermalSettings::from(params);
-  thermal_interval_ = thermal.interval;
   if (thermal_interval_ > 0) {
     thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal);
   }

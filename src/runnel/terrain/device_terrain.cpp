@@ -84,6 +84,13 @@ Heightmap DeviceTerrain::download() {
   return t;
 }
 
+std::vector<float> DeviceTerrain::download_normals() {
+  std::vector<float> normals(3 * static_cast<std::size_t>(nx_) * ny_);
+  compute_.queue().enqueueReadBuffer(normal(), CL_TRUE, 0, normals.size() * sizeof(float),
+                                     normals.data());
+  return normals;
+}
+
 std::vector<std::int64_t> DeviceTerrain::download_fixed() {
   std::vector<std::int64_t> fixed(static_cast<std::size_t>(nx_) * ny_);
   compute_.queue().enqueueReadBuffer(height_fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_long),
