@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The uniform grid of the spatial hash (cell size 2h): cell coordinates, Morton keys, and the
-// 27-cell neighbour loop that every particle-interaction kernel uses.
+// The uniform grid of the spatial hash (cell size 2h): cell coordinates, the linear cell index (the
+// sort key), and the 27-cell neighbour loop that every particle-interaction kernel uses.
 // A particle outside the grid is clamped into the nearest boundary cell. Clamping never separates
 // two particles by more than one cell that were within one cell, so no neighbour is lost; only
 // the candidate count of the boundary cells grows.
@@ -37,36 +37,66 @@ inline int3 cell_of(float3 p, Grid g) {
 
 inline uint linear_cell(int3 c, Grid g) { return (uint)(c.x + g.dims.x * (c.y + g.dims.y * c.z)); }
 
-// Interleaves the low 10 bits of v with two zero bits between each.
-inline uint spread_bits(uint v) {
-  v &= 0x3ffu;
-  v = (v | (v << 16)) & 0x030000FFu;
-  v = (v | (v << 8)) & 0x0300F00Fu;
-  v = (v | (v << 4)) & 0x030C30C3u;
-  v = (v | (v << 2)) & 0x09249249u;
-  return v;
-}
-
-inline uint morton_key(int3 c) {
-  return spread_bits((uint)c.x) | (spread_bits((uint)c.y) << 1) | (spread_bits((uint)c.z) << 2);
-}
-
-// Visits every particle j in the 27 cells around particle i's cell, in ascending cell order.
-// Usage: NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end) { ... uses j ... } NEIGHBOUR_LOOP_END
-#define NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end)                                  \
+// Visits every particle j in the 27 cells around particle i's cell as 9 rows along x. The sort key
+// is the linear cell index (x fastest), so the up to three cells of a row hold one contiguous range
+// of sorted particles: from the first occupied cell's start to the last one's end. The order of the
+// visit is ascending cell, then ascending j. (The hot neighbour passes are tiled instead, below.)
+// Usage: NEIGHBOUR_ROWS_BEGIN(pi, grid, cell_start, cell_end) { ... uses j ... } NEIGHBOUR_ROWS_END
+#define NEIGHBOUR_ROWS_BEGIN(pi, grid, cell_start, cell_end)                                   \
   {                                                                                           \
     const int3 c_i_ = cell_of(pi, grid);                                                      \
+    const int x0_ = max(c_i_.x - 1, 0), x1_ = min(c_i_.x + 1, grid.dims.x - 1);               \
     for (int dz_ = max(c_i_.z - 1, 0); dz_ <= min(c_i_.z + 1, grid.dims.z - 1); ++dz_) {      \
       for (int dy_ = max(c_i_.y - 1, 0); dy_ <= min(c_i_.y + 1, grid.dims.y - 1); ++dy_) {    \
-        for (int dx_ = max(c_i_.x - 1, 0); dx_ <= min(c_i_.x + 1, grid.dims.x - 1); ++dx_) { \
-          const uint cell_ = linear_cell((int3)(dx_, dy_, dz_), grid);                        \
-          const uint start_ = cell_start[cell_];                                              \
-          if (start_ == EMPTY_CELL) continue;                                                 \
-          const uint end_ = cell_end[cell_];                                                  \
-          for (uint j = start_; j < end_; ++j) {
-#define NEIGHBOUR_LOOP_END \
-  }                        \
+        const uint row_ = linear_cell((int3)(0, dy_, dz_), grid);                             \
+        uint begin_ = EMPTY_CELL, end_ = 0;                                                   \
+        for (int cx_ = x0_; cx_ <= x1_; ++cx_) {                                              \
+          const uint s_ = cell_start[row_ + cx_];                                             \
+          if (s_ == EMPTY_CELL) continue;                                                     \
+          if (begin_ == EMPTY_CELL) begin_ = s_;                                              \
+          end_ = cell_end[row_ + cx_];                                                        \
+        }                                                                                     \
+        if (begin_ == EMPTY_CELL) continue;                                                   \
+        for (uint j = begin_; j < end_; ++j) {
+#define NEIGHBOUR_ROWS_END \
   }                        \
   }                        \
   }                        \
   }
+
+// The 27-cell neighbourhood of one cell as its 9 rows' runs of sorted particles, numbered as one
+// sequence 0 .. total−1 in the order NEIGHBOUR_ROWS visits them. A tile's work-items all compute
+// the same one (it depends on the cell only) and share its candidates through local memory.
+typedef struct {
+  uint begin[9], count[9];
+  uint start[9];  // the row's first candidate in the sequence
+  uint rows, total;
+} Neighbourhood;
+
+inline Neighbourhood cell_neighbourhood(int3 c, Grid grid, const __global uint* cell_start,
+                                        const __global uint* cell_end) {
+  Neighbourhood nb;
+  nb.total = 0;
+  int rows = 0;
+  const int x0 = max(c.x - 1, 0), x1 = min(c.x + 1, grid.dims.x - 1);
+  for (int dz = max(c.z - 1, 0); dz <= min(c.z + 1, grid.dims.z - 1); ++dz) {
+    for (int dy = max(c.y - 1, 0); dy <= min(c.y + 1, grid.dims.y - 1); ++dy) {
+      const uint row = linear_cell((int3)(0, dy, dz), grid);
+      uint begin = EMPTY_CELL, end = 0;
+      for (int cx = x0; cx <= x1; ++cx) {
+        const uint s = cell_start[row + cx];
+        if (s == EMPTY_CELL) continue;
+        if (begin == EMPTY_CELL) begin = s;
+        end = cell_end[row + cx];
+      }
+      if (begin == EMPTY_CELL) continue;
+      nb.begin[rows] = begin;
+      nb.count[rows] = end - begin;
+      nb.start[rows] = nb.total;
+      nb.total += end - begin;
+      ++rows;
+    }
+  }
+  nb.rows = rows;
+  return nb;
+}

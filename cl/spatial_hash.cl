@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Spatial hash: Morton cell keys, a stable LSD radix sort (8 bits per pass), the reordering of the
+// Spatial hash: linear cell keys (x fastest, so a row of cells is one run of particles), a stable LSD radix sort (8 bits per pass), the reordering of the
 // particle arrays, and the cell start/end tables (physics.md §2, "Neighbour search").
 //
 // Determinism: the sort splits the particles into RADIX_BLOCKS contiguous chunks. Each chunk's
@@ -8,7 +8,7 @@
 
 #define RADIX 256
 
-// key: Morton code of the particle's cell; dead particles get dead_key (> every live key) so the
+// key: the linear index of the particle's cell; dead particles get dead_key (> every live key) so the
 // sort moves them to the end, where they are dropped.
 __kernel void hash_keys(const __global float* x, const __global float* y, const __global float* z,
                         const __global uint* id, __global uint* key, __global uint* index, const uint n,
@@ -17,7 +17,7 @@ __kernel void hash_keys(const __global float* x, const __global float* y, const 
   const uint i = get_global_id(0);
   if (i >= n) return;
   const Grid g = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
-  key[i] = (id[i] & DEAD_FLAG) ? dead_key : morton_key(cell_of((float3)(x[i], y[i], z[i]), g));
+  key[i] = (id[i] & DEAD_FLAG) ? dead_key : linear_cell(cell_of((float3)(x[i], y[i], z[i]), g), g);
   index[i] = i;
 }
 
@@ -69,12 +69,10 @@ __kernel void reorder_words(const __global uint* perm, const __global uint* in, 
   out[i] = in[perm[i]];
 }
 
-// After sorting: the first and one-past-last sorted index of every occupied cell (the tables were
-// filled with EMPTY_CELL), and the number of live particles (dead ones sort to the end).
-__kernel void cell_bounds(const __global uint* key, const __global float* x, const __global float* y,
-                          const __global float* z, const uint n, const float ox, const float oy, const float oz,
-                          const float inv_cell, const int gx, const int gy, const int gz, const uint dead_key,
-                          __global uint* cell_start, __global uint* cell_end, __global uint* alive) {
+// After sorting: the first and one-past-last sorted index of every occupied cell (empty cells hold
+// EMPTY_CELL in cell_start), and the number of live particles (dead ones sort to the end).
+__kernel void cell_bounds(const __global uint* key, const uint n, const uint dead_key, __global uint* cell_start,
+                          __global uint* cell_end, __global uint* alive) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint k = key[i];
@@ -83,10 +81,17 @@ __kernel void cell_bounds(const __global uint* key, const __global float* x, con
     return;
   }
   if (i + 1 == n || key[i + 1] == dead_key) alive[0] = i + 1;
-  const Grid g = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
-  const uint cell = linear_cell(cell_of((float3)(x[i], y[i], z[i]), g), g);
-  if (i == 0 || key[i - 1] != k) cell_start[cell] = i;
-  if (i + 1 == n || key[i + 1] != k) cell_end[cell] = i + 1;
+  if (i == 0 || key[i - 1] != k) cell_start[k] = i;
+  if (i + 1 == n || key[i + 1] != k) cell_end[k] = i + 1;
+}
+
+// Empties the cells the previous sort occupied, so that the table is reset at the cost of the
+// particles, not of the grid (which covers the whole terrain).
+__kernel void clear_cells(const __global uint* key, const uint n, const uint dead_key, __global uint* cell_start) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const uint k = key[i];
+  if (k != dead_key && (i == 0 || key[i - 1] != k)) cell_start[k] = EMPTY_CELL;
 }
 
 // The neighbour sets the hash yields (for tests and debugging): for each particle, the ids of every
@@ -101,7 +106,7 @@ __kernel void neighbour_list(const __global float* x, const __global float* y, c
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const float3 pi = (float3)(x[i], y[i], z[i]);
   uint found = 0;
-  NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end)
+  NEIGHBOUR_ROWS_BEGIN(pi, grid, cell_start, cell_end)
   if (j != i) {
     const float3 d = pi - (float3)(x[j], y[j], z[j]);
     if (dot(d, d) < radius * radius) {
@@ -109,6 +114,66 @@ __kernel void neighbour_list(const __global float* x, const __global float* y, c
       ++found;
     }
   }
-  NEIGHBOUR_LOOP_END
+  NEIGHBOUR_ROWS_END
   count[i] = found;
+}
+
+// Tiles: each occupied cell's particles in runs of at most `tile` (a cell of 40 particles is tiles
+// of 32 and 8). A neighbour pass runs one work-group per tile; the tile's particles share the cell
+// and so the candidates, which the group loads once into local memory. Tiles of at most `small`
+// particles (sheets of water one or two particles deep) are listed after the others, so that they
+// run in work-groups of `small` work-items: an idle work-item still costs its turn on a CPU.
+// The list is a compaction of the particles that start a tile, in sorted order: per-chunk counts,
+// one serial scan, per-chunk writes, as in the radix sort (no atomics, one result).
+inline uint tile_size_at(const __global uint* key, const __global uint* cell_start, const __global uint* cell_end,
+                         uint i, uint tile) {
+  const uint first = cell_start[key[i]];
+  if ((i - first) % tile != 0) return 0;  // not the start of a tile
+  return min(tile, cell_end[key[i]] - i);
+}
+
+// counts[block]: the chunk's large tiles; counts[blocks + block]: its small ones.
+__kernel void tile_count(const __global uint* key, const __global uint* cell_start, const __global uint* cell_end,
+                         const __global uint* alive, const uint chunk, const uint tile, const uint small,
+                         __global uint* counts) {
+  const uint block = get_global_id(0);
+  const uint blocks = get_global_size(0);
+  const uint end = min((block + 1) * chunk, alive[0]);
+  uint large_count = 0, small_count = 0;
+  for (uint i = block * chunk; i < end; ++i) {
+    const uint size = tile_size_at(key, cell_start, cell_end, i, tile);
+    large_count += size > small ? 1 : 0;
+    small_count += size > 0 && size <= small ? 1 : 0;
+  }
+  counts[block] = large_count;
+  counts[blocks + block] = small_count;
+}
+
+// Exclusive scan of the 2·blocks counts in place: the large tiles first, then the small ones. The
+// totals go to summary[1] (large) and summary[2] (small); summary[0] is the live count, so the host
+// reads all three at once.
+__kernel void tile_scan(__global uint* counts, const uint blocks, __global uint* summary) {
+  if (get_global_id(0) != 0) return;
+  uint sum = 0;
+  for (uint b = 0; b < 2 * blocks; ++b) {
+    const uint v = counts[b];
+    counts[b] = sum;
+    sum += v;
+    if (b + 1 == blocks) summary[1] = sum;
+  }
+  summary[2] = sum - summary[1];
+}
+
+__kernel void tile_scatter(const __global uint* key, const __global uint* cell_start, const __global uint* cell_end,
+                           const __global uint* alive, const uint chunk, const uint tile, const uint small,
+                           const __global uint* counts, __global uint* tile_first) {
+  const uint block = get_global_id(0);
+  const uint blocks = get_global_size(0);
+  const uint end = min((block + 1) * chunk, alive[0]);
+  uint large_out = counts[block], small_out = counts[blocks + block];
+  for (uint i = block * chunk; i < end; ++i) {
+    const uint size = tile_size_at(key, cell_start, cell_end, i, tile);
+    if (size > small) tile_first[large_out++] = i;
+    if (size > 0 && size <= small) tile_first[small_out++] = i;
+  }
 }

@@ -25,7 +25,8 @@
 // The tank walls (sph.walls, vertical planes at the domain's edges, for the validation cases) are
 // free-slip mirror ghosts instead (Colagrossi & Landrini 2003): each neighbour j reflected across
 // each wall within reach, and across both walls of a corner, with its density and pressure and its
-// normal velocity reversed; also scaled by θ in both passes (and in the water depth).
+// normal velocity reversed; also scaled by θ in both passes (and in the water depth). The ghosts
+// are extra candidates of the tiled neighbour loops (tile_images), so they vectorise too.
 
 // θ from the Shepard sum of the others and the distance to the terrain.
 inline float fluid_fullness(float shepard_others, float d, float rhoi) {
@@ -34,35 +35,76 @@ inline float fluid_fullness(float shepard_others, float d, float rhoi) {
   return s * s * (3.0f - 2.0f * s);
 }
 
-// The walls of a tank a particle at p is close enough to have ghosts beyond.
+// The images a tile's candidates are seen as: image m = wx + 3 wz, with wx, wz = 0 (none), 1 (across
+// the wall at 0), 2 (across the far wall at domain_x or domain_z), both for a corner; image 0 is
+// the candidate itself. A wall's images are taken when it lies within 2h of the tile's cell; an
+// image too far from a particle adds exactly 0 (every kernel factor is 0 beyond the support), so
+// taking them per cell rather than per particle changes nothing but the work.
 typedef struct {
-  float domain_x, domain_z;
-  bool x0, x1, z0, z1;
-} TankWalls;
+  uint count;
+  uint image[9];
+} Images;
 
-inline TankWalls tank_walls(float3 p, float domain_x, float domain_z) {
-  const float reach = 2.0f * SPH_H;
-  TankWalls w;
-  w.domain_x = domain_x;
-  w.domain_z = domain_z;
-  w.x0 = p.x < reach;
-  w.x1 = domain_x - p.x < reach;
-  w.z0 = p.z < reach;
-  w.z1 = domain_z - p.z < reach;
-  return w;
+inline Images tile_images(int3 cell, Grid grid, float domain_x, float domain_z) {
+  Images im;
+  im.count = 1;
+  im.image[0] = 0;
+#if SPH_WALLS
+  // A particle beyond 2h of a wall sees no image (both it and the neighbour are on the fluid's
+  // side, so the image is farther than the wall's distance and the neighbour's together). A cell
+  // whose near side is 2h from the wall qualifies only through rounding: left out.
+  const float size = 1.0f / grid.inv_cell;
+  const float reach = 2.0f * SPH_H - 1e-4f * size;
+  const float x_lo = grid.origin.x + cell.x * size, z_lo = grid.origin.z + cell.z * size;
+  const bool near_x[3] = {true, x_lo < reach, domain_x - (x_lo + size) < reach};
+  const bool near_z[3] = {true, z_lo < reach, domain_z - (z_lo + size) < reach};
+  for (uint m = 1; m < 9; ++m) {
+    if (near_x[m % 3] && near_z[m / 3]) im.image[im.count++] = m;
+  }
+#endif
+  return im;
 }
 
-// Visits the ghost images of a particle at pj moving at vj: `ghost_` its position, `ghost_v_` its
-// velocity. Usage: GHOST_LOOP_BEGIN(walls, pj, vj) { ... } GHOST_LOOP_END
-#define GHOST_LOOP_BEGIN(walls, pj, vj)                                                            \
-  for (int wx_ = 0; wx_ < 3; ++wx_) {                                                              \
-    if ((wx_ == 1 && !(walls).x0) || (wx_ == 2 && !(walls).x1)) continue;                          \
-    for (int wz_ = 0; wz_ < 3; ++wz_) {                                                            \
-      if ((wx_ == 0 && wz_ == 0) || (wz_ == 1 && !(walls).z0) || (wz_ == 2 && !(walls).z1)) continue; \
-      const float3 ghost_ = (float3)(wx_ == 0 ? (pj).x : wx_ == 1 ? -(pj).x : 2.0f * (walls).domain_x - (pj).x, \
-                                     (pj).y,                                                        \
-                                     wz_ == 0 ? (pj).z : wz_ == 1 ? -(pj).z : 2.0f * (walls).domain_z - (pj).z); \
-      const float3 ghost_v_ = (float3)(wx_ == 0 ? (vj).x : -(vj).x, (vj).y, wz_ == 0 ? (vj).z : -(vj).z);
-#define GHOST_LOOP_END \
+// The position and velocity of image m of a particle (free-slip: the normal velocity reversed).
+inline float3 image_position(uint m, float3 p, float domain_x, float domain_z) {
+  const uint wx = m % 3, wz = m / 3;
+  return (float3)(wx == 0 ? p.x : wx == 1 ? -p.x : 2.0f * domain_x - p.x, p.y,
+                  wz == 0 ? p.z : wz == 1 ? -p.z : 2.0f * domain_z - p.z);
+}
+
+inline float3 image_velocity(uint m, float3 v) {
+  return (float3)(m % 3 == 0 ? v.x : -v.x, v.y, m / 3 == 0 ? v.z : -v.z);
+}
+
+// Tiled neighbour passes (one work-group per tile of a cell's particles, spatial_hash.cl):
+// the candidates are loaded SPH_CHUNK at a time (sized from the device's local memory by the host)
+// into local memory by the whole group, then every work-item runs over the chunk. That loop reads
+// contiguous local memory and its trip count is a multiple of CANDIDATE_PAD: the vectoriser widens
+// it across candidates. The slots past the last candidate are a particle too far away to interact
+// (every kernel factor is exactly 0 there).
+#define CANDIDATE_PAD 16
+#define FAR_AWAY 1.0e18f
+
+// The candidates of chunk `base` that the loop runs over: the real ones rounded up to CANDIDATE_PAD.
+inline uint chunk_length(uint total, uint base) {
+  const uint real = min(total - base, (uint)SPH_CHUNK);
+  return min((real + CANDIDATE_PAD - 1) / CANDIDATE_PAD * CANDIDATE_PAD, (uint)SPH_CHUNK);
+}
+
+// A tile's candidate sequence is every image of every neighbourhood candidate, row by row. This
+// visits the work-item's share of chunk [base, base + SPH_CHUNK): `slot_` its place in the chunk,
+// `j_` the sorted index of the particle, `image_` the image it is seen as. Each work-item copies
+// whole rows (work-item q the rows q, q + tile, ...): a row is one contiguous run, and no
+// work-item walks rows it does not copy. Usage: TILE_SLOTS_BEGIN(nb, images, base, lane, tile) {...}
+// TILE_SLOTS_END
+#define TILE_SLOTS_BEGIN(nb, im, base, lane, tile)                                                     \
+  for (uint q_ = (lane); q_ < (im).count * (nb).rows; q_ += (tile)) {                              \
+    const uint image_ = (im).image[q_ / (nb).rows], r_ = q_ % (nb).rows;                         \
+    const uint row_start_ = (q_ / (nb).rows) * (nb).total + (nb).start[r_];                      \
+    const uint lo_ = max(row_start_, (base)), hi_ = min(row_start_ + (nb).count[r_], (base) + SPH_CHUNK); \
+    for (uint s_ = lo_; s_ < hi_; ++s_) {                                                        \
+      const uint slot_ = s_ - (base);                                                            \
+      const uint j_ = (nb).begin[r_] + (s_ - row_start_);
+#define TILE_SLOTS_END \
   }                    \
   }

@@ -16,63 +16,128 @@
 // Units: kg/m³/s. Compile-time constants (host -D): SPH_H, SPH_MASS, SPH_RHO0, SPH_C0, SPH_DELTA,
 // SPH_GRAVITY, SPH_WALLS.
 
-__kernel void sph_continuity(const __global float* x, const __global float* y, const __global float* z,
-                             const __global float* x_new, const __global float* y_new,
-                             const __global float* z_new, const __global float* rho, const uint n, const float dt,
-                             const float ox, const float oy, const float oz, const float inv_cell, const int gx,
-                             const int gy, const int gz, const __global uint* cell_start,
-                             const __global uint* cell_end, const __global float* terrain_height,
-                             const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
-                             const float domain_x, const float domain_z, __global float* drho,
-                             __global float* rho_new) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
-  const float3 pi = (float3)(x[i], y[i], z[i]);  // for the cell search
-  const float inv_dt = 1.0f / dt;
-  const float3 step_i = (float3)(x_new[i], y_new[i], z_new[i]) - pi;
-  const float3 vi = step_i * inv_dt;
-  const float3 mid_i = pi + 0.5f * step_i;
-  const float rhoi = rho[i];
+// One candidate's (or wall ghost's) terms at the midpoint separation x_ij = (dx, dy, dz) with the
+// drift velocity difference v_ij·x_ij = vdotx: advection to drho, and for neighbours (ghost 0) the
+// density diffusion too (ghost_drho gets a ghost's advection: scaled by θ later); its kernel to the
+// Shepard sum (`others`: 0 for the particle itself, whose other terms vanish with x_ii = 0).
+// Branch-free, so that the candidate loop vectorises.
+inline void add_pair_continuity(float* drho, float* ghost_drho, float* shepard, float dx, float dy, float dz,
+                                float vdotx, float rhoi, float rhoj, float volume_j, float others, float ghost) {
+  // Reassociated by the vectoriser: a fixed order still, so bitwise reproducible on one device.
+#pragma clang fp reassociate(on)
   const float eta2 = 0.01f * SPH_H * SPH_H;
   const float diffusion = 2.0f * SPH_DELTA * SPH_H * SPH_C0;
-  const float support2 = 4.0f * SPH_H * SPH_H;
   const float hydrostatic_gradient = SPH_RHO0 * SPH_GRAVITY / (SPH_C0 * SPH_C0);  // kg/m⁴
+  const float r2 = dx * dx + dy * dy + dz * dz;
+  const float r = sqrt(r2);
+  const float f = wendland_grad_factor(r);
+  const float rho_dynamic = (rhoi - rhoj) + hydrostatic_gradient * dy;
+  const float advection = SPH_MASS * vdotx * f;
+  *drho += (1.0f - ghost) * (advection + diffusion * volume_j * rho_dynamic * (r2 * f) / (r2 + eta2));
+  *ghost_drho += ghost * advection;
+  *shepard += others * volume_j * wendland_w(r);
+}
 
-#if SPH_WALLS
-  const TankWalls walls = tank_walls(mid_i, domain_x, domain_z);
-#endif
-  float drho_i = 0.0f, drho_ghosts = 0.0f;
-  float shepard = 0.0f;  // Σ_{j≠i} V_j W_ij, ghosts included
-  NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end)
-  const float3 pj = (float3)(x[j], y[j], z[j]);
-  const float3 step_j = (float3)(x_new[j], y_new[j], z_new[j]) - pj;
-  const float3 mid_j = pj + 0.5f * step_j;
-  const float3 xij = mid_i - mid_j;
-  const float r2 = dot(xij, xij);
-  if (r2 < support2) {
-    const float3 vj = step_j * inv_dt;
-    const float rhoj = rho[j];
-    if (j != i) {
-      const float r = sqrt(r2);
-      const float f = wendland_grad_factor(r);
-      const float rho_dynamic = (rhoi - rhoj) + hydrostatic_gradient * xij.y;
-      drho_i += SPH_MASS * dot(vi - vj, xij) * f + diffusion * (SPH_MASS / rhoj) * rho_dynamic * (r2 * f) / (r2 + eta2);
-      shepard += SPH_MASS / rhoj * wendland_w(r);
-    }
-#if SPH_WALLS
-    GHOST_LOOP_BEGIN(walls, mid_j, vj)
-    const float3 xig = mid_i - ghost_;
-    const float rg2 = dot(xig, xig);
-    if (rg2 < support2) {
-      const float rg = sqrt(rg2);
-      drho_ghosts += SPH_MASS * dot(vi - ghost_v_, xig) * wendland_grad_factor(rg);
-      shepard += SPH_MASS / rhoj * wendland_w(rg);
-    }
-    GHOST_LOOP_END
-#endif
+// The drift's midpoints and velocities, and each particle's volume: once per particle, what the
+// tiles then load for every candidate (into the store's spare buffers).
+__kernel void continuity_inputs(const __global float* x, const __global float* y, const __global float* z,
+                                const __global float* x_new, const __global float* y_new,
+                                const __global float* z_new, const __global float* rho, const uint n, const float dt,
+                                __global float* mid_x, __global float* mid_y, __global float* mid_z,
+                                __global float* drift_vx, __global float* drift_vy, __global float* drift_vz,
+                                __global float* volume) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float inv_dt = 1.0f / dt;
+  const float3 p = (float3)(x[i], y[i], z[i]);
+  const float3 step = (float3)(x_new[i], y_new[i], z_new[i]) - p;
+  const float3 mid = p + 0.5f * step;
+  const float3 v = step * inv_dt;
+  mid_x[i] = mid.x;
+  mid_y[i] = mid.y;
+  mid_z[i] = mid.z;
+  drift_vx[i] = v.x;
+  drift_vy[i] = v.y;
+  drift_vz[i] = v.z;
+  volume[i] = SPH_MASS / rho[i];
+}
+
+// One work-group per tile (spatial_hash.cl), as in sph_forces.cl: the tile's particles share their
+// cell's candidates and their images across the tank walls within reach.
+__kernel void sph_continuity(
+    const __global float* x, const __global float* y, const __global float* z, const __global float* mid_x,
+    const __global float* mid_y, const __global float* mid_z, const __global float* drift_vx,
+    const __global float* drift_vy, const __global float* drift_vz, const __global float* volume,
+    const __global float* rho, const float dt, const float ox, const float oy, const float oz, const float inv_cell,
+    const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
+    const __global uint* tile_first, const uint tile_offset, const __global float* terrain_height, const __global float* terrain_normal,
+    const int tnx, const int tny, const float tcell, const float domain_x, const float domain_z,
+    __global float* drho, __global float* rho_new) {
+  __local float cx[SPH_CHUNK], cy[SPH_CHUNK], cz[SPH_CHUNK];  // midpoints
+  __local float cvx[SPH_CHUNK], cvy[SPH_CHUNK], cvz[SPH_CHUNK], crho[SPH_CHUNK], cvol[SPH_CHUNK];
+  __local float cghost[SPH_CHUNK];
+  __local uint cj[SPH_CHUNK];
+  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const uint first = tile_first[tile_offset + get_group_id(0)];
+  const uint tile = get_local_size(0);
+  const int3 cell = cell_of((float3)(x[first], y[first], z[first]), grid);  // x(n): the sort's cells
+  const uint last = min(first + tile, cell_end[linear_cell(cell, grid)]);
+  const uint lane = get_local_id(0);
+  const bool active = first + lane < last;
+  const uint i = active ? first + lane : first;  // an idle lane still reads a particle
+  const float3 vi = (float3)(drift_vx[i], drift_vy[i], drift_vz[i]);
+  const float3 mid_i = (float3)(mid_x[i], mid_y[i], mid_z[i]);
+  const float rhoi = rho[i];
+
+  __local Neighbourhood nb;  // the tile's, found once
+  __local Images images;
+  if (lane == 0) {
+    nb = cell_neighbourhood(cell, grid, cell_start, cell_end);
+    images = tile_images(cell, grid, domain_x, domain_z);
   }
-  NEIGHBOUR_LOOP_END
+  barrier(CLK_LOCAL_MEM_FENCE);
+  float drho_i = 0.0f, drho_ghosts = 0.0f, shepard = 0.0f;  // shepard: Σ_{j≠i} V_j W_ij, ghosts included
+  const uint total = nb.total * images.count;
+  for (uint base = 0; base < total; base += SPH_CHUNK) {
+    TILE_SLOTS_BEGIN(nb, images, base, lane, tile)
+    const float3 mid = image_position(image_, (float3)(mid_x[j_], mid_y[j_], mid_z[j_]), domain_x, domain_z);
+    const float3 v = image_velocity(image_, (float3)(drift_vx[j_], drift_vy[j_], drift_vz[j_]));
+    cx[slot_] = mid.x;
+    cy[slot_] = mid.y;
+    cz[slot_] = mid.z;
+    cvx[slot_] = v.x;
+    cvy[slot_] = v.y;
+    cvz[slot_] = v.z;
+    crho[slot_] = rho[j_];
+    cvol[slot_] = volume[j_];
+    cghost[slot_] = image_ == 0 ? 0.0f : 1.0f;
+    cj[slot_] = image_ == 0 ? j_ : EMPTY_CELL;
+    TILE_SLOTS_END
+    const uint length = chunk_length(total, base);
+    for (uint k = min(total - base, (uint)SPH_CHUNK) + lane; k < length; k += tile) {  // padding
+      cx[k] = cy[k] = cz[k] = FAR_AWAY;
+      cvx[k] = cvy[k] = cvz[k] = cghost[k] = 0.0f;
+      crho[k] = SPH_RHO0;
+      cvol[k] = SPH_MASS / SPH_RHO0;
+      cj[k] = EMPTY_CELL;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (active) {
+      // The chunk's own sums live in registers (what lives across a barrier lives in memory).
+      float chunk_drho = 0.0f, chunk_ghosts = 0.0f, chunk_shepard = 0.0f;
+      for (uint k = 0; k < length; ++k) {
+        const float dx = mid_i.x - cx[k], dy = mid_i.y - cy[k], dz = mid_i.z - cz[k];
+        const float vdotx = (vi.x - cvx[k]) * dx + (vi.y - cvy[k]) * dy + (vi.z - cvz[k]) * dz;
+        add_pair_continuity(&chunk_drho, &chunk_ghosts, &chunk_shepard, dx, dy, dz, vdotx, rhoi, crho[k], cvol[k],
+                            cj[k] != i ? 1.0f : 0.0f, cghost[k]);
+      }
+      drho_i += chunk_drho;
+      drho_ghosts += chunk_ghosts;
+      shepard += chunk_shepard;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (!active) return;
 
   // The terrain under the particle (the mirrored normal velocity) and the tank walls, scaled by θ.
   const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, mid_i.x, mid_i.z);

@@ -33,75 +33,151 @@ inline float3 wall_force(float d, float3 n, float p_over_rho, float3 gp_over_rho
   return n * (2.0f * p_over_rho * g) - (a / (1.0f - a) * gn) * n - (b / (1.0f - b)) * gt;
 }
 
-// One neighbour's (or ghost's) contribution: pressure and viscosity to acc, its pressure difference
-// to the gradient sum gp = Σ_j V_j (p_j − p_i) ∇_iW_ij, its kernel to the Shepard sum.
-inline void pair_force(float3 xij, float3 vij, float rhoi, float pres_i, float pi_over_rho2, float rhoj,
-                       float pres_j, float3* acc, float3* gp, float* shepard) {
-  const float r2 = dot(xij, xij);
-  const float r = sqrt(r2);
-  const float f = wendland_grad_factor(r);
-  const float vdotx = dot(vij, xij);
-  const float eta2 = 0.01f * SPH_H * SPH_H;
-  float visc = 0.0f;
-  if (vdotx < 0.0f) {
-    const float mu = SPH_H * vdotx / (r2 + eta2);
-    visc = -SPH_ALPHA_VISC * SPH_C0 * mu / (0.5f * (rhoi + rhoj));
-  }
-  *acc -= (SPH_MASS * (pi_over_rho2 + pres_j / (rhoj * rhoj) + visc) * f) * xij;
-  *gp += (SPH_MASS / rhoj * (pres_j - pres_i) * f) * xij;
-  *shepard += SPH_MASS / rhoj * wendland_w(r);
+// The sums a particle's neighbours and their wall ghosts make: the neighbours' acceleration (a),
+// the ghosts' (w, scaled by θ later), the pressure-gradient sum gp = Σ_j V_j (p_j − p_i) ∇_iW_ij
+// (g) and the Shepard sum of the others, ghosts included. Scalars, not float3: the vectoriser
+// widens scalar code only.
+typedef struct {
+  float ax, ay, az, wx, wy, wz, gx, gy, gz, shepard;
+} ForceSums;
+
+inline void add_force_sums(ForceSums* to, const ForceSums* s) {
+  to->ax += s->ax;
+  to->ay += s->ay;
+  to->az += s->az;
+  to->wx += s->wx;
+  to->wy += s->wy;
+  to->wz += s->wz;
+  to->gx += s->gx;
+  to->gy += s->gy;
+  to->gz += s->gz;
+  to->shepard += s->shepard;
 }
 
-__kernel void sph_forces(const __global float* x, const __global float* y, const __global float* z,
-                         const __global float* vx, const __global float* vy, const __global float* vz,
-                         const __global float* rho, const uint n, const float ox, const float oy, const float oz,
-                         const float inv_cell, const int gx, const int gy, const int gz,
-                         const __global uint* cell_start, const __global uint* cell_end,
-                         const __global float* terrain_height, const __global float* terrain_normal,
-                         const int tnx, const int tny, const float tcell, const float domain_x,
-                         const float domain_z, __global float* ax, __global float* ay, __global float* az) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
+// What a neighbour contributes that depends on it alone: computed once per candidate and tile.
+inline void neighbour_terms(float rhoj, float* pres_j, float* p_over_rho2_j, float* volume_j) {
+  *pres_j = tait_pressure(rhoj);
+  *p_over_rho2_j = *pres_j / (rhoj * rhoj);
+  *volume_j = SPH_MASS / rhoj;
+}
+
+// One candidate's contribution at x_ij = (dx, dy, dz), v_ij = (dvx, dvy, dvz): pressure and
+// viscosity to the acceleration (the ghosts' own sum when `ghost` is 1), its pressure difference to
+// gp, its kernel to the Shepard sum (`others`: 0 for the particle itself, whose other terms vanish
+// with x_ii = 0). Branch-free, so that the candidate loop vectorises; beyond the support every
+// kernel factor is 0.
+inline void add_pair_force(ForceSums* s, float dx, float dy, float dz, float dvx, float dvy, float dvz, float rhoi,
+                           float pres_i, float pi_over_rho2, float rhoj, float pres_j, float p_over_rho2_j,
+                           float volume_j, float others, float ghost) {
+  // The sums may be reassociated: the vectoriser adds 8 or 16 candidates at a time. The order is
+  // still fixed by the code, so results stay bitwise reproducible on one device.
+#pragma clang fp reassociate(on)
+  const float r2 = dx * dx + dy * dy + dz * dz;
+  const float r = sqrt(r2);
+  const float f = wendland_grad_factor(r);
+  const float vdotx = dvx * dx + dvy * dy + dvz * dz;
+  const float eta2 = 0.01f * SPH_H * SPH_H;
+  // Π_ij in one division; approaching pairs only.
+  const float visc = -SPH_ALPHA_VISC * SPH_C0 * SPH_H * min(vdotx, 0.0f) / ((r2 + eta2) * (0.5f * (rhoi + rhoj)));
+  const float a = SPH_MASS * (pi_over_rho2 + p_over_rho2_j + visc) * f;
+  const float a_fluid = a * (1.0f - ghost), a_ghost = a * ghost;
+  const float g = volume_j * (pres_j - pres_i) * f;
+  s->ax -= a_fluid * dx;
+  s->ay -= a_fluid * dy;
+  s->az -= a_fluid * dz;
+  s->wx -= a_ghost * dx;
+  s->wy -= a_ghost * dy;
+  s->wz -= a_ghost * dz;
+  s->gx += g * dx;
+  s->gy += g * dy;
+  s->gz += g * dz;
+  s->shepard += others * volume_j * wendland_w(r);
+}
+
+// One work-group per tile (spatial_hash.cl): the tile's particles share their cell's candidates,
+// and the candidates' images across the tank walls within reach.
+__kernel void sph_forces(
+    const __global float* x, const __global float* y, const __global float* z, const __global float* vx,
+    const __global float* vy, const __global float* vz, const __global float* rho, const float ox, const float oy,
+    const float oz, const float inv_cell, const int gx, const int gy, const int gz, const __global uint* cell_start,
+    const __global uint* cell_end, const __global uint* tile_first, const uint tile_offset, const __global float* terrain_height,
+    const __global float* terrain_normal, const int tnx, const int tny, const float tcell, const float domain_x,
+    const float domain_z, __global float* ax, __global float* ay, __global float* az) {
+  __local float cx[SPH_CHUNK], cy[SPH_CHUNK], cz[SPH_CHUNK], cvx[SPH_CHUNK], cvy[SPH_CHUNK], cvz[SPH_CHUNK];
+  __local float crho[SPH_CHUNK], cpres[SPH_CHUNK], cterm[SPH_CHUNK], cvol[SPH_CHUNK], cghost[SPH_CHUNK];
+  __local uint cj[SPH_CHUNK];
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const uint first = tile_first[tile_offset + get_group_id(0)];
+  const uint tile = get_local_size(0);
+  const int3 cell = cell_of((float3)(x[first], y[first], z[first]), grid);
+  const uint last = min(first + tile, cell_end[linear_cell(cell, grid)]);
+  const uint lane = get_local_id(0);
+  const bool active = first + lane < last;
+  const uint i = active ? first + lane : first;  // an idle lane still reads a particle
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 vi = (float3)(vx[i], vy[i], vz[i]);
   const float rhoi = rho[i];
   const float pres_i = tait_pressure(rhoi);
   const float pi_over_rho2 = pres_i / (rhoi * rhoi);
-  const float support2 = 4.0f * SPH_H * SPH_H;
-#if SPH_WALLS
-  const TankWalls walls = tank_walls(pi, domain_x, domain_z);
-#endif
 
-  const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);
-
-  float3 acc = (float3)(0.0f, 0.0f, 0.0f), acc_ghosts = (float3)(0.0f, 0.0f, 0.0f);
-  float3 gp = (float3)(0.0f, 0.0f, 0.0f);  // Σ_j V_j (p_j − p_i) ∇_iW_ij, ghosts included
-  float shepard = 0.0f;                    // Σ_{j≠i} V_j W_ij, ghosts included
-  NEIGHBOUR_LOOP_BEGIN(pi, grid, cell_start, cell_end)
-  const float3 pj = (float3)(x[j], y[j], z[j]);
-  const float3 xij = pi - pj;
-  if (dot(xij, xij) < support2) {
-    const float3 vj = (float3)(vx[j], vy[j], vz[j]);
-    const float rhoj = rho[j];
-    const float pres_j = tait_pressure(rhoj);
-    if (j != i) {
-      pair_force(xij, vi - vj, rhoi, pres_i, pi_over_rho2, rhoj, pres_j, &acc, &gp, &shepard);
-    }
-#if SPH_WALLS
-    GHOST_LOOP_BEGIN(walls, pj, vj)
-    const float3 xig = pi - ghost_;
-    if (dot(xig, xig) < support2)
-      pair_force(xig, vi - ghost_v_, rhoi, pres_i, pi_over_rho2, rhoj, pres_j, &acc_ghosts, &gp, &shepard);
-    GHOST_LOOP_END
-#endif
+  __local Neighbourhood nb;  // the tile's, found once
+  __local Images images;
+  if (lane == 0) {
+    nb = cell_neighbourhood(cell, grid, cell_start, cell_end);
+    images = tile_images(cell, grid, domain_x, domain_z);
   }
-  NEIGHBOUR_LOOP_END
+  barrier(CLK_LOCAL_MEM_FENCE);
+  ForceSums sum = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  const uint total = nb.total * images.count;
+  for (uint base = 0; base < total; base += SPH_CHUNK) {
+    TILE_SLOTS_BEGIN(nb, images, base, lane, tile)
+    float pres_j, p_over_rho2_j, volume_j;
+    neighbour_terms(rho[j_], &pres_j, &p_over_rho2_j, &volume_j);
+    const float3 p = image_position(image_, (float3)(x[j_], y[j_], z[j_]), domain_x, domain_z);
+    const float3 v = image_velocity(image_, (float3)(vx[j_], vy[j_], vz[j_]));
+    cx[slot_] = p.x;
+    cy[slot_] = p.y;
+    cz[slot_] = p.z;
+    cvx[slot_] = v.x;
+    cvy[slot_] = v.y;
+    cvz[slot_] = v.z;
+    crho[slot_] = rho[j_];
+    cpres[slot_] = pres_j;
+    cterm[slot_] = p_over_rho2_j;
+    cvol[slot_] = volume_j;
+    cghost[slot_] = image_ == 0 ? 0.0f : 1.0f;
+    cj[slot_] = image_ == 0 ? j_ : EMPTY_CELL;
+    TILE_SLOTS_END
+    const uint length = chunk_length(total, base);
+    for (uint k = min(total - base, (uint)SPH_CHUNK) + lane; k < length; k += tile) {  // padding
+      cx[k] = cy[k] = cz[k] = FAR_AWAY;
+      cvx[k] = cvy[k] = cvz[k] = 0.0f;
+      crho[k] = cvol[k] = SPH_RHO0;
+      cpres[k] = cterm[k] = cghost[k] = 0.0f;
+      cj[k] = EMPTY_CELL;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (active) {
+      // The chunk's own sums live in registers (what lives across a barrier lives in memory).
+      ForceSums chunk = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+      for (uint k = 0; k < length; ++k) {
+        add_pair_force(&chunk, pi.x - cx[k], pi.y - cy[k], pi.z - cz[k], vi.x - cvx[k], vi.y - cvy[k],
+                       vi.z - cvz[k], rhoi, pres_i, pi_over_rho2, crho[k], cpres[k], cterm[k], cvol[k],
+                       cj[k] != i ? 1.0f : 0.0f, cghost[k]);
+      }
+      add_force_sums(&sum, &chunk);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (!active) return;
 
   // The terrain under the particle and the tank walls, scaled by the fluid fullness θ.
+  const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);
   const float d = (pi.y - floor.height) * floor.normal.y;
-  const float theta = fluid_fullness(shepard, d, rhoi);
-  acc += theta * (acc_ghosts + wall_force(d, floor.normal, pres_i / rhoi, gp / rhoi));
+  const float theta = fluid_fullness(sum.shepard, d, rhoi);
+  const float3 gp = (float3)(sum.gx, sum.gy, sum.gz);
+  const float3 acc = (float3)(sum.ax, sum.ay, sum.az) +
+                     theta * ((float3)(sum.wx, sum.wy, sum.wz) + wall_force(d, floor.normal, pres_i / rhoi, gp / rhoi));
   ax[i] = acc.x;
   ay[i] = acc.y - SPH_GRAVITY;
   az[i] = acc.z;

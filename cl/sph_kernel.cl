@@ -14,10 +14,10 @@
 
 #define SPH_ALPHA_W (21.0f / (16.0f * M_PI_F * SPH_H * SPH_H * SPH_H))
 
+// Both are branch-free (t clamped at 0 beyond the support) so that neighbour loops vectorise.
 inline float wendland_w(float r) {
   const float q = r * (1.0f / SPH_H);
-  if (q >= 2.0f) return 0.0f;
-  const float t = 1.0f - 0.5f * q;
+  const float t = max(1.0f - 0.5f * q, 0.0f);
   const float t2 = t * t;
   return SPH_ALPHA_W * t2 * t2 * (2.0f * q + 1.0f);
 }
@@ -25,8 +25,7 @@ inline float wendland_w(float r) {
 // F(r) such that ∇_i W_ij = F · (x_i − x_j); zero outside the support.
 inline float wendland_grad_factor(float r) {
   const float q = r * (1.0f / SPH_H);
-  if (q >= 2.0f) return 0.0f;
-  const float t = 1.0f - 0.5f * q;
+  const float t = max(1.0f - 0.5f * q, 0.0f);
   return -(5.0f * SPH_ALPHA_W / (SPH_H * SPH_H)) * t * t * t;
 }
 

@@ -24,6 +24,9 @@ __kernel void offset(__global float* values,
   const uint i = get_global_id(0);
   if (i < n) values[i] += by;
 }
+__kernel __attribute__((reqd_work_group_size(4, 1, 1))) void tiled(__global float* values, const uint n) {
+  if (get_global_id(0) < n) values[get_global_id(0)] = 0.0f;
+}
 )CL";
 
 ComputeContext& compute() {
@@ -38,6 +41,8 @@ TEST(KernelArguments, NamesAreReadFromTheSignature) {
             (std::vector<std::string>{"values", "n", "factor"}));
   EXPECT_EQ(kernel_argument_names(kSource, "offset"),
             (std::vector<std::string>{"values", "n", "by"}));
+  EXPECT_EQ(kernel_argument_names(kSource, "tiled"),  // an attribute before the name
+            (std::vector<std::string>{"values", "n"}));
   EXPECT_TRUE(kernel_argument_names(kSource, "twice").empty());  // not a kernel
   EXPECT_TRUE(kernel_argument_names(kSource, "missing").empty());
 }

@@ -129,7 +129,7 @@ TEST(SpatialHash, ParticlesOnCellBordersAndOutsideTheGridMatchKdTree) {
   expect_same_neighbours(c);
 }
 
-TEST(SpatialHash, SortIsByMortonCellAndDeterministic) {
+TEST(SpatialHash, SortIsByCellAndDeterministic) {
   ComputeContext compute("cpu");
   std::mt19937 rng(4);
   std::uniform_real_distribution<float> u(0.0f, 4.0f);
@@ -144,7 +144,8 @@ TEST(SpatialHash, SortIsByMortonCellAndDeterministic) {
     order = store.download().id;
   }
   EXPECT_EQ(orders[0], orders[1]);
-  // Stable: within one cell, ids (original order) ascend.
+  // Sorted by the linear cell index (x fastest), and stable: within one cell, ids (original
+  // order) ascend.
   ParticleStore store(compute);
   store.append(p);
   SpatialHash hash(compute, test_grid());
@@ -158,6 +159,50 @@ TEST(SpatialHash, SortIsByMortonCellAndDeterministic) {
     if (same) {
       ASSERT_LT(s.id[i - 1], s.id[i]);
     }
+    auto linear = [&](std::size_t k) {
+      return cell(s.f[kX][k]) + 16 * (cell(s.f[kY][k]) + 16 * cell(s.f[kZ][k]));
+    };
+    ASSERT_LE(linear(i - 1), linear(i));
+  }
+}
+
+// The tiles the neighbour passes run on: every cell's particles, in runs of at most the tile size
+// starting at the cell's first particle, each particle in exactly one tile, those of more than
+// kSmallTile particles listed first; against lists made here from the sorted positions.
+TEST(SpatialHash, TilesCoverEachCellInRunsOfTheTileSize) {
+  ComputeContext compute("cpu");
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0.0f, 4.0f);
+  std::normal_distribution<float> clump(2.0f, 0.05f);  // cells of 100+ particles: several tiles
+  HostParticles p;
+  for (int i = 0; i < 3000; ++i) p.push(u(rng), u(rng), u(rng), 0, 0, 0, 1000, 1);
+  for (int i = 0; i < 1000; ++i) p.push(clump(rng), clump(rng), clump(rng), 0, 0, 0, 1000, 1);
+  for (std::uint32_t tile : {1u, 7u, 32u}) {
+    ParticleStore store(compute);
+    store.append(p);
+    SpatialHash hash(compute, test_grid(), tile);
+    hash.build(store);
+    const HostParticles s = store.download();
+    auto cell = [&](std::size_t i) {
+      auto c = [](float v) { return std::min(15, static_cast<int>(v / 0.25f)); };
+      return c(s.f[kX][i]) + 16 * (c(s.f[kY][i]) + 16 * c(s.f[kZ][i]));
+    };
+    std::vector<std::uint32_t> large, small;
+    for (std::size_t begin = 0, end = 0; begin < s.size(); begin = end) {
+      end = begin;
+      while (end < s.size() && cell(end) == cell(begin)) ++end;
+      for (std::size_t t = begin; t < end; t += tile) {
+        const std::size_t size = std::min<std::size_t>(tile, end - t);
+        (size > SpatialHash::kSmallTile ? large : small).push_back(static_cast<std::uint32_t>(t));
+      }
+    }
+    ASSERT_EQ(hash.small_tile_count(), small.size()) << "tile " << tile;
+    ASSERT_EQ(hash.tile_count(), large.size() + small.size()) << "tile " << tile;
+    std::vector<std::uint32_t> first(hash.tile_count());
+    compute.queue().enqueueReadBuffer(hash.tile_first(), CL_TRUE, 0, first.size() * 4,
+                                      first.data());
+    large.insert(large.end(), small.begin(), small.end());
+    EXPECT_EQ(first, large) << "tile " << tile;
   }
 }
 

@@ -11,6 +11,10 @@ std::vector<std::string> kernel_argument_names(const std::string& source, const 
   std::size_t at = 0;
   while ((at = source.find("__kernel", at)) != std::string::npos) {
     at += 8;
+    // Kernels return void; attributes such as reqd_work_group_size((...)) may come before it.
+    const std::size_t void_at = source.find("void", at);
+    if (void_at == std::string::npos) break;
+    at = void_at + 4;
     const std::size_t open = source.find('(', at);
     if (open == std::string::npos) break;
     // The identifier just before the parenthesis is the kernel's name.
@@ -87,11 +91,16 @@ cl_uint Kernel::index_of(std::string_view argument) const {
 }
 
 void Kernel::launch(std::size_t global, const char* label) {
+  launch_groups(global, 0, label);
+}
+
+void Kernel::launch_groups(std::size_t groups, std::size_t group, const char* label) {
   for (std::size_t a = 0; a < assigned_.size(); ++a) {
     if (!assigned_[a])
       throw runtime_error("kernel " + name_ + ": argument '" + arguments_[a] + "' was never set");
   }
-  compute_->profiler().launch(kernel_, global, label ? label : name_.c_str());
+  const std::size_t global = group > 0 ? groups * group : groups;
+  compute_->profiler().launch(kernel_, global, label ? label : name_.c_str(), group);
 }
 
 }  // namespace runnel

@@ -28,6 +28,8 @@ class Kernel {
   // Launches over `global` work-items through the profiler, timed under `label` (default: the
   // kernel's name).
   void launch(std::size_t global, const char* label = nullptr);
+  // Launches `groups` work-groups of `group` work-items each (kernels that share local memory).
+  void launch_groups(std::size_t groups, std::size_t group, const char* label = nullptr);
 
   const std::string& name() const { return name_; }
   const std::vector<std::string>& arguments() const { return arguments_; }

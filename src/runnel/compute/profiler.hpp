@@ -18,7 +18,8 @@ class KernelProfiler {
   bool enabled() const { return enabled_; }
 
   // Enqueues `kernel` over `global` work-items (exact size; callers round up where they guard).
-  void launch(cl::Kernel& kernel, std::size_t global, const char* name);
+  // group: the work-group size, 0 for the default (64 where the global size allows).
+  void launch(cl::Kernel& kernel, std::size_t global, const char* name, std::size_t group = 0);
 
   // Waits for the queue and adds the finished launches' times. Seconds per kernel name.
   const std::map<std::string, double>& collect();

@@ -60,6 +60,9 @@ struct HostParticles {
 
 // Particle state in device buffers (structure of arrays). Capacity grows on demand by a factor,
 // copying device to device; particles are appended from the host without touching the others.
+inline constexpr ParticleField kSpareFields[8] = {kVx,  kVy,       kVz,       kSediment,
+                                                  kAge, kLifespan, kContacts, kId};
+
 class ParticleStore {
  public:
   explicit ParticleStore(ComputeContext& compute, std::size_t initial_capacity = 1024);
@@ -73,6 +76,11 @@ class ParticleStore {
   // Sets each field's scratch buffer as the argument `<name>_new` (the step's next state).
   void bind_new(Kernel& kernel, std::initializer_list<ParticleField> fields);
   cl::Buffer& scratch(ParticleField f) { return scratch_[f]; }
+  // Per-particle temporaries of a pass, one float each, valid until the next sort: the scratch
+  // buffers of the fields no kernel writes as the step's next state (only position and density
+  // are: drift and continuity), so they cost no memory of their own.
+  static constexpr int kSpareCount = 8;
+  cl::Buffer& spare(int k) { return scratch_[kSpareFields[k]]; }
   // After the hash has gathered every persistent field into scratch: scratch becomes current.
   void swap_scratch();
   // After a kernel wrote the new values of some fields into scratch: they become current.

@@ -10,7 +10,8 @@
 namespace runnel {
 namespace {
 
-constexpr int kMaxCellsPerAxis = 1024;  // 10 Morton bits per axis
+constexpr int kMaxCellsPerAxis =
+    1024;  // 2^30 cells at most: a linear key (and the dead key) fits 31 bits
 
 const std::vector<std::string> kHashSources = {"cl/common.cl", "cl/grid.cl", "cl/spatial_hash.cl"};
 
@@ -33,16 +34,15 @@ GridSpec GridSpec::covering(const double lo[3], const double hi[3], double cell)
 }
 
 int GridSpec::key_bits() const {
-  int bits = 0;
-  while ((1 << bits) < std::max({dims[0], dims[1], dims[2]})) ++bits;
-  return 3 * bits + 1;
+  int bits = 1;
+  while ((std::size_t{1} << bits) <= cell_count()) ++bits;  // the dead key is cell_count()
+  return bits;
 }
 
-SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid)
-    : compute_(compute), grid_(grid) {
-  const int bits = grid.key_bits();
-  dead_key_ = 1u << (bits - 1);  // one past every Morton code of the grid
-  passes_ = (bits + 7) / 8;
+SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uint32_t tile)
+    : compute_(compute), grid_(grid), tile_(tile) {
+  dead_key_ = static_cast<std::uint32_t>(grid.cell_count());  // one past every live cell
+  passes_ = (grid.key_bits() + 7) / 8;
   cl::Program& program = compute.program(kHashSources);
   hash_keys_ = Kernel(compute, program, "hash_keys");
   histogram_ = Kernel(compute, program, "radix_histogram");
@@ -50,12 +50,19 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid)
   scatter_ = Kernel(compute, program, "radix_scatter");
   reorder_ = Kernel(compute, program, "reorder_words");
   cell_bounds_ = Kernel(compute, program, "cell_bounds");
+  clear_cells_ = Kernel(compute, program, "clear_cells");
   neighbour_list_ = Kernel(compute, program, "neighbour_list");
+  tile_count_ = Kernel(compute, program, "tile_count");
+  tile_scan_ = Kernel(compute, program, "tile_scan");
+  tile_scatter_ = Kernel(compute, program, "tile_scatter");
   auto& ctx = compute.context();
   hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * kRadixBlocks * sizeof(cl_uint));
-  alive_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_uint));
+  summary_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 3 * sizeof(cl_uint));
   cell_start_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
   cell_end_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
+  // Once: afterwards each build empties only the cells its predecessor filled.
+  compute.queue().enqueueFillBuffer(cell_start_, kEmptyCell, 0,
+                                    grid.cell_count() * sizeof(cl_uint));
 }
 
 void SpatialHash::bind_grid(Kernel& k) const {
@@ -73,6 +80,17 @@ void SpatialHash::bind_cells(Kernel& k) const {
   k.set("cell_start", cell_start_).set("cell_end", cell_end_);
 }
 
+void SpatialHash::bind_tiles(Kernel& k) const {
+  bind_cells(k);
+  k.set("tile_first", tile_first_);
+}
+
+void SpatialHash::launch_tiled(Kernel& k) const {
+  bind_tiles(k);
+  k.set("tile_offset", cl_uint{0}).launch_groups(tiles_, tile_);
+  k.set("tile_offset", tiles_).launch_groups(small_tiles_, kSmallTile);
+}
+
 void SpatialHash::ensure_capacity(std::size_t n) {
   if (n <= capacity_) return;
   capacity_ = std::max(n, capacity_ + capacity_ / 2);
@@ -85,12 +103,16 @@ void SpatialHash::ensure_capacity(std::size_t n) {
 void SpatialHash::build(ParticleStore& store) {
   const cl_uint n = static_cast<cl_uint>(store.size());
   auto& q = compute_.queue();
-  const cl_uint empty = 0xFFFFFFFFu;
-  q.enqueueFillBuffer(cell_start_, empty, 0, grid_.cell_count() * sizeof(cl_uint));
+  if (sorted_ > 0) {
+    clear_cells_.set("key", keys_[sorted_in_]).set("n", sorted_).set("dead_key", dead_key_);
+    clear_cells_.set("cell_start", cell_start_).launch(round_up_work(sorted_));
+    sorted_ = 0;
+  }
+  tiles_ = small_tiles_ = 0;
   if (n == 0) return;
   ensure_capacity(n);
 
-  // 1. Keys: the Morton code of each particle's cell.
+  // 1. Keys: the linear index of each particle's cell.
   store.bind(hash_keys_, {kX, kY, kZ, kId});
   bind_grid(hash_keys_);
   hash_keys_.set("key", keys_[0]).set("index", values_[0]).set("dead_key", dead_key_);
@@ -125,13 +147,29 @@ void SpatialHash::build(ParticleStore& store) {
   store.swap_scratch();
 
   // 4. Cell ranges and the live count (dead particles sorted to the end).
-  store.bind(cell_bounds_, {kX, kY, kZ});
-  bind_cells(cell_bounds_);
-  cell_bounds_.set("key", keys_[in]).set("dead_key", dead_key_).set("alive", alive_);
+  cell_bounds_.set("key", keys_[in]).set("n", n).set("dead_key", dead_key_);
+  cell_bounds_.set("cell_start", cell_start_).set("cell_end", cell_end_).set("alive", summary_);
   cell_bounds_.launch(round_up_work(n));
-  cl_uint alive = 0;
-  q.enqueueReadBuffer(alive_, CL_TRUE, 0, sizeof(cl_uint), &alive);
-  store.truncate(alive);
+  sorted_ = n;
+  sorted_in_ = in;
+
+  // 5. Tiles of each cell's particles, for the neighbour passes' work-groups. The chunk counts go
+  // where the sort's histogram was, the tile list where its spare permutation was.
+  tile_first_ = values_[1 - in];
+  for (Kernel* k : {&tile_count_, &tile_scatter_}) {
+    k->set("key", keys_[in]).set("cell_start", cell_start_).set("cell_end", cell_end_);
+    k->set("alive", summary_).set("chunk", chunk).set("tile", tile_).set("small", kSmallTile);
+    k->set("counts", hist_);
+  }
+  tile_count_.launch(blocks);
+  tile_scan_.set("counts", hist_).set("blocks", blocks).set("summary", summary_).launch(1);
+  tile_scatter_.set("tile_first", tile_first_).launch(blocks);
+
+  cl_uint summary[3] = {0, 0, 0};  // live particles, large tiles, small tiles
+  q.enqueueReadBuffer(summary_, CL_TRUE, 0, sizeof(summary), summary);
+  store.truncate(summary[0]);
+  tiles_ = summary[1];
+  small_tiles_ = summary[2];
 }
 
 std::vector<std::vector<std::uint32_t>> SpatialHash::neighbour_lists(ParticleStore& store,

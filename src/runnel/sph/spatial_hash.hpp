@@ -18,16 +18,17 @@ struct GridSpec {
   // The grid of cell size `cell` covering [lo, hi]; throws if a side needs more than 1024 cells.
   static GridSpec covering(const double lo[3], const double hi[3], double cell);
   std::size_t cell_count() const { return static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]; }
-  int key_bits() const;  // Morton bits of a live key, plus one for the dead key
+  int key_bits() const;  // bits of a linear cell key, the dead key (cell_count()) included
 };
 
-// Host side of cl/spatial_hash.cl: sorts particles by the Morton key of their cell with a
+// Host side of cl/spatial_hash.cl: sorts particles by the linear index of their cell with a
 // deterministic stable radix sort, gathers every persistent field into that order, drops dead
 // particles, and builds the cell start/end tables that the neighbour loops read. Owns no particle
 // data (CompactNSearch's lesson): it only computes an order and cell ranges for the store.
 class SpatialHash {
  public:
-  SpatialHash(ComputeContext& compute, const GridSpec& grid);
+  // tile: the most particles of one cell a neighbour pass's work-group takes (its size).
+  SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uint32_t tile = kDefaultTile);
 
   // Sorts and reorders `store` in place; afterwards store.size() counts live particles only.
   void build(ParticleStore& store);
@@ -35,15 +36,31 @@ class SpatialHash {
   const GridSpec& grid() const { return grid_; }
   const cl::Buffer& cell_start() const { return cell_start_; }
   const cl::Buffer& cell_end() const { return cell_end_; }
+  // Each occupied cell's particles in tiles of at most tile_size(), in sorted order, those of more
+  // than kSmallTile particles first: tile_first()[t] is the sorted index of tile t's first
+  // particle; the tile size and its cell's cell_end bound it.
+  std::uint32_t tile_size() const { return tile_; }
+  std::uint32_t tile_count() const { return tiles_ + small_tiles_; }
+  std::uint32_t small_tile_count() const { return small_tiles_; }
+  const cl::Buffer& tile_first() const { return tile_first_; }
   // The grid arguments every kernel that hashes a position takes: ox, oy, oz, inv_cell, gx, gy, gz.
   void bind_grid(Kernel& kernel) const;
   // The grid and its cell ranges (cell_start, cell_end): what a neighbour loop walks.
   void bind_cells(Kernel& kernel) const;
+  // The cell ranges and the tile list: what a tiled neighbour pass (one work-group per tile) reads.
+  void bind_tiles(Kernel& kernel) const;
+  // Binds the tiles and launches a tiled pass: work-groups of tile_size() over the large tiles,
+  // then of kSmallTile over the small ones (the kernel takes `tile_offset`, its first tile).
+  void launch_tiled(Kernel& kernel) const;
 
   // Neighbour ids within `radius` of every particle, in the store's (sorted) order. For tests.
   std::vector<std::vector<std::uint32_t>> neighbour_lists(ParticleStore& store, float radius);
 
   static constexpr std::uint32_t kRadixBlocks = 256;
+  // A cell of bulk water at h = 1.2 dx holds 8 to 27 particles (2.4 dx a side): one tile.
+  static constexpr std::uint32_t kDefaultTile = 32;
+  // A cell of a sheet of water one or two particles deep: its own, narrower work-groups.
+  static constexpr std::uint32_t kSmallTile = 8;
 
  private:
   void ensure_capacity(std::size_t n);
@@ -51,9 +68,15 @@ class SpatialHash {
   GridSpec grid_;
   std::uint32_t dead_key_;
   int passes_;
+  std::uint32_t tile_;
+  std::uint32_t tiles_ = 0, small_tiles_ = 0;
   std::size_t capacity_ = 0;
-  cl::Buffer keys_[2], values_[2], hist_, alive_, cell_start_, cell_end_;
-  Kernel hash_keys_, histogram_, scan_, scatter_, reorder_, cell_bounds_, neighbour_list_;
+  cl_uint sorted_ = 0;  // keys in keys_[sorted_in_] from the last build: their cells are filled
+  int sorted_in_ = 0;
+  static constexpr cl_uint kEmptyCell = 0xFFFFFFFFu;
+  cl::Buffer keys_[2], values_[2], hist_, summary_, cell_start_, cell_end_, tile_first_;
+  Kernel hash_keys_, histogram_, scan_, scatter_, reorder_, cell_bounds_, clear_cells_,
+      neighbour_list_, tile_count_, tile_scan_, tile_scatter_;
 };
 
 }  // namespace runnel

@@ -25,6 +25,14 @@ std::string footprint_options(const SphSettings& s, double terrain_cell) {
          float_define("WATER_PARTICLE_VOLUME", s.spacing * s.spacing * s.spacing);
 }
 
+// Candidates a tiled neighbour pass holds in local memory at once: as many as half the device's
+// local memory takes at 64 bytes each (the passes keep up to 12 four-byte values per candidate),
+// in multiples of 64, between 64 and 512 (a tile's neighbourhood is about 400 candidates).
+std::size_t candidate_chunk(ComputeContext& compute) {
+  const std::size_t fits = compute.info().local_memory / 2 / 64 / 64 * 64;
+  return std::clamp<std::size_t>(fits, 64, 512);
+}
+
 GridSpec fluid_grid(const SphSettings& s, const Heightmap& floor, double top) {
   const double margin = 2.0 * s.h;
   const double lo[3] = {-margin, floor.min_height() - margin, -margin};
@@ -39,7 +47,8 @@ GridSpec fluid_grid(const SphSettings& s, const Heightmap& floor, double top) {
 cl::Program& sph_program(ComputeContext& compute, const SphSettings& settings,
                          double terrain_cell) {
   return compute.program(kSphSources,
-                         settings.build_options() + footprint_options(settings, terrain_cell));
+                         settings.build_options() + footprint_options(settings, terrain_cell) +
+                             " -DSPH_CHUNK=" + std::to_string(candidate_chunk(compute)));
 }
 
 SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor,
@@ -52,6 +61,7 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   cl::Program& program = sph_program(compute, settings, floor.cell);
   forces_ = Kernel(compute, program, "sph_forces");
   continuity_ = Kernel(compute, program, "sph_continuity");
+  continuity_inputs_ = Kernel(compute, program, "continuity_inputs");
   drift_ = Kernel(compute, program, "drift");
   kick_ = Kernel(compute, program, "kick");
   stats_ = Kernel(compute, program, "step_stats");
@@ -154,21 +164,26 @@ void SphSolver::bind_domain(Kernel& k) {
 
 void SphSolver::integrate_density() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
+  const char* inputs[] = {"mid_x", "mid_y", "mid_z", "drift_vx", "drift_vy", "drift_vz", "volume"};
+  auto& prepare = continuity_inputs_;
+  store_.bind(prepare, {kX, kY, kZ, kRho});
+  store_.bind_new(prepare, {kX, kY, kZ});
+  for (int s = 0; s < 7; ++s) prepare.set(inputs[s], store_.spare(s));
+  prepare.set("dt", static_cast<float>(dt_)).launch(round_up_work(n));
+
   auto& k = continuity_;
   store_.bind(k, {kX, kY, kZ, kRho, kDrho});
-  store_.bind_new(k, {kX, kY, kZ, kRho});
-  hash_.bind_cells(k);
+  store_.bind_new(k, {kRho});
+  for (int s = 0; s < 7; ++s) k.set(inputs[s], store_.spare(s));
   bind_domain(k);
-  k.set("dt", static_cast<float>(dt_)).launch(round_up_work(n));
+  hash_.launch_tiled(k.set("dt", static_cast<float>(dt_)));
 }
 
 void SphSolver::compute_forces() {
-  const cl_uint n = static_cast<cl_uint>(store_.size());
   auto& k = forces_;
   store_.bind(k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAx, kAy, kAz});
-  hash_.bind_cells(k);
   bind_domain(k);
-  k.launch(round_up_work(n));
+  hash_.launch_tiled(k);
 }
 
 void SphSolver::kick() {
