@@ -77,8 +77,24 @@ ParticleStore::ParticleStore(ComputeContext& compute, std::size_t initial_capaci
 }
 
 std::size_t ParticleStore::bytes_per_particle() {
-  // current (all fields) + scratch (persistent) + the hash's keys and values, double-buffered.
-  return 4 * (kFieldCount + kPersistentFieldCount + 4);
+  // current (all fields) + next state and spares + the hash's keys and values, double-buffered.
+  return 4 * (kFieldCount + kNewFieldCount + kSpareCount + 4);
+}
+
+int ParticleStore::new_slot(ParticleField f) {
+  switch (f) {
+    case kX:
+      return 0;
+    case kY:
+      return 1;
+    case kZ:
+      return 2;
+    case kRho:
+      return 3;
+    default:
+      throw runtime_error(std::string("particle field ") + kFieldInfo[f].name +
+                          " has no next-state buffer");
+  }
 }
 
 void ParticleStore::grow_to(std::size_t needed) {
@@ -92,8 +108,7 @@ void ParticleStore::grow_to(std::size_t needed) {
     if (size_ > 0) compute_.queue().enqueueCopyBuffer(current_[k], grown, 0, 0, size_ * 4);
     current_[k] = grown;
   }
-  for (int k = 0; k < kPersistentFieldCount; ++k)
-    scratch_[k] = cl::Buffer(ctx, CL_MEM_READ_WRITE, new_capacity * 4);
+  for (auto& b : scratch_) b = cl::Buffer(ctx, CL_MEM_READ_WRITE, new_capacity * 4);
   capacity_ = new_capacity;
 }
 
@@ -103,15 +118,12 @@ void ParticleStore::bind(Kernel& kernel, std::initializer_list<ParticleField> fi
 }
 
 void ParticleStore::bind_new(Kernel& kernel, std::initializer_list<ParticleField> fields) {
-  for (ParticleField f : fields) kernel.set(std::string(kFieldInfo[f].name) + "_new", scratch_[f]);
-}
-
-void ParticleStore::swap_scratch() {
-  for (int k = 0; k < kPersistentFieldCount; ++k) std::swap(current_[k], scratch_[k]);
+  for (ParticleField f : fields)
+    kernel.set(std::string(kFieldInfo[f].name) + "_new", scratch_[new_slot(f)]);
 }
 
 void ParticleStore::swap_scratch(std::initializer_list<ParticleField> fields) {
-  for (ParticleField f : fields) std::swap(current_[f], scratch_[f]);
+  for (ParticleField f : fields) std::swap(current_[f], scratch_[new_slot(f)]);
 }
 
 void ParticleStore::truncate(std::size_t n) {

@@ -60,9 +60,6 @@ struct HostParticles {
 
 // Particle state in device buffers (structure of arrays). Capacity grows on demand by a factor,
 // copying device to device; particles are appended from the host without touching the others.
-inline constexpr ParticleField kSpareFields[8] = {kVx,  kVy,       kVz,       kSediment,
-                                                  kAge, kLifespan, kContacts, kId};
-
 class ParticleStore {
  public:
   explicit ParticleStore(ComputeContext& compute, std::size_t initial_capacity = 1024);
@@ -73,18 +70,20 @@ class ParticleStore {
   // Sets each field's buffer as the kernel argument of the field's name (particle_field_info), and
   // `n`, the live particle count, where the kernel takes it.
   void bind(Kernel& kernel, std::initializer_list<ParticleField> fields);
-  // Sets each field's scratch buffer as the argument `<name>_new` (the step's next state).
+  // Sets each field's next-state buffer as the argument `<name>_new` (position and density only:
+  // drift and continuity write them).
   void bind_new(Kernel& kernel, std::initializer_list<ParticleField> fields);
-  cl::Buffer& scratch(ParticleField f) { return scratch_[f]; }
-  // Per-particle temporaries of a pass, one float each, valid until the next sort: the scratch
-  // buffers of the fields no kernel writes as the step's next state (only position and density
-  // are: drift and continuity), so they cost no memory of their own.
-  static constexpr int kSpareCount = 8;
-  cl::Buffer& spare(int k) { return scratch_[kSpareFields[k]]; }
-  // After the hash has gathered every persistent field into scratch: scratch becomes current.
-  void swap_scratch();
-  // After a kernel wrote the new values of some fields into scratch: they become current.
+  cl::Buffer& scratch(ParticleField f) { return scratch_[new_slot(f)]; }
+  // After a kernel wrote the new values of some fields: they become current.
   void swap_scratch(std::initializer_list<ParticleField> fields);
+  // Per-particle temporaries of a pass, one float each, valid until the next sort.
+  static constexpr int kSpareCount = 7;
+  cl::Buffer& spare(int k) { return scratch_[kNewFieldCount + k]; }
+  // The hash's reorder, one field at a time through one buffer: gather into temporary(), then
+  // adopt_temporary(f) makes it the field (and the field's old buffer the next temporary). So the
+  // reorder needs no second copy of every field.
+  cl::Buffer& temporary() { return scratch_[0]; }
+  void adopt_temporary(ParticleField f) { std::swap(current_[f], scratch_[0]); }
   // Drops the particles past n (dead ones, sorted to the end).
   void truncate(std::size_t n);
 
@@ -117,7 +116,11 @@ class ParticleStore {
   std::size_t capacity_ = 0;
   std::uint32_t next_id_ = 0;
   std::array<cl::Buffer, kFieldCount> current_;
-  std::array<cl::Buffer, kPersistentFieldCount> scratch_;
+  static constexpr int kNewFieldCount = 4;  // x, y, z, rho
+  static int new_slot(ParticleField f);
+  // The next state of x, y, z, rho, then the spares: 11 words, so that with the 17 fields and the
+  // hash's 4 a particle of capacity holds 32 words (128 bytes).
+  std::array<cl::Buffer, kNewFieldCount + kSpareCount> scratch_;
 };
 
 }  // namespace runnel

@@ -137,14 +137,14 @@ void SpatialHash::build(ParticleStore& store) {
   }
 
   // 3. Gather every persistent field into the sorted order (as 4-byte words: bit-exact for floats
-  // too).
+  // too), one field at a time through the store's temporary buffer.
   for (int f = 0; f < kPersistentFieldCount; ++f) {
     reorder_.set("perm", values_[in]).set("n", n);
     reorder_.set("in", store.buffer(static_cast<ParticleField>(f)));
-    reorder_.set("out", store.scratch(static_cast<ParticleField>(f)));
+    reorder_.set("out", store.temporary());
     reorder_.launch(round_up_work(n), "reorder");
+    store.adopt_temporary(static_cast<ParticleField>(f));
   }
-  store.swap_scratch();
 
   // 4. Cell ranges and the live count (dead particles sorted to the end).
   cell_bounds_.set("key", keys_[in]).set("n", n).set("dead_key", dead_key_);
