@@ -112,3 +112,23 @@ __kernel void shadow(__global float* values, const float step) {
     }
   }
 }
+
+TEST(KernelLaunch, WorkGroupsLargerThanTheDeviceAllowsAreRefusedByName) {
+  cl::Program program = compute().build_source(kSource, "");
+  Kernel k(compute(), program, "tiled");
+  ASSERT_GE(k.max_group(), 4u);  // every OpenCL device runs groups of 4
+  std::vector<float> v(8, 1.0f);
+  cl::Buffer b(compute().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, v.size() * 4,
+               v.data());
+  k.set("values", b).set("n", cl_uint{8});
+  try {
+    k.launch_groups(1, k.max_group() + 1);
+    FAIL() << "a group past the device's limit was launched";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("kernel tiled: work-groups of"), std::string::npos)
+        << e.what();
+  }
+  k.launch_groups(2, 4);  // what reqd_work_group_size asks for
+  compute().queue().enqueueReadBuffer(b, CL_TRUE, 0, v.size() * 4, v.data());
+  EXPECT_EQ(v, std::vector<float>(8, 0.0f));
+}

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/compute/kernel.hpp"
 
+#include <algorithm>
 #include <cctype>
 
+#include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 
 namespace runnel {
@@ -74,6 +76,13 @@ Kernel::Kernel(ComputeContext& compute, cl::Program& program, const std::string&
     }
   }
   assigned_.assign(count, false);
+  // The largest work-group this kernel can run in on this device (a GPU may allow fewer than its
+  // device maximum to a kernel that uses many registers): the default group is the largest power
+  // of two up to kWorkMultiple within it, so it always divides the rounded global size.
+  max_group_ = kernel_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(compute.device());
+  default_group_ = 1;
+  while (default_group_ * 2 <= std::min<std::size_t>(max_group_, kWorkMultiple))
+    default_group_ *= 2;
 }
 
 bool Kernel::has(std::string_view argument) const {
@@ -91,16 +100,27 @@ cl_uint Kernel::index_of(std::string_view argument) const {
 }
 
 void Kernel::launch(std::size_t global, const char* label) {
-  launch_groups(global, 0, label);
+  check_arguments();
+  // A global size that is not a multiple of the group (tests launch odd sizes): the device picks.
+  const std::size_t group = global % default_group_ == 0 ? default_group_ : 0;
+  compute_->profiler().launch(kernel_, global, label ? label : name_.c_str(), group);
 }
 
 void Kernel::launch_groups(std::size_t groups, std::size_t group, const char* label) {
+  check_arguments();
+  if (group > max_group_) {
+    throw runtime_error("kernel " + name_ + ": work-groups of " + std::to_string(group) +
+                        " work-items, but this device runs it in at most " +
+                        std::to_string(max_group_));
+  }
+  compute_->profiler().launch(kernel_, groups * group, label ? label : name_.c_str(), group);
+}
+
+void Kernel::check_arguments() const {
   for (std::size_t a = 0; a < assigned_.size(); ++a) {
     if (!assigned_[a])
       throw runtime_error("kernel " + name_ + ": argument '" + arguments_[a] + "' was never set");
   }
-  const std::size_t global = group > 0 ? groups * group : groups;
-  compute_->profiler().launch(kernel_, global, label ? label : name_.c_str(), group);
 }
 
 }  // namespace runnel

@@ -28,8 +28,11 @@ class Kernel {
   // Launches over `global` work-items through the profiler, timed under `label` (default: the
   // kernel's name).
   void launch(std::size_t global, const char* label = nullptr);
-  // Launches `groups` work-groups of `group` work-items each (kernels that share local memory).
+  // Launches `groups` work-groups of `group` work-items each (kernels that share local memory);
+  // throws, naming the kernel, when the device cannot run groups that large.
   void launch_groups(std::size_t groups, std::size_t group, const char* label = nullptr);
+  // The largest work-group the device runs this kernel in.
+  std::size_t max_group() const { return max_group_; }
 
   const std::string& name() const { return name_; }
   const std::vector<std::string>& arguments() const { return arguments_; }
@@ -37,6 +40,8 @@ class Kernel {
 
  private:
   cl_uint index_of(std::string_view argument) const;
+  void check_arguments() const;
+  std::size_t max_group_ = 1, default_group_ = 1;
   ComputeContext* compute_ = nullptr;
   std::string name_;
   cl::Kernel kernel_;

@@ -1,18 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/compute/profiler.hpp"
 
-#include "runnel/compute/launch.hpp"
-
 namespace runnel {
 
 void KernelProfiler::launch(cl::Kernel& kernel, std::size_t global, const char* name,
                             std::size_t group) {
   if (global == 0) return;
-  // A fixed work-group size: PoCL compiles a kernel once per work-group size, and letting it pick
-  // one for each new global size would recompile as the particle count changes.
-  const cl::NDRange local = group > 0                     ? cl::NDRange(group)
-                            : global % kWorkMultiple == 0 ? cl::NDRange(kWorkMultiple)
-                                                          : cl::NullRange;
+  // A fixed work-group size (Kernel chooses it from the device): PoCL compiles a kernel once per
+  // work-group size, and letting it pick one for each new global size would recompile as the
+  // particle count changes.
+  const cl::NDRange local = group > 0 ? cl::NDRange(group) : cl::NullRange;
   if (!enabled_) {
     queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), local);
     return;

@@ -18,7 +18,7 @@ class KernelProfiler {
   bool enabled() const { return enabled_; }
 
   // Enqueues `kernel` over `global` work-items (exact size; callers round up where they guard).
-  // group: the work-group size, 0 for the default (64 where the global size allows).
+  // group: the work-group size, 0 to let the device choose.
   void launch(cl::Kernel& kernel, std::size_t global, const char* name, std::size_t group = 0);
 
   // Waits for the queue and adds the finished launches' times. Seconds per kernel name.
