@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Spatial hash: linear cell keys (x fastest, so a row of cells is one run of particles), a stable LSD radix sort (8 bits per pass), the reordering of the
-// particle arrays, and the cell start/end tables (physics.md §2, "Neighbour search").
+// Spatial hash: linear cell keys (x fastest, so a row of cells is one run of particles), a stable
+// LSD radix sort (8 bits per pass), the reordering of the particle arrays, the cell start/end
+// tables and the tiles of the neighbour passes (physics.md §2, "Neighbour search").
 //
 // Determinism: the sort splits the particles into RADIX_BLOCKS contiguous chunks. Each chunk's
 // digit histogram, one serial exclusive scan in (digit, chunk) order, then each chunk scatters its

@@ -70,7 +70,8 @@ __kernel void sph_continuity(
     const __global float* drift_vy, const __global float* drift_vz, const __global float* volume,
     const __global float* rho, const float dt, const float ox, const float oy, const float oz, const float inv_cell,
     const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
-    const __global uint* tile_first, const uint tile_offset, const __global float* terrain_height, const __global float* terrain_normal,
+    const __global uint* tile_first, const uint tile_offset, const __global float* terrain_height,
+    const __global float* terrain_normal,
     const int tnx, const int tny, const float tcell, const float domain_x, const float domain_z,
     __global float* drho, __global float* rho_new) {
   __local float cx[SPH_CHUNK], cy[SPH_CHUNK], cz[SPH_CHUNK];  // midpoints

@@ -54,11 +54,17 @@ inline void add_force_sums(ForceSums* to, const ForceSums* s) {
   to->shepard += s->shepard;
 }
 
-// What a neighbour contributes that depends on it alone: computed once per candidate and tile.
-inline void neighbour_terms(float rhoj, float* pres_j, float* p_over_rho2_j, float* volume_j) {
-  *pres_j = tait_pressure(rhoj);
-  *p_over_rho2_j = *pres_j / (rhoj * rhoj);
-  *volume_j = SPH_MASS / rhoj;
+// What a particle contributes to its neighbours that depends on it alone, once per particle (into
+// the store's spare buffers): its pressure, p/ρ² and volume m/ρ.
+__kernel void forces_inputs(const __global float* rho, const uint n, __global float* pressure,
+                            __global float* p_over_rho2, __global float* volume) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float r = rho[i];
+  const float p = tait_pressure(r);
+  pressure[i] = p;
+  p_over_rho2[i] = p / (r * r);
+  volume[i] = SPH_MASS / r;
 }
 
 // One candidate's contribution at x_ij = (dx, dy, dz), v_ij = (dvx, dvy, dvz): pressure and
@@ -100,8 +106,10 @@ __kernel void sph_forces(
     const __global float* x, const __global float* y, const __global float* z, const __global float* vx,
     const __global float* vy, const __global float* vz, const __global float* rho, const float ox, const float oy,
     const float oz, const float inv_cell, const int gx, const int gy, const int gz, const __global uint* cell_start,
-    const __global uint* cell_end, const __global uint* tile_first, const uint tile_offset, const __global float* terrain_height,
-    const __global float* terrain_normal, const int tnx, const int tny, const float tcell, const float domain_x,
+    const __global uint* cell_end, const __global uint* tile_first, const uint tile_offset,
+    const __global float* pressure, const __global float* p_over_rho2, const __global float* volume,
+    const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
+    const float tcell, const float domain_x,
     const float domain_z, __global float* ax, __global float* ay, __global float* az) {
   __local float cx[SPH_CHUNK], cy[SPH_CHUNK], cz[SPH_CHUNK], cvx[SPH_CHUNK], cvy[SPH_CHUNK], cvz[SPH_CHUNK];
   __local float crho[SPH_CHUNK], cpres[SPH_CHUNK], cterm[SPH_CHUNK], cvol[SPH_CHUNK], cghost[SPH_CHUNK];
@@ -117,8 +125,8 @@ __kernel void sph_forces(
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 vi = (float3)(vx[i], vy[i], vz[i]);
   const float rhoi = rho[i];
-  const float pres_i = tait_pressure(rhoi);
-  const float pi_over_rho2 = pres_i / (rhoi * rhoi);
+  const float pres_i = pressure[i];
+  const float pi_over_rho2 = p_over_rho2[i];
 
   __local Neighbourhood nb;  // the tile's, found once
   __local Images images;
@@ -131,8 +139,6 @@ __kernel void sph_forces(
   const uint total = nb.total * images.count;
   for (uint base = 0; base < total; base += SPH_CHUNK) {
     TILE_SLOTS_BEGIN(nb, images, base, lane, tile)
-    float pres_j, p_over_rho2_j, volume_j;
-    neighbour_terms(rho[j_], &pres_j, &p_over_rho2_j, &volume_j);
     const float3 p = image_position(image_, (float3)(x[j_], y[j_], z[j_]), domain_x, domain_z);
     const float3 v = image_velocity(image_, (float3)(vx[j_], vy[j_], vz[j_]));
     cx[slot_] = p.x;
@@ -142,9 +148,9 @@ __kernel void sph_forces(
     cvy[slot_] = v.y;
     cvz[slot_] = v.z;
     crho[slot_] = rho[j_];
-    cpres[slot_] = pres_j;
-    cterm[slot_] = p_over_rho2_j;
-    cvol[slot_] = volume_j;
+    cpres[slot_] = pressure[j_];
+    cterm[slot_] = p_over_rho2[j_];
+    cvol[slot_] = volume[j_];
     cghost[slot_] = image_ == 0 ? 0.0f : 1.0f;
     cj[slot_] = image_ == 0 ? j_ : EMPTY_CELL;
     TILE_SLOTS_END

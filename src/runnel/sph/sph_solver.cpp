@@ -60,6 +60,7 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
       hash_(compute, fluid_grid(settings, floor, top)) {
   cl::Program& program = sph_program(compute, settings, floor.cell);
   forces_ = Kernel(compute, program, "sph_forces");
+  forces_inputs_ = Kernel(compute, program, "forces_inputs");
   continuity_ = Kernel(compute, program, "sph_continuity");
   continuity_inputs_ = Kernel(compute, program, "continuity_inputs");
   drift_ = Kernel(compute, program, "drift");
@@ -180,8 +181,15 @@ void SphSolver::integrate_density() {
 }
 
 void SphSolver::compute_forces() {
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  const char* inputs[] = {"pressure", "p_over_rho2", "volume"};
+  store_.bind(forces_inputs_, {kRho});
+  for (int s = 0; s < 3; ++s) forces_inputs_.set(inputs[s], store_.spare(s));
+  forces_inputs_.launch(round_up_work(n));
+
   auto& k = forces_;
   store_.bind(k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAx, kAy, kAz});
+  for (int s = 0; s < 3; ++s) k.set(inputs[s], store_.spare(s));
   bind_domain(k);
   hash_.launch_tiled(k);
 }
