@@ -94,8 +94,8 @@ class SphSolver {
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  Kernel forces_inputs_, forces_, continuity_inputs_, continuity_, drift_, kick_, stats_, project_, depth_scatter_,
-      depth_gather_;
+  Kernel forces_inputs_, forces_, continuity_inputs_, continuity_, drift_, kick_, stats_, project_,
+      depth_scatter_, depth_gather_;
   cl::Buffer water_;  // water on each terrain vertex, counts of 1 µm of depth (cl/water_depth.cl)
   cl::Buffer stats_buffer_, counters_buffer_;
   bool rates_ready_ = false;
