@@ -85,20 +85,57 @@ inline float3 image_velocity(uint m, float3 v) {
 #define CANDIDATE_PAD 16
 #define FAR_AWAY 1.0e18f
 
+// The real candidates in chunk `base`; the padded slots follow them.
+inline uint chunk_candidates(uint total, uint base) { return min(total - base, (uint)SPH_CHUNK); }
+
 // The candidates of chunk `base` that the loop runs over: the real ones rounded up to CANDIDATE_PAD.
 inline uint chunk_length(uint total, uint base) {
-  const uint real = min(total - base, (uint)SPH_CHUNK);
+  const uint real = chunk_candidates(total, base);
   return min((real + CANDIDATE_PAD - 1) / CANDIDATE_PAD * CANDIDATE_PAD, (uint)SPH_CHUNK);
+}
+
+// A work-item's place in its tile (spatial_hash.cl): the tile's first particle and cell, the
+// group's size, and the particle the work-item computes (an idle one, past the tile's end, still
+// reads the first particle: every work-item must reach the barriers).
+typedef struct {
+  uint first, size, lane, i;
+  int3 cell;
+  bool active;
+} TileItem;
+
+inline TileItem tile_item(const __global uint* tile_first, uint tile_offset, const __global float* x,
+                          const __global float* y, const __global float* z, Grid grid,
+                          const __global uint* cell_end) {
+  TileItem t;
+  t.first = tile_first[tile_offset + get_group_id(0)];
+  t.size = get_local_size(0);
+  t.cell = cell_of((float3)(x[t.first], y[t.first], z[t.first]), grid);
+  const uint last = min(t.first + t.size, cell_end[linear_cell(t.cell, grid)]);
+  t.lane = get_local_id(0);
+  t.active = t.first + t.lane < last;
+  t.i = t.active ? t.first + t.lane : t.first;
+  return t;
+}
+
+// The tile's neighbourhood and wall images, found once by its first work-item for the group.
+inline void find_tile_candidates(TileItem t, Grid grid, const __global uint* cell_start,
+                                 const __global uint* cell_end, float domain_x, float domain_z,
+                                 __local Neighbourhood* nb, __local Images* images) {
+  if (t.lane == 0) {
+    *nb = cell_neighbourhood(t.cell, grid, cell_start, cell_end);
+    *images = tile_images(t.cell, grid, domain_x, domain_z);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
 }
 
 // A tile's candidate sequence is every image of every neighbourhood candidate, row by row. This
 // visits the work-item's share of chunk [base, base + SPH_CHUNK): `slot_` its place in the chunk,
 // `j_` the sorted index of the particle, `image_` the image it is seen as. Each work-item copies
-// whole rows (work-item q the rows q, q + tile, ...): a row is one contiguous run, and no
-// work-item walks rows it does not copy. Usage: TILE_SLOTS_BEGIN(nb, images, base, lane, tile) {...}
-// TILE_SLOTS_END
-#define TILE_SLOTS_BEGIN(nb, im, base, lane, tile)                                                     \
-  for (uint q_ = (lane); q_ < (im).count * (nb).rows; q_ += (tile)) {                              \
+// whole rows (work-item q the rows q, q + tile size, ...): a row is one contiguous run, and no
+// work-item walks rows it does not copy. Usage: TILE_SLOTS_BEGIN(nb, images, base, item) {...}
+// TILE_SLOTS_END, `item` the work-item's TileItem.
+#define TILE_SLOTS_BEGIN(nb, im, base, item)                                                       \
+  for (uint q_ = (item).lane; q_ < (im).count * (nb).rows; q_ += (item).size) {                    \
     const uint image_ = (im).image[q_ / (nb).rows], r_ = q_ % (nb).rows;                         \
     const uint row_start_ = (q_ / (nb).rows) * (nb).total + (nb).start[r_];                      \
     const uint lo_ = max(row_start_, (base)), hi_ = min(row_start_ + (nb).count[r_], (base) + SPH_CHUNK); \

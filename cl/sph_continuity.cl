@@ -79,28 +79,19 @@ __kernel void sph_continuity(
   __local float cghost[SPH_CHUNK];
   __local uint cj[SPH_CHUNK];
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
-  const uint first = tile_first[tile_offset + get_group_id(0)];
-  const uint tile = get_local_size(0);
-  const int3 cell = cell_of((float3)(x[first], y[first], z[first]), grid);  // x(n): the sort's cells
-  const uint last = min(first + tile, cell_end[linear_cell(cell, grid)]);
-  const uint lane = get_local_id(0);
-  const bool active = first + lane < last;
-  const uint i = active ? first + lane : first;  // an idle lane still reads a particle
+  const TileItem t = tile_item(tile_first, tile_offset, x, y, z, grid, cell_end);  // x(n): the sort's cells
+  const uint i = t.i;
   const float3 vi = (float3)(drift_vx[i], drift_vy[i], drift_vz[i]);
   const float3 mid_i = (float3)(mid_x[i], mid_y[i], mid_z[i]);
   const float rhoi = rho[i];
 
-  __local Neighbourhood nb;  // the tile's, found once
+  __local Neighbourhood nb;
   __local Images images;
-  if (lane == 0) {
-    nb = cell_neighbourhood(cell, grid, cell_start, cell_end);
-    images = tile_images(cell, grid, domain_x, domain_z);
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
+  find_tile_candidates(t, grid, cell_start, cell_end, domain_x, domain_z, &nb, &images);
   float drho_i = 0.0f, drho_ghosts = 0.0f, shepard = 0.0f;  // shepard: Σ_{j≠i} V_j W_ij, ghosts included
   const uint total = nb.total * images.count;
   for (uint base = 0; base < total; base += SPH_CHUNK) {
-    TILE_SLOTS_BEGIN(nb, images, base, lane, tile)
+    TILE_SLOTS_BEGIN(nb, images, base, t)
     const float3 mid = image_position(image_, (float3)(mid_x[j_], mid_y[j_], mid_z[j_]), domain_x, domain_z);
     const float3 v = image_velocity(image_, (float3)(drift_vx[j_], drift_vy[j_], drift_vz[j_]));
     cx[slot_] = mid.x;
@@ -115,7 +106,7 @@ __kernel void sph_continuity(
     cj[slot_] = image_ == 0 ? j_ : EMPTY_CELL;
     TILE_SLOTS_END
     const uint length = chunk_length(total, base);
-    for (uint k = min(total - base, (uint)SPH_CHUNK) + lane; k < length; k += tile) {  // padding
+    for (uint k = chunk_candidates(total, base) + t.lane; k < length; k += t.size) {  // padding
       cx[k] = cy[k] = cz[k] = FAR_AWAY;
       cvx[k] = cvy[k] = cvz[k] = cghost[k] = 0.0f;
       crho[k] = SPH_RHO0;
@@ -123,7 +114,7 @@ __kernel void sph_continuity(
       cj[k] = EMPTY_CELL;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (active) {
+    if (t.active) {
       // The chunk's own sums live in registers (what lives across a barrier lives in memory).
       float chunk_drho = 0.0f, chunk_ghosts = 0.0f, chunk_shepard = 0.0f;
       for (uint k = 0; k < length; ++k) {
@@ -138,7 +129,7 @@ __kernel void sph_continuity(
     }
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  if (!active) return;
+  if (!t.active) return;
 
   // The terrain under the particle (the mirrored normal velocity) and the tank walls, scaled by θ.
   const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, mid_i.x, mid_i.z);

@@ -109,36 +109,27 @@ __kernel void sph_forces(
     const __global uint* cell_end, const __global uint* tile_first, const uint tile_offset,
     const __global float* pressure, const __global float* p_over_rho2, const __global float* volume,
     const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
-    const float tcell, const float domain_x,
-    const float domain_z, __global float* ax, __global float* ay, __global float* az) {
+    const float tcell, const float domain_x, const float domain_z, __global float* ax, __global float* ay,
+    __global float* az) {
   __local float cx[SPH_CHUNK], cy[SPH_CHUNK], cz[SPH_CHUNK], cvx[SPH_CHUNK], cvy[SPH_CHUNK], cvz[SPH_CHUNK];
   __local float crho[SPH_CHUNK], cpres[SPH_CHUNK], cterm[SPH_CHUNK], cvol[SPH_CHUNK], cghost[SPH_CHUNK];
   __local uint cj[SPH_CHUNK];
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
-  const uint first = tile_first[tile_offset + get_group_id(0)];
-  const uint tile = get_local_size(0);
-  const int3 cell = cell_of((float3)(x[first], y[first], z[first]), grid);
-  const uint last = min(first + tile, cell_end[linear_cell(cell, grid)]);
-  const uint lane = get_local_id(0);
-  const bool active = first + lane < last;
-  const uint i = active ? first + lane : first;  // an idle lane still reads a particle
+  const TileItem t = tile_item(tile_first, tile_offset, x, y, z, grid, cell_end);
+  const uint i = t.i;
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 vi = (float3)(vx[i], vy[i], vz[i]);
   const float rhoi = rho[i];
   const float pres_i = pressure[i];
   const float pi_over_rho2 = p_over_rho2[i];
 
-  __local Neighbourhood nb;  // the tile's, found once
+  __local Neighbourhood nb;
   __local Images images;
-  if (lane == 0) {
-    nb = cell_neighbourhood(cell, grid, cell_start, cell_end);
-    images = tile_images(cell, grid, domain_x, domain_z);
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
+  find_tile_candidates(t, grid, cell_start, cell_end, domain_x, domain_z, &nb, &images);
   ForceSums sum = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
   const uint total = nb.total * images.count;
   for (uint base = 0; base < total; base += SPH_CHUNK) {
-    TILE_SLOTS_BEGIN(nb, images, base, lane, tile)
+    TILE_SLOTS_BEGIN(nb, images, base, t)
     const float3 p = image_position(image_, (float3)(x[j_], y[j_], z[j_]), domain_x, domain_z);
     const float3 v = image_velocity(image_, (float3)(vx[j_], vy[j_], vz[j_]));
     cx[slot_] = p.x;
@@ -155,7 +146,7 @@ __kernel void sph_forces(
     cj[slot_] = image_ == 0 ? j_ : EMPTY_CELL;
     TILE_SLOTS_END
     const uint length = chunk_length(total, base);
-    for (uint k = min(total - base, (uint)SPH_CHUNK) + lane; k < length; k += tile) {  // padding
+    for (uint k = chunk_candidates(total, base) + t.lane; k < length; k += t.size) {  // padding
       cx[k] = cy[k] = cz[k] = FAR_AWAY;
       cvx[k] = cvy[k] = cvz[k] = 0.0f;
       crho[k] = cvol[k] = SPH_RHO0;
@@ -163,7 +154,7 @@ __kernel void sph_forces(
       cj[k] = EMPTY_CELL;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (active) {
+    if (t.active) {
       // The chunk's own sums live in registers (what lives across a barrier lives in memory).
       ForceSums chunk = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
       for (uint k = 0; k < length; ++k) {
@@ -175,7 +166,7 @@ __kernel void sph_forces(
     }
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  if (!active) return;
+  if (!t.active) return;
 
   // The terrain under the particle and the tank walls, scaled by the fluid fullness θ.
   const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);

@@ -80,13 +80,9 @@ void SpatialHash::bind_cells(Kernel& k) const {
   k.set("cell_start", cell_start_).set("cell_end", cell_end_);
 }
 
-void SpatialHash::bind_tiles(Kernel& k) const {
+void SpatialHash::launch_tiled(Kernel& k) const {
   bind_cells(k);
   k.set("tile_first", tile_first_);
-}
-
-void SpatialHash::launch_tiled(Kernel& k) const {
-  bind_tiles(k);
   k.set("tile_offset", cl_uint{0}).launch_groups(tiles_, tile_);
   k.set("tile_offset", tiles_).launch_groups(small_tiles_, kSmallTile);
 }

@@ -47,10 +47,9 @@ class SpatialHash {
   void bind_grid(Kernel& kernel) const;
   // The grid and its cell ranges (cell_start, cell_end): what a neighbour loop walks.
   void bind_cells(Kernel& kernel) const;
-  // The cell ranges and the tile list: what a tiled neighbour pass (one work-group per tile) reads.
-  void bind_tiles(Kernel& kernel) const;
-  // Binds the tiles and launches a tiled pass: work-groups of tile_size() over the large tiles,
-  // then of kSmallTile over the small ones (the kernel takes `tile_offset`, its first tile).
+  // Binds the cell ranges and the tile list and launches a tiled pass: work-groups of tile_size()
+  // over the large tiles, then of kSmallTile over the small ones (the kernel takes `tile_offset`,
+  // its first tile).
   void launch_tiled(Kernel& kernel) const;
 
   // Neighbour ids within `radius` of every particle, in the store's (sorted) order. For tests.
