@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cellular-automaton hydraulic erosion (Olsen 2004; models.md "olsen"), one iteration in four
+// Cellular-automaton hydraulic erosion (Olsen 2004; models.md "olsen"), one iteration in three
 // kernels so that cells exchanging material never race: terrain height (height_fixed) and suspended
 // sediment (sediment) are integer counts of the height quantum, so h + s is conserved exactly;
 // water (m) is a float. Edges are closed: nothing leaves the map.
@@ -7,12 +7,11 @@
 //   2 olsen_outflow:   water moves to lower 4-neighbours in proportion to the drops of a = h + w,
 //                      at most min(w, a − ā) in all (ā the mean of the cell and its lower neighbours);
 //                      sediment goes with it in proportion to the water
-//   3 olsen_gather:    each cell loses its outflows and gains its neighbours' inflows
-//   4 olsen_settle:    w *= 1 − K_e; the sediment above capacity K_c·w is deposited
+//   3 olsen_gather_settle: each cell loses its outflows and gains its neighbours' inflows; then
+//                      w *= 1 − K_e and the sediment above capacity K_c·w is deposited
+// The outflows are stored one plane per direction (L R T B: out_water[d·n + k]), read contiguously.
 // Compile-time constants (host -D): OLSEN_RAIN, OLSEN_SOLUBILITY, OLSEN_EVAPORATION, OLSEN_CAPACITY (m
 // or fractions, per iteration).
-
-__constant int2 kOlsenNeighbour[4] = {(int2)(-1, 0), (int2)(1, 0), (int2)(0, -1), (int2)(0, 1)};
 
 __kernel void olsen_dissolve(__global long* height, __global float* water, __global long* sediment, const int n,
                              const float quantum) {
@@ -25,71 +24,73 @@ __kernel void olsen_dissolve(__global long* height, __global float* water, __glo
   sediment[k] += m;
 }
 
+// The water and sediment a cell sends to one lower neighbour (drop > 0); *given counts the sediment
+// already sent, so that the four shares never add up to more than the cell has.
+inline void olsen_send(float drop, float total, float moved, float w, long sediment, long* given,
+                        __global float* out_water, __global long* out_sediment) {
+  const float share = total > 0.0f ? moved * drop / total : 0.0f;
+  // ≥ 0, so truncation is the floor (and, unlike floor(), vectorises).
+  const long s = (w > 0.0f && share > 0.0f) ? min((long)((float)sediment * (share / w)), sediment - *given) : 0;
+  *out_water = share;
+  *out_sediment = s;
+  *given += s;
+}
+
+// Scalars and selects rather than arrays and branches, here and in olsen_gather_settle: the loop over
+// cells vectorises. A neighbour outside the map reads the cell's own level, so it is never lower;
+// adding the 0.0f of a neighbour that is not lower leaves every sum bit for bit as it was.
 __kernel void olsen_outflow(const __global long* height, const __global float* water, const __global long* sediment,
                             __global float* out_water, __global long* out_sediment, const int nx, const int ny,
                             const float quantum) {
-  const int k = get_global_id(0);
-  if (k >= nx * ny) return;
-  const int i = k % nx, j = k / nx;
+  const int k = get_global_id(0), n = nx * ny;
+  if (k >= n) return;
+  const int2 ij = grid_coords(k, nx);
+  const int i = ij.x, j = ij.y;
   const float w = water[k];
   const float a = (float)height[k] * quantum + w;
-  float drop[4];
-  float total = 0.0f, sum_lower = a;
-  int lower = 1;
-  for (int d = 0; d < 4; ++d) {
-    drop[d] = 0.0f;
-    const int x = i + kOlsenNeighbour[d].x, z = j + kOlsenNeighbour[d].y;
-    if (x < 0 || z < 0 || x >= nx || z >= ny) continue;
-    const int m = z * nx + x;
-    const float an = (float)height[m] * quantum + water[m];
-    if (an < a) {
-      drop[d] = a - an;
-      total += drop[d];
-      sum_lower += an;
-      ++lower;
-    }
-  }
+  const float a_l = i > 0 ? (float)height[k - 1] * quantum + water[k - 1] : a;
+  const float a_r = i < nx - 1 ? (float)height[k + 1] * quantum + water[k + 1] : a;
+  const float a_t = j > 0 ? (float)height[k - nx] * quantum + water[k - nx] : a;
+  const float a_b = j < ny - 1 ? (float)height[k + nx] * quantum + water[k + nx] : a;
+  const float drop_l = a_l < a ? a - a_l : 0.0f, drop_r = a_r < a ? a - a_r : 0.0f;
+  const float drop_t = a_t < a ? a - a_t : 0.0f, drop_b = a_b < a ? a - a_b : 0.0f;
+  const float total = drop_l + drop_r + drop_t + drop_b;
+  const float sum_lower =
+      a + (a_l < a ? a_l : 0.0f) + (a_r < a ? a_r : 0.0f) + (a_t < a ? a_t : 0.0f) + (a_b < a ? a_b : 0.0f);
+  const int lower = 1 + (a_l < a) + (a_r < a) + (a_t < a) + (a_b < a);
   const float moved = total > 0.0f ? fmin(w, a - sum_lower / (float)lower) : 0.0f;
-  long sediment_given = 0;
-  for (int d = 0; d < 4; ++d) {
-    const float share = total > 0.0f ? moved * drop[d] / total : 0.0f;
-    out_water[4 * k + d] = share;
-    const long s = (w > 0.0f && share > 0.0f) ? min((long)floor((float)sediment[k] * (share / w)), sediment[k] - sediment_given) : 0;
-    out_sediment[4 * k + d] = s;
-    sediment_given += s;
-  }
+  const long s = sediment[k];
+  long given = 0;
+  olsen_send(drop_l, total, moved, w, s, &given, out_water + 0 * n + k, out_sediment + 0 * n + k);
+  olsen_send(drop_r, total, moved, w, s, &given, out_water + 1 * n + k, out_sediment + 1 * n + k);
+  olsen_send(drop_t, total, moved, w, s, &given, out_water + 2 * n + k, out_sediment + 2 * n + k);
+  olsen_send(drop_b, total, moved, w, s, &given, out_water + 3 * n + k, out_sediment + 3 * n + k);
 }
 
-__kernel void olsen_gather(__global float* water, __global long* sediment, const __global float* out_water,
-                           const __global long* out_sediment, const int nx, const int ny) {
-  const int k = get_global_id(0);
-  if (k >= nx * ny) return;
-  const int i = k % nx, j = k / nx;
-  float w = water[k];
-  long s = sediment[k];
-  for (int d = 0; d < 4; ++d) {
-    w -= out_water[4 * k + d];
-    s -= out_sediment[4 * k + d];
-    const int x = i + kOlsenNeighbour[d].x, z = j + kOlsenNeighbour[d].y;
-    if (x < 0 || z < 0 || x >= nx || z >= ny) continue;
-    const int m = z * nx + x;
-    w += out_water[4 * m + (d ^ 1)];  // the neighbour's flow towards this cell
-    s += out_sediment[4 * m + (d ^ 1)];
-  }
-  water[k] = fmax(w, 0.0f);
-  sediment[k] = s;
-}
-
-__kernel void olsen_settle(__global long* height, __global float* water, __global long* sediment, const int n,
-                           const float quantum) {
-  const int k = get_global_id(0);
+__kernel void olsen_gather_settle(__global long* height, __global float* water, __global long* sediment,
+                                  const __global float* out_water, const __global long* out_sediment, const int nx,
+                                  const int ny, const float quantum) {
+  const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
-  const float w = water[k] * (1.0f - OLSEN_EVAPORATION);
-  water[k] = w;
-  const long capacity = (long)floor(OLSEN_CAPACITY * w / quantum);
-  const long excess = sediment[k] - capacity;
-  if (excess > 0) {
-    height[k] += excess;
-    sediment[k] -= excess;
-  }
+  const int2 ij = grid_coords(k, nx);
+  const int i = ij.x, j = ij.y;
+  // Each cell loses its outflows and gains its neighbours' flows towards it (direction d ^ 1), in the
+  // order L R T B.
+  const int has_l = i > 0, has_r = i < nx - 1, has_t = j > 0, has_b = j < ny - 1;
+  float w = water[k];
+  w = w - out_water[0 * n + k] + (has_l ? out_water[1 * n + k - 1] : 0.0f);
+  w = w - out_water[1 * n + k] + (has_r ? out_water[0 * n + k + 1] : 0.0f);
+  w = w - out_water[2 * n + k] + (has_t ? out_water[3 * n + k - nx] : 0.0f);
+  w = w - out_water[3 * n + k] + (has_b ? out_water[2 * n + k + nx] : 0.0f);
+  const long in = (has_l ? out_sediment[1 * n + k - 1] : 0) + (has_r ? out_sediment[0 * n + k + 1] : 0) +
+                  (has_t ? out_sediment[3 * n + k - nx] : 0) + (has_b ? out_sediment[2 * n + k + nx] : 0);
+  const long out =
+      out_sediment[0 * n + k] + out_sediment[1 * n + k] + out_sediment[2 * n + k] + out_sediment[3 * n + k];
+  // Settle: evaporation, then the sediment above the capacity of what is left is deposited.
+  const float settled = fmax(w, 0.0f) * (1.0f - OLSEN_EVAPORATION);
+  const long carried = sediment[k] + in - out;
+  const long excess = max(carried - (long)floor(OLSEN_CAPACITY * settled / quantum), 0L);
+  water[k] = settled;
+  sediment[k] = carried - excess;
+  height[k] += excess;
 }

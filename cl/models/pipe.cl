@@ -28,7 +28,8 @@ __kernel void pipe_flux(const __global long* height, const __global float* depth
                         const int ny, const float quantum, const float cell, const float dt) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
-  const int i = k % nx, j = k / nx;
+  const int2 ij = grid_coords(k, nx);
+  const int i = ij.x, j = ij.y;
   const float d1 = depth[k] + dt * PIPE_RAIN;
   const float level = (float)height[k] * quantum + d1;
   float f[4], total = 0.0f;
@@ -62,7 +63,8 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
                          __global float* previous_depth, const int nx, const int ny, const float cell, const float dt) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
-  const int i = k % nx, j = k / nx;
+  const int2 ij = grid_coords(k, nx);
+  const int i = ij.x, j = ij.y;
   float in[4] = {0.0f, 0.0f, 0.0f, 0.0f}, out_total = 0.0f, in_total = 0.0f;
   for (int d = 0; d < 4; ++d) {
     out_total += flux[4 * k + d];
@@ -97,7 +99,8 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
                          const ulong step_index) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
-  const int i = k % nx, j = k / nx;
+  const int2 ij = grid_coords(k, nx);
+  const int i = ij.x, j = ij.y;
   // The slope from the heights as the step began (height_view), not from height, which this kernel
   // changes: no cell reads what another work-item writes.
   const int i0 = max(i - 1, 0), i1 = min(i + 1, nx - 1), j0 = max(j - 1, 0), j1 = min(j + 1, ny - 1);
@@ -140,7 +143,8 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
                              const float dt, const ulong seed, const ulong step_index, volatile __global long* outflow) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
-  const int i = k % nx, j = k / nx;
+  const int2 ij = grid_coords(k, nx);
+  const int i = ij.x, j = ij.y;
   const float cell2 = cell * cell;
   // share = Δt / (d1·l²): the fraction of the cell's water one unit of flux carries away in a step.
   const float volume = previous_depth[k] * cell2;
@@ -171,7 +175,8 @@ __kernel void pipe_advect(const __global long* sediment, __global long* sediment
                           const int nx, const int ny, const float cell, const float dt, volatile __global long* lost) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
-  const int i = k % nx, j = k / nx;
+  const int2 ij = grid_coords(k, nx);
+  const int i = ij.x, j = ij.y;
   const float x = clamp((float)i - velocity[2 * k] * dt / cell, 0.0f, (float)(nx - 1));
   const float z = clamp((float)j - velocity[2 * k + 1] * dt / cell, 0.0f, (float)(ny - 1));
   const int i0 = min((int)x, nx - 2), j0 = min((int)z, ny - 2);

@@ -54,11 +54,10 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
   out_sediment_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
   const OlsenSettings& s = settings_;
   const std::string options = settings_defines(s, kOlsenTable);
-  cl::Program& program = compute.program({"cl/models/olsen.cl"}, options);
+  cl::Program& program = compute.program({"cl/common.cl", "cl/models/olsen.cl"}, options);
   dissolve_ = Kernel(compute, program, "olsen_dissolve");
   outflow_ = Kernel(compute, program, "olsen_outflow");
-  gather_ = Kernel(compute, program, "olsen_gather");
-  settle_ = Kernel(compute, program, "olsen_settle");
+  gather_settle_ = Kernel(compute, program, "olsen_gather_settle");
 }
 
 double OlsenModel::take_step() {
@@ -67,17 +66,17 @@ double OlsenModel::take_step() {
   const float q = static_cast<float>(terrain.quantum());
   const std::size_t work = round_up_work(static_cast<std::size_t>(n));
   cl::Buffer &water = state_.buffer(water_), &sediment = state_.buffer(sediment_);
-  for (Kernel* k : {&dissolve_, &settle_}) {
-    k->set("height", terrain.height_fixed()).set("water", water).set("sediment", sediment);
-    k->set("n", n).set("quantum", q);
+  for (Kernel* k : {&dissolve_, &outflow_, &gather_settle_}) {
+    k->set("height", terrain.height_fixed())
+        .set("water", water)
+        .set("sediment", sediment)
+        .set("quantum", q);
   }
-  outflow_.set("height", terrain.height_fixed()).set("water", water).set("sediment", sediment);
-  outflow_.set("quantum", q);
-  gather_.set("water", water).set("sediment", sediment);
-  for (Kernel* k : {&outflow_, &gather_}) {
+  dissolve_.set("n", n);
+  for (Kernel* k : {&outflow_, &gather_settle_}) {
     k->set("out_water", out_water_).set("out_sediment", out_sediment_).set("nx", nx).set("ny", ny);
   }
-  for (Kernel* k : {&dissolve_, &outflow_, &gather_, &settle_}) k->launch(work);
+  for (Kernel* k : {&dissolve_, &outflow_, &gather_settle_}) k->launch(work);
   terrain.apply();
   return 1.0;
 }

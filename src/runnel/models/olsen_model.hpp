@@ -35,7 +35,7 @@ class OlsenModel final : public GridModel {
   OlsenSettings settings_;
   int water_, sediment_;  // GridState handles
   cl::Buffer out_water_, out_sediment_;
-  Kernel dissolve_, outflow_, gather_, settle_;
+  Kernel dissolve_, outflow_, gather_settle_;
 };
 
 }  // namespace runnel

@@ -40,7 +40,7 @@ ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& ter
       settings_(settings),
       outflow_(compute.context(), CL_MEM_READ_WRITE,
                static_cast<std::size_t>(terrain.nx()) * terrain.ny() * 4 * sizeof(cl_long)) {
-  cl::Program& program = compute.program({"cl/thermal.cl"});
+  cl::Program& program = compute.program({"cl/common.cl", "cl/thermal.cl"});
   outflow_kernel_ = Kernel(compute, program, "thermal_outflow");
   gather_kernel_ = Kernel(compute, program, "thermal_gather");
 }
