@@ -22,13 +22,12 @@ inline float rng_uniform(ulong seed, ulong stream, ulong counter) {
 
 inline int grid_index(int i, int j, int nx) { return j * nx + i; }
 
-// Column and row of cell k in rows of nx cells, without an integer division (which does not
-// vectorise across work-items): the float estimate of the row is off by at most one for any grid
-// below 2^20 rows, and the selects correct it exactly.
-inline int2 grid_coords(int k, int nx) {
-  int j = (int)((float)k * (1.0f / (float)nx));
-  int i = k - j * nx;
-  j = i < 0 ? j - 1 : (i >= nx ? j + 1 : j);
-  i = k - j * nx;
-  return (int2)(i, j);
+// Row of cell k in rows of nx cells, without an integer division (which does not vectorise across
+// work-items): the float estimate is off by at most one for any grid below 2^20 rows, and the
+// selects correct it exactly. (An int2 of column and row would be worse: a vector value in a
+// work-item stops PoCL's vectoriser.)
+inline int grid_row(int k, int nx) {
+  const int j = (int)((float)k * (1.0f / (float)nx));
+  const int i = k - j * nx;
+  return i < 0 ? j - 1 : (i >= nx ? j + 1 : j);
 }

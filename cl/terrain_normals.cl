@@ -7,8 +7,7 @@ __kernel void terrain_normals(const __global float* height, __global float* norm
                               const int ny, const float cell) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
+  const int j = grid_row(k, nx), i = k - j * nx;
   const int i0 = max(i - 1, 0), i1 = min(i + 1, nx - 1);
   const int j0 = max(j - 1, 0), j1 = min(j + 1, ny - 1);
   const float dhdx = (height[grid_index(i1, j, nx)] - height[grid_index(i0, j, nx)]) / ((float)(i1 - i0) * cell);

@@ -15,8 +15,7 @@ __kernel void thermal_outflow(const __global long* height, __global long* outflo
                               const long h_min, const long h_range) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
+  const int j = grid_row(k, nx), i = k - j * nx;
   const long h = height[k];
   long threshold = talus;
   if (height_aware && h_range > 0) {
@@ -42,8 +41,7 @@ __kernel void thermal_outflow(const __global long* height, __global long* outflo
 __kernel void thermal_gather(__global long* height, const __global long* outflow, const int nx, const int ny) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
+  const int j = grid_row(k, nx), i = k - j * nx;
   // The neighbour's outflow towards this vertex is in the opposite direction (d ^ 1); outside the map
   // there is no neighbour and nothing flows in.
   const long in = (i > 0 ? outflow[1 * n + k - 1] : 0) + (i < nx - 1 ? outflow[0 * n + k + 1] : 0) +

@@ -44,8 +44,7 @@ __kernel void olsen_outflow(const __global long* height, const __global float* w
                             const float quantum) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
+  const int j = grid_row(k, nx), i = k - j * nx;
   const float w = water[k];
   const float a = (float)height[k] * quantum + w;
   const float a_l = i > 0 ? (float)height[k - 1] * quantum + water[k - 1] : a;
@@ -72,8 +71,7 @@ __kernel void olsen_gather_settle(__global long* height, __global float* water, 
                                   const int ny, const float quantum) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
+  const int j = grid_row(k, nx), i = k - j * nx;
   // Each cell loses its outflows and gains its neighbours' flows towards it (direction d ^ 1), in the
   // order L R T B.
   const int has_l = i > 0, has_r = i < nx - 1, has_t = j > 0, has_b = j < ny - 1;

@@ -11,78 +11,100 @@
 //   pipe_erode:     C = K_c · max(sin α, sin α_min) · |v|; below capacity dissolve (1 − e^(−K_s·Δt))(C − s),
 //                   above deposit (1 − e^(−K_d·Δt))(s − C) (K_s, K_d rates per second: the exact
 //                   relaxation towards C over the step, whatever Δt); then evaporation d *= e^(−K_e·Δt)
-//   pipe_transport: sediment leaves with the water that leaves, s·f_X·Δt/(d1·l²) to each neighbour
-//                   (upwind, a gather: each cell adds what its neighbours send it); what leaves the map
-//                   is booked as outflow
+//                   (the three factors of the step come from the host, in double precision)
+//   pipe_send, pipe_receive, pipe_edge_outflow: sediment leaves with the water that leaves,
+//                   s·f_X·Δt/(d1·l²) to each neighbour (upwind: each cell sends, then gathers what its
+//                   neighbours sent it); what leaves the map is booked as outflow
 // Amounts become whole quanta by stochastic rounding (counter-based random numbers of the cell and
 // the step), never by truncation: a step's exchange is often a few quanta, and truncating them would
 // make the result depend on Δt.
+// Fields of several components lie one plane per component on the device (GridState): flux[d·n + k]
+// for the pipes L R T B, velocity[k] and velocity[n + k] for x and z.
 // Compile-time constants (host -D): PIPE_*.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 
-__constant int2 kPipeNeighbour[4] = {(int2)(-1, 0), (int2)(1, 0), (int2)(0, -1), (int2)(0, 1)};  // L R T B
+// The kernels use scalars and selects rather than private arrays and branches: PoCL's vectoriser
+// gives up on a work-item loop that holds a private array.
 
-inline int pipe_inside(int x, int z, int nx, int ny) { return x >= 0 && z >= 0 && x < nx && z < ny; }
+// Water level of a neighbour inside the map, d + Δt·r + b (what pipe_flux compares levels with).
+inline float pipe_level(const __global long* height, const __global float* depth, int m, float quantum, float dt) {
+  return (float)height[m] * quantum + depth[m] + dt * PIPE_RAIN;
+}
+
+// x^(4/3) for x > 0 (Manning's depth term) without cbrt(), which is a library call that stops the
+// vectoriser: an exponent-thirds first guess and three Newton steps on y³ = x reach float precision (within 1e-7).
+inline float pipe_pow_4_3(float x) {
+  float y = as_float(as_int(x) / 3 + 709958130);  // fdlibm cbrtf's B1: the exponent bias, thirded
+  y -= (y * y * y - x) / (3.0f * y * y);  // unrolled by hand: an inner loop stops the vectoriser too
+  y -= (y * y * y - x) / (3.0f * y * y);
+  y -= (y * y * y - x) / (3.0f * y * y);
+  return x * y;
+}
+
+// The new outflux through one face: the old one accelerated by the level difference, never negative,
+// and (with pipe.manning_n > 0) slowed implicitly by Manning's bed friction. Outside the map: b = d = 0,
+// or no face at all when the edges are closed.
+inline float pipe_face_flux(float old_flux, float level, float other_level, int inside, float depth_4_3, float d1,
+                            float cell, float dt) {
+#if PIPE_CLOSED
+  if (!inside) return 0.0f;
+#else
+  other_level = inside ? other_level : 0.0f;
+#endif
+  float f = fmax(0.0f, old_flux + dt * PIPE_AREA * PIPE_GRAVITY * (level - other_level) / cell);
+#if PIPE_FRICTION_ON
+  const float v = f / (cell * fmax(d1, 1e-3f));
+  f /= 1.0f + dt * PIPE_GRAVITY_N2 * v / depth_4_3;
+#endif
+  return f;
+}
 
 __kernel void pipe_flux(const __global long* height, const __global float* depth, __global float* flux, const int nx,
                         const int ny, const float quantum, const float cell, const float dt) {
-  const int k = get_global_id(0);
-  if (k >= nx * ny) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
+  const int k = get_global_id(0), n = nx * ny;
+  if (k >= n) return;
+  const int j = grid_row(k, nx), i = k - j * nx;
+  const int has_l = i > 0, has_r = i < nx - 1, has_t = j > 0, has_b = j < ny - 1;
   const float d1 = depth[k] + dt * PIPE_RAIN;
   const float level = (float)height[k] * quantum + d1;
-  float f[4], total = 0.0f;
-  for (int d = 0; d < 4; ++d) {
-    const int x = i + kPipeNeighbour[d].x, z = j + kPipeNeighbour[d].y;
-    float other;
-    if (pipe_inside(x, z, nx, ny)) {
-      const int m = z * nx + x;
-      other = (float)height[m] * quantum + depth[m] + dt * PIPE_RAIN;
-    } else {
-#if PIPE_CLOSED
-      f[d] = 0.0f;
-      continue;
-#else
-      other = 0.0f;  // outside: b = 0, d = 0
-#endif
-    }
-    f[d] = fmax(0.0f, flux[4 * k + d] + dt * PIPE_AREA * PIPE_GRAVITY * (level - other) / cell);
-#if PIPE_FRICTION_ON
-    // Manning's bed friction on the flow through the face (implicit: it only slows the flow).
-    const float h = fmax(d1, 1e-3f), v = f[d] / (cell * h);
-    f[d] /= 1.0f + dt * PIPE_GRAVITY_N2 * v / (h * cbrt(h));
-#endif
-    total += f[d];
-  }
+  const float depth_4_3 = PIPE_FRICTION_ON ? pipe_pow_4_3(fmax(d1, 1e-3f)) : 1.0f;
+  // A neighbour outside the map reads this cell (the select in pipe_face_flux discards it).
+  const float level_l = pipe_level(height, depth, has_l ? k - 1 : k, quantum, dt);
+  const float level_r = pipe_level(height, depth, has_r ? k + 1 : k, quantum, dt);
+  const float level_t = pipe_level(height, depth, has_t ? k - nx : k, quantum, dt);
+  const float level_b = pipe_level(height, depth, has_b ? k + nx : k, quantum, dt);
+  const float f_l = pipe_face_flux(flux[0 * n + k], level, level_l, has_l, depth_4_3, d1, cell, dt);
+  const float f_r = pipe_face_flux(flux[1 * n + k], level, level_r, has_r, depth_4_3, d1, cell, dt);
+  const float f_t = pipe_face_flux(flux[2 * n + k], level, level_t, has_t, depth_4_3, d1, cell, dt);
+  const float f_b = pipe_face_flux(flux[3 * n + k], level, level_b, has_b, depth_4_3, d1, cell, dt);
+  const float total = f_l + f_r + f_t + f_b;
   const float scale = total > 0.0f ? fmin(1.0f, d1 * cell * cell / (total * dt)) : 0.0f;
-  for (int d = 0; d < 4; ++d) flux[4 * k + d] = f[d] * scale;
+  flux[0 * n + k] = f_l * scale;
+  flux[1 * n + k] = f_r * scale;
+  flux[2 * n + k] = f_t * scale;
+  flux[3 * n + k] = f_b * scale;
 }
 
 __kernel void pipe_water(__global float* depth, const __global float* flux, __global float* velocity,
                          __global float* previous_depth, const int nx, const int ny, const float cell, const float dt) {
-  const int k = get_global_id(0);
-  if (k >= nx * ny) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
-  float in[4] = {0.0f, 0.0f, 0.0f, 0.0f}, out_total = 0.0f, in_total = 0.0f;
-  for (int d = 0; d < 4; ++d) {
-    out_total += flux[4 * k + d];
-    const int x = i + kPipeNeighbour[d].x, z = j + kPipeNeighbour[d].y;
-    if (!pipe_inside(x, z, nx, ny)) continue;
-    in[d] = flux[4 * (z * nx + x) + (d ^ 1)];
-    in_total += in[d];
-  }
+  const int k = get_global_id(0), n = nx * ny;
+  if (k >= n) return;
+  const int j = grid_row(k, nx), i = k - j * nx;
+  // What the neighbours send towards this cell (their pipe d ^ 1); nothing from outside the map.
+  const float in_l = i > 0 ? flux[1 * n + k - 1] : 0.0f, in_r = i < nx - 1 ? flux[0 * n + k + 1] : 0.0f;
+  const float in_t = j > 0 ? flux[3 * n + k - nx] : 0.0f, in_b = j < ny - 1 ? flux[2 * n + k + nx] : 0.0f;
+  const float out_l = flux[0 * n + k], out_r = flux[1 * n + k], out_t = flux[2 * n + k], out_b = flux[3 * n + k];
+  const float out_total = out_l + out_r + out_t + out_b, in_total = in_l + in_r + in_t + in_b;
   const float d1 = depth[k] + dt * PIPE_RAIN;  // the same d1 the flux pass used
   const float d2 = fmax(0.0f, d1 + dt * (in_total - out_total) / (cell * cell));
   previous_depth[k] = d1;
   depth[k] = d2;
   // Mean flux through the cell in x (from the left in, out to the right, ...) over the mean depth.
-  const float wx = 0.5f * (in[0] - flux[4 * k + 0] + flux[4 * k + 1] - in[1]);
-  const float wz = 0.5f * (in[2] - flux[4 * k + 2] + flux[4 * k + 3] - in[3]);
+  const float wx = 0.5f * (in_l - out_l + out_r - in_r);
+  const float wz = 0.5f * (in_t - out_t + out_b - in_b);
   const float mean_depth = 0.5f * (d1 + d2);
-  velocity[2 * k] = mean_depth > 1e-6f ? wx / (cell * mean_depth) : 0.0f;
-  velocity[2 * k + 1] = mean_depth > 1e-6f ? wz / (cell * mean_depth) : 0.0f;
+  velocity[k] = mean_depth > 1e-6f ? wx / (cell * mean_depth) : 0.0f;
+  velocity[n + k] = mean_depth > 1e-6f ? wz / (cell * mean_depth) : 0.0f;
 }
 
 #define PIPE_ERODE_STREAM 0x70657264UL      // "perd"
@@ -95,77 +117,89 @@ inline float pipe_random(ulong seed, ulong stream, ulong step, int cells, int k)
 
 __kernel void pipe_erode(__global long* height, const __global float* height_view, __global long* sediment,
                          __global float* depth, const __global float* velocity, const int nx, const int ny,
-                         const float quantum, const float cell, const float dt, const ulong seed,
+                         const float quantum, const float cell, const float dissolved_fraction,
+                         const float deposited_fraction, const float evaporation_factor, const ulong seed,
                          const ulong step_index) {
-  const int k = get_global_id(0);
-  if (k >= nx * ny) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
+  const int k = get_global_id(0), n = nx * ny;
+  if (k >= n) return;
+  const int j = grid_row(k, nx), i = k - j * nx;
   // The slope from the heights as the step began (height_view), not from height, which this kernel
   // changes: no cell reads what another work-item writes.
   const int i0 = max(i - 1, 0), i1 = min(i + 1, nx - 1), j0 = max(j - 1, 0), j1 = min(j + 1, ny - 1);
   const float gx = (height_view[j * nx + i1] - height_view[j * nx + i0]) / ((float)(i1 - i0) * cell);
   const float gz = (height_view[j1 * nx + i] - height_view[j0 * nx + i]) / ((float)(j1 - j0) * cell);
   const float sin_slope = sqrt(gx * gx + gz * gz) / sqrt(1.0f + gx * gx + gz * gz);
-  const float vx = velocity[2 * k], vz = velocity[2 * k + 1];
+  const float vx = velocity[k], vz = velocity[n + k];
   const float speed = sqrt(vx * vx + vz * vz);  // not hypot: no overflow to guard against, and it is slow on CPUs
   // The water cannot carry more sediment than its own depth (thin films move fast).
   const float capacity = fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth[k]);  // m
-  const float s = (float)sediment[k] * quantum;
+  const long load = sediment[k];
+  const float s = (float)load * quantum;
   const float u = pipe_random(seed, PIPE_ERODE_STREAM, step_index, nx * ny, k);
-  if (capacity > s) {
-    const long q = (long)floor(-expm1(-PIPE_DISSOLVE * dt) * (capacity - s) / quantum + u);
-    height[k] -= q;
-    sediment[k] += q;
-  } else {
-    const long q = min(sediment[k], (long)floor(-expm1(-PIPE_DEPOSIT * dt) * (s - capacity) / quantum + u));
-    height[k] += q;
-    sediment[k] -= q;
-  }
-  depth[k] *= exp(-PIPE_EVAPORATION * dt);
+  // Below capacity dissolve, above it deposit (never more than the load); both amounts are ≥ 0, so
+  // truncation is the floor. Positive: from the bed into the water.
+  const long dissolved = (long)(dissolved_fraction * fmax(capacity - s, 0.0f) / quantum + u);
+  const long deposited = min(load, (long)(deposited_fraction * fmax(s - capacity, 0.0f) / quantum + u));
+  const long exchanged = capacity > s ? dissolved : -deposited;
+  height[k] -= exchanged;
+  sediment[k] = load + exchanged;
+  depth[k] *= evaporation_factor;
 }
 
-// The sediment a cell sends through pipe d: its outflows' shares of the water it had, f·share
-// (together at most 1), split by systematic sampling with one random u per cell and step, so each
-// pipe carries s·f·share in expectation and all four together never more than s. Sender and
-// receiver evaluate this same function on the same values, so what leaves one cell arrives in the
-// other to the quantum.
-inline long pipe_sent(long sediment, const __global float* flux4, float share, float u, int d) {
-  float before = 0.0f;
-  for (int e = 0; e < d; ++e) before += flux4[e] * share;
-  const float upto = fmin(1.0f, before + flux4[d] * share);
-  before = fmin(1.0f, before);
-  return (long)floor((float)sediment * upto + u) - (long)floor((float)sediment * before + u);
-}
-
-__kernel void pipe_transport(const __global long* sediment, __global long* sediment_next, const __global float* flux,
-                             const __global float* previous_depth, const int nx, const int ny, const float cell,
-                             const float dt, const ulong seed, const ulong step_index, volatile __global long* outflow) {
-  const int k = get_global_id(0);
-  if (k >= nx * ny) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
-  const float cell2 = cell * cell;
+// pipe_send: the sediment each cell sends through its four pipes: their outflows' shares of the
+// water it had, f·share (together at most 1), split by systematic sampling with one random u per
+// cell and step, so each pipe carries s·f·share in expectation and all four together never more
+// than s. Stored one plane per direction (L R T B: sent[d·n + k]); pipe_receive then moves them, and
+// pipe_edge_outflow books what left the map.
+__kernel void pipe_send(const __global long* sediment, const __global float* flux, const __global float* previous_depth,
+                        __global long* sent, const int nx, const int ny, const float cell, const float dt,
+                        const ulong seed, const ulong step_index) {
+  const int k = get_global_id(0), n = nx * ny;
+  if (k >= n) return;
   // share = Δt / (d1·l²): the fraction of the cell's water one unit of flux carries away in a step.
-  const float volume = previous_depth[k] * cell2;
+  const float volume = previous_depth[k] * cell * cell;
   const float share = volume > 0.0f ? dt / volume : 0.0f;
-  const float u = pipe_random(seed, PIPE_TRANSPORT_STREAM, step_index, nx * ny, k);
-  long s = sediment[k];
-  for (int d = 0; d < 4; ++d) {
-    const long sent = pipe_sent(sediment[k], flux + 4 * k, share, u, d);
-    s -= sent;
-    const int x = i + kPipeNeighbour[d].x, z = j + kPipeNeighbour[d].y;
-    if (!pipe_inside(x, z, nx, ny)) {
-      if (sent > 0) atom_add(outflow, sent);
-      continue;
-    }
-    const int m = z * nx + x;
-    const float volume_m = previous_depth[m] * cell2;
-    const float share_m = volume_m > 0.0f ? dt / volume_m : 0.0f;
-    s += pipe_sent(sediment[m], flux + 4 * m, share_m, pipe_random(seed, PIPE_TRANSPORT_STREAM, step_index, nx * ny, m),
-                   d ^ 1);
+  const float u = pipe_random(seed, PIPE_TRANSPORT_STREAM, step_index, n, k);
+  const float s = (float)sediment[k];
+  // Cumulative shares up to and including pipe d, capped at the whole load; the pipe sends the
+  // difference of the sampled amounts at its two ends. Every amount is ≥ 0, so truncation is the floor.
+  const float c1 = flux[0 * n + k] * share, c2 = c1 + flux[1 * n + k] * share;
+  const float c3 = c2 + flux[2 * n + k] * share, c4 = c3 + flux[3 * n + k] * share;
+  const long at0 = (long)u, at1 = (long)(s * fmin(1.0f, c1) + u), at2 = (long)(s * fmin(1.0f, c2) + u);
+  const long at3 = (long)(s * fmin(1.0f, c3) + u), at4 = (long)(s * fmin(1.0f, c4) + u);
+  sent[0 * n + k] = at1 - at0;
+  sent[1 * n + k] = at2 - at1;
+  sent[2 * n + k] = at3 - at2;
+  sent[3 * n + k] = at4 - at3;
+}
+
+__kernel void pipe_receive(const __global long* sediment, __global long* sediment_next, const __global long* sent,
+                           const int nx, const int ny) {
+  const int k = get_global_id(0), n = nx * ny;
+  if (k >= n) return;
+  const int j = grid_row(k, nx), i = k - j * nx;
+  // The neighbours' sediment towards this cell comes through their pipe d ^ 1; nothing from outside.
+  const long in = (i > 0 ? sent[1 * n + k - 1] : 0) + (i < nx - 1 ? sent[0 * n + k + 1] : 0) +
+                  (j > 0 ? sent[3 * n + k - nx] : 0) + (j < ny - 1 ? sent[2 * n + k + nx] : 0);
+  const long out = sent[0 * n + k] + sent[1 * n + k] + sent[2 * n + k] + sent[3 * n + k];
+  sediment_next[k] = sediment[k] - out + in;
+}
+
+// What the border cells sent out of the map, one work-item per border face: left and right columns,
+// then top and bottom rows. An integer sum, so the order of the atomics does not matter.
+__kernel void pipe_edge_outflow(const __global long* sent, const int nx, const int ny,
+                                volatile __global long* outflow) {
+  const int f = get_global_id(0), n = nx * ny;
+  if (f >= 2 * (nx + ny)) return;
+  long out;
+  if (f < 2 * ny) {
+    const int j = f >> 1, right = f & 1;
+    out = sent[right * n + j * nx + (right ? nx - 1 : 0)];
+  } else {
+    const int i = (f - 2 * ny) >> 1, bottom = f & 1;
+    out = sent[(2 + bottom) * n + (bottom ? ny - 1 : 0) * nx + i];
   }
-  sediment_next[k] = s;
+  if (out > 0) atom_add(outflow, out);
 }
 
 // The option pipe.transport = "semi-lagrangian" (Mei 2007's advection) instead of pipe_transport:
@@ -173,12 +207,11 @@ __kernel void pipe_transport(const __global long* sediment, __global long* sedim
 // (or gains) is the exact sum of s_old − s_new, booked in `lost`.
 __kernel void pipe_advect(const __global long* sediment, __global long* sediment_next, const __global float* velocity,
                           const int nx, const int ny, const float cell, const float dt, volatile __global long* lost) {
-  const int k = get_global_id(0);
-  if (k >= nx * ny) return;
-  const int2 ij = grid_coords(k, nx);
-  const int i = ij.x, j = ij.y;
-  const float x = clamp((float)i - velocity[2 * k] * dt / cell, 0.0f, (float)(nx - 1));
-  const float z = clamp((float)j - velocity[2 * k + 1] * dt / cell, 0.0f, (float)(ny - 1));
+  const int k = get_global_id(0), n = nx * ny;
+  if (k >= n) return;
+  const int j = grid_row(k, nx), i = k - j * nx;
+  const float x = clamp((float)i - velocity[k] * dt / cell, 0.0f, (float)(nx - 1));
+  const float z = clamp((float)j - velocity[n + k] * dt / cell, 0.0f, (float)(ny - 1));
   const int i0 = min((int)x, nx - 2), j0 = min((int)z, ny - 2);
   const float u = x - (float)i0, v = z - (float)j0;
   const int m = j0 * nx + i0;
@@ -201,8 +234,8 @@ __kernel void pipe_stats(const __global float* depth, const __global float* velo
   const int b = get_global_id(0);
   float dmax = 0.0f, vmax2 = 0.0f;
   for (int k = b * chunk; k < min(n, (b + 1) * chunk); ++k) {
-    const float vx = velocity[2 * k], vz = velocity[2 * k + 1];
-    const float out = (flux[4 * k] + flux[4 * k + 1] + flux[4 * k + 2] + flux[4 * k + 3]) * dt;
+    const float vx = velocity[k], vz = velocity[n + k];
+    const float out = (flux[0 * n + k] + flux[1 * n + k] + flux[2 * n + k] + flux[3 * n + k]) * dt;
     const int limited = out >= 0.999f * previous_depth[k] * cell * cell;
     const float v2 = depth[k] >= PIPE_CFL_DEPTH && !limited ? vx * vx + vz * vz : 0.0f;
     // fmax ignores NaN: turn it into infinity so that the host sees it.

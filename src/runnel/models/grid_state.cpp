@@ -6,6 +6,30 @@
 
 namespace runnel {
 
+namespace {
+
+// The host's layout (components of a vertex together: the checkpoint's (ny, nx, c)) from the
+// device's (one plane per component), and back.
+template <typename T>
+std::vector<T> interleaved(const std::vector<T>& planar, std::size_t vertices, int components) {
+  if (components == 1) return planar;
+  std::vector<T> out(planar.size());
+  for (std::size_t k = 0; k < vertices; ++k)
+    for (int c = 0; c < components; ++c) out[k * components + c] = planar[c * vertices + k];
+  return out;
+}
+
+template <typename T>
+std::vector<T> planar(const std::vector<T>& interleaved, std::size_t vertices, int components) {
+  if (components == 1) return interleaved;
+  std::vector<T> out(interleaved.size());
+  for (std::size_t k = 0; k < vertices; ++k)
+    for (int c = 0; c < components; ++c) out[c * vertices + k] = interleaved[k * components + c];
+  return out;
+}
+
+}  // namespace
+
 GridState::GridState(ComputeContext& compute, const Heightmap& terrain, double height_quantum)
     : compute_(compute),
       terrain_(compute, terrain, height_quantum),
@@ -92,8 +116,15 @@ void GridState::upload(const std::vector<StoredField>& stored) {
     const bool ok = s.components == f.components &&
                     (f.is_int64 ? s.i64.size() == count : s.f32.size() == count);
     if (!ok) throw input_error("checkpoint: field " + s.name + " has the wrong size or type");
-    const void* data = f.is_int64 ? static_cast<const void*>(s.i64.data()) : s.f32.data();
-    compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(), data);
+    if (f.is_int64) {
+      const auto device = planar(s.i64, vertices_, f.components);
+      compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(),
+                                          device.data());
+    } else {
+      const auto device = planar(s.f32, vertices_, f.components);
+      compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(),
+                                          device.data());
+    }
   }
 }
 
@@ -101,14 +132,14 @@ std::vector<float> GridState::download_float(const std::string& name) {
   Field& f = fields_.at(index_of(name));
   std::vector<float> out(vertices_ * static_cast<std::size_t>(f.components));
   compute_.queue().enqueueReadBuffer(f.buffer, CL_TRUE, 0, out.size() * 4, out.data());
-  return out;
+  return interleaved(out, vertices_, f.components);
 }
 
 std::vector<std::int64_t> GridState::download_int64(const std::string& name) {
   Field& f = fields_.at(index_of(name));
   std::vector<std::int64_t> out(vertices_ * static_cast<std::size_t>(f.components));
   compute_.queue().enqueueReadBuffer(f.buffer, CL_TRUE, 0, out.size() * 8, out.data());
-  return out;
+  return interleaved(out, vertices_, f.components);
 }
 
 }  // namespace runnel

@@ -15,6 +15,10 @@ namespace runnel {
 // (topographic__elevation), its initial state, and named per-vertex device fields from the field
 // dictionary. A model asks for its fields once, at construction, and keeps the handles; the
 // checkpoint stores every field generically.
+// A field of c components lies on the device one plane per component (component c of vertex k at
+// c·n + k), so that a kernel reads each component contiguously: interleaved components are what the
+// SLP vectoriser packs first, and a work-item loop holding such packs is not vectorised across
+// vertices. The host (download, upload, the checkpoint) sees them interleaved, (ny, nx, c).
 class GridState {
  public:
   GridState(ComputeContext& compute, const Heightmap& terrain, double height_quantum);

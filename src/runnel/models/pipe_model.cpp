@@ -85,6 +85,8 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   previous_depth_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
   compute.queue().enqueueFillBuffer(previous_depth_, 0.0f, 0, n * sizeof(float));
   sediment_next_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_long));
+  if (!settings_.semi_lagrangian())
+    sent_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
   stats_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * kStatBlocks * sizeof(float));
   outflow_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   lost_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
@@ -95,7 +97,9 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   flux_kernel_ = Kernel(compute, program, "pipe_flux");
   water_kernel_ = Kernel(compute, program, "pipe_water");
   erode_kernel_ = Kernel(compute, program, "pipe_erode");
-  transport_kernel_ = Kernel(compute, program, "pipe_transport");
+  send_kernel_ = Kernel(compute, program, "pipe_send");
+  receive_kernel_ = Kernel(compute, program, "pipe_receive");
+  edge_outflow_kernel_ = Kernel(compute, program, "pipe_edge_outflow");
   advect_kernel_ = Kernel(compute, program, "pipe_advect");
   stats_kernel_ = Kernel(compute, program, "pipe_stats");
 }
@@ -109,31 +113,57 @@ double PipeModel::take_step() {
   cl::Buffer &depth = state_.buffer(depth_), &flux = state_.buffer(flux_),
              &velocity = state_.buffer(velocity_), &sediment = state_.buffer(sediment_);
   const cl_ulong seed = static_cast<cl_ulong>(params_.integer("run.seed")), step = steps();
-  Kernel& transport = settings_.semi_lagrangian() ? advect_kernel_ : transport_kernel_;
-  for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_, &transport}) {
-    k->set("nx", nx).set("ny", ny).set("dt", dt);
-    if (k->has("cell")) k->set("cell", cell);
+  for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) {
+    k->set("nx", nx).set("ny", ny).set("cell", cell);
+    if (k->has("dt")) k->set("dt", dt);
     if (k->has("quantum")) k->set("quantum", q);
-    if (k->has("seed")) k->set("seed", seed).set("step_index", step);
   }
   flux_kernel_.set("height", terrain.height_fixed()).set("depth", depth).set("flux", flux);
   water_kernel_.set("depth", depth).set("flux", flux).set("velocity", velocity);
   water_kernel_.set("previous_depth", previous_depth_);
   erode_kernel_.set("height", terrain.height_fixed()).set("height_view", terrain.height());
   erode_kernel_.set("sediment", sediment).set("depth", depth).set("velocity", velocity);
-  transport.set("sediment", sediment).set("sediment_next", sediment_next_);
-  if (settings_.semi_lagrangian()) {
-    advect_kernel_.set("velocity", velocity).set("lost", lost_);
-  } else {
-    transport_kernel_.set("flux", flux).set("previous_depth", previous_depth_);
-    transport_kernel_.set("outflow", outflow_);
-  }
-  for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_, &transport}) k->launch(work);
+  erode_kernel_.set("seed", seed).set("step_index", step);
+  // The exact relaxation over the step, whatever Δt (models.md "pipe").
+  erode_kernel_
+      .set("dissolved_fraction", static_cast<float>(-std::expm1(-settings_.dissolve * dt_)))
+      .set("deposited_fraction", static_cast<float>(-std::expm1(-settings_.deposit * dt_)))
+      .set("evaporation_factor", static_cast<float>(std::exp(-settings_.evaporation * dt_)));
+  for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) k->launch(work);
+  transport(sediment, flux, velocity, dt);
   std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment
   terrain.apply();
   const double taken = dt_;
   choose_next_dt();
   return taken;
+}
+
+// Moves the suspended sediment into sediment_next_: with the water that leaves each cell, or by
+// semi-Lagrangian advection (the documented non-conserving option).
+void PipeModel::transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& velocity, float dt) {
+  const int nx = state_.terrain().nx(), ny = state_.terrain().ny(), n = nx * ny;
+  const std::size_t work = round_up_work(static_cast<std::size_t>(n));
+  if (settings_.semi_lagrangian()) {
+    advect_kernel_.set("sediment", sediment)
+        .set("sediment_next", sediment_next_)
+        .set("velocity", velocity);
+    advect_kernel_.set("nx", nx).set("ny", ny).set("cell", state_.terrain().cell()).set("dt", dt);
+    advect_kernel_.set("lost", lost_).launch(work);
+    return;
+  }
+  send_kernel_.set("sediment", sediment).set("flux", flux).set("previous_depth", previous_depth_);
+  send_kernel_.set("sent", sent_)
+      .set("nx", nx)
+      .set("ny", ny)
+      .set("cell", state_.terrain().cell())
+      .set("dt", dt);
+  send_kernel_.set("seed", static_cast<cl_ulong>(params_.integer("run.seed")))
+      .set("step_index", steps());
+  send_kernel_.launch(work);
+  receive_kernel_.set("sediment", sediment).set("sediment_next", sediment_next_).set("sent", sent_);
+  receive_kernel_.set("nx", nx).set("ny", ny).launch(work);
+  edge_outflow_kernel_.set("sent", sent_).set("nx", nx).set("ny", ny).set("outflow", outflow_);
+  edge_outflow_kernel_.launch(round_up_work(2 * static_cast<std::size_t>(nx + ny)));
 }
 
 // The next step: the CFL limit of the shallow-water waves and the flow (Fritz 2016 saw oscillation

@@ -60,9 +60,10 @@ class PipeModel final : public GridModel {
   PipeSettings settings_;
   double dt_ = 0;
   int depth_, flux_, velocity_, sediment_;  // GridState handles
-  cl::Buffer previous_depth_, sediment_next_, stats_, outflow_, lost_;
-  Kernel flux_kernel_, water_kernel_, erode_kernel_, transport_kernel_, advect_kernel_,
-      stats_kernel_;
+  void transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& velocity, float dt);
+  cl::Buffer previous_depth_, sediment_next_, sent_, stats_, outflow_, lost_;
+  Kernel flux_kernel_, water_kernel_, erode_kernel_, send_kernel_, receive_kernel_,
+      edge_outflow_kernel_, advect_kernel_, stats_kernel_;
 };
 
 }  // namespace runnel

@@ -17,7 +17,7 @@ double random(std::uint64_t seed, std::uint64_t stream, std::uint64_t step, std:
   return rng_uniform(seed, stream, step * cells + k);
 }
 
-// What a cell with `sediment` sends through pipe d (cl/models/pipe.cl's pipe_sent).
+// What a cell with `sediment` sends through pipe d (cl/models/pipe.cl's pipe_send).
 std::int64_t sent(std::int64_t sediment, const double* flux4, double share, double u, int d) {
   double before = 0;
   for (int e = 0; e < d; ++e) before += flux4[e] * share;
