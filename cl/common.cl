@@ -31,3 +31,20 @@ inline int grid_row(int k, int nx) {
   const int i = k - j * nx;
   return i < 0 ? j - 1 : (i >= nx ? j + 1 : j);
 }
+
+// Terrain tiles of TERRAIN_TILE × TERRAIN_TILE vertices (DeviceTerrain). A kernel that adds to the
+// terrain's deltas marks the tiles of the vertices it touched, so that applying a step's changes and
+// refreshing the normals cost what the water touched, not the whole terrain. Every marker writes the
+// same 1, so concurrent marks agree.
+#define TERRAIN_TILE_SHIFT 4
+#define TERRAIN_TILE (1 << TERRAIN_TILE_SHIFT)
+
+inline int terrain_tile(int i, int j, int tiles_x) {
+  return (j >> TERRAIN_TILE_SHIFT) * tiles_x + (i >> TERRAIN_TILE_SHIFT);
+}
+
+// Marks the tiles of the vertices [i0, i1] × [j0, j1] (inside the grid).
+inline void mark_changed_tiles(__global uint* changed, int tiles_x, int i0, int i1, int j0, int j1) {
+  for (int tj = j0 >> TERRAIN_TILE_SHIFT; tj <= j1 >> TERRAIN_TILE_SHIFT; ++tj)
+    for (int ti = i0 >> TERRAIN_TILE_SHIFT; ti <= i1 >> TERRAIN_TILE_SHIFT; ++ti) changed[tj * tiles_x + ti] = 1u;
+}

@@ -40,6 +40,20 @@
 
 #define EROSION_STREAM 0x65726f64UL  // "erod"
 
+// Adds sign·quanta over the footprint of (x, z) (spread_quanta) and marks the terrain tiles the
+// footprint reaches (its off-grid fallback vertex included), for terrain_apply.
+inline void land_quanta(volatile __global long* delta, __global uint* changed, int tiles_x, int nx, int ny,
+                        float cell, float x, float z, long quanta, long sign, float u) {
+  if (quanta == 0) return;
+  spread_quanta(delta, nx, ny, cell, x, z, quanta, sign, u);
+  const float last_i = (float)(nx - 1), last_j = (float)(ny - 1);
+  const int i0 = (int)clamp(floor((x - FOOTPRINT_RADIUS) / cell), 0.0f, last_i);
+  const int i1 = (int)clamp(ceil((x + FOOTPRINT_RADIUS) / cell), 0.0f, last_i);
+  const int j0 = (int)clamp(floor((z - FOOTPRINT_RADIUS) / cell), 0.0f, last_j);
+  const int j1 = (int)clamp(ceil((z + FOOTPRINT_RADIUS) / cell), 0.0f, last_j);
+  mark_changed_tiles(changed, tiles_x, i0, i1, j0, j1);
+}
+
 // Random numbers of a particle's exchange in one step: draw 0 rounds the volume, draw 1 places the
 // quanta.
 inline float exchange_random(ulong seed, uint id, ulong step, uint draw) {
@@ -60,7 +74,7 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
                              const ulong seed, const ulong step_index,
                              const __global float* terrain_height, const __global float* terrain_normal,
                              const int tnx, const int tny, const float tcell, volatile __global long* delta,
-                             volatile __global long* counters) {
+                             __global uint* changed, const int tiles_x, volatile __global long* counters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   if (id[i] & DEAD_FLAG) return;
@@ -69,7 +83,8 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
 
   if (age[i] > lifespan[i]) {  // evaporation: deposit and leave
     const long kept = min(carried, (long)floor((float)carried * EROSION_DEPOSIT_FRACTION));
-    spread_quanta(delta, tnx, tny, tcell, px, pz, kept, 1, exchange_random(seed, id[i], step_index, 1));
+    land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, kept, 1,
+                exchange_random(seed, id[i], step_index, 1));
     atom_add(&counters[COUNTER_LOST_SEDIMENT], carried - kept);
     atom_inc(&counters[COUNTER_EVAPORATED]);
     sediment[i] = 0;
@@ -97,7 +112,8 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
     const float amount = fmin(rate * area * dt, (capacity - concentration) * EROSION_PARTICLE_VOLUME);
     const long q = stochastic_quanta(amount, exchange_random(seed, id[i], step_index, 0));
     if (q > 0 && carried + q < 0x7fffffffL) {
-      spread_quanta(delta, tnx, tny, tcell, px, pz, q, -1, exchange_random(seed, id[i], step_index, 1));
+      land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, q, -1,
+                  exchange_random(seed, id[i], step_index, 1));
       sediment[i] = (int)(carried + q);
     }
   } else {
@@ -105,7 +121,8 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
     const float amount = fmin(rate * area * dt, load - capacity * EROSION_PARTICLE_VOLUME);
     const long q = min(carried, stochastic_quanta(amount, exchange_random(seed, id[i], step_index, 0)));
     if (q > 0) {
-      spread_quanta(delta, tnx, tny, tcell, px, pz, q, 1, exchange_random(seed, id[i], step_index, 1));
+      land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, q, 1,
+                  exchange_random(seed, id[i], step_index, 1));
       sediment[i] = (int)(carried - q);
     }
   }
@@ -113,7 +130,8 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   if ((contacts[i] & ~TOUCHING_FLAG) < EROSION_CAPACITY_CONTACTS) {
     const long q = stochastic_quanta(EROSION_ACIDITY * tcell * tcell, exchange_random(seed, id[i], step_index, 0));
     if (q > 0 && carried + q < 0x7fffffffL) {
-      spread_quanta(delta, tnx, tny, tcell, px, pz, q, -1, exchange_random(seed, id[i], step_index, 1));
+      land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, q, -1,
+                  exchange_random(seed, id[i], step_index, 1));
       sediment[i] = (int)(carried + q);
       contacts[i] += 1;
     }

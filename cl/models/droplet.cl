@@ -29,9 +29,11 @@ inline float height_at(const __global float* h, int nx, float x, float z, float*
 }
 
 // Deposits `quanta` on the 4 corners of the cell with bilinear weights, exactly.
-inline void deposit_bilinear(volatile __global long* delta, int nx, float x, float z, long quanta) {
+inline void deposit_bilinear(volatile __global long* delta, __global uint* changed, int tiles_x, int nx, float x,
+                             float z, long quanta) {
   if (quanta <= 0) return;
   const int i = (int)x, j = (int)z;
+  mark_changed_tiles(changed, tiles_x, i, i + 1, j, j + 1);
   const float u = x - (float)i, v = z - (float)j;
   const float w[4] = {(1.0f - u) * (1.0f - v), u * (1.0f - v), (1.0f - u) * v, u * v};
   const int k[4] = {j * nx + i, j * nx + i + 1, (j + 1) * nx + i, (j + 1) * nx + i + 1};
@@ -48,10 +50,13 @@ inline void deposit_bilinear(volatile __global long* delta, int nx, float x, flo
 
 // Erodes `quanta` from the vertices within DROPLET_RADIUS cells, weighted by (radius − distance).
 #define BRUSH_SIDE (2 * (int)DROPLET_RADIUS_CELLS + 2)
-inline void erode_brush(volatile __global long* delta, int nx, int ny, float x, float z, long quanta) {
+inline void erode_brush(volatile __global long* delta, __global uint* changed, int tiles_x, int nx, int ny, float x,
+                        float z, long quanta) {
   if (quanta <= 0) return;
   const int r = DROPLET_RADIUS_CELLS;
   const int ci = (int)x, cj = (int)z;
+  mark_changed_tiles(changed, tiles_x, max(ci - r, 0), min(ci + r + 1, nx - 1), max(cj - r, 0),
+                     min(cj + r + 1, ny - 1));
   // The weights once, kept for the second pass.
   float weight[BRUSH_SIDE * BRUSH_SIDE];
   float total = 0.0f;
@@ -87,7 +92,8 @@ inline void erode_brush(volatile __global long* delta, int nx, int ny, float x, 
 
 // Droplet state between steps: (x, z, dir_x, dir_z, speed, water) in cell units; water < 0 marks
 // a droplet that has finished.
-__kernel void droplet_step(const __global float* height, volatile __global long* delta, const int nx, const int ny,
+__kernel void droplet_step(const __global float* height, volatile __global long* delta, __global uint* changed,
+                           const int tiles_x, const int nx, const int ny,
                            const float quantum, const ulong seed, const ulong first_droplet, const uint count,
                            const int step_index, __global float* state, __global long* load,
                            volatile __global long* counters) {
@@ -113,7 +119,7 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
   float dir_z = s[3] * DROPLET_INERTIA - gz * (1.0f - DROPLET_INERTIA);
   const float len = sqrt(dir_x * dir_x + dir_z * dir_z);
   if (len == 0.0f) {  // flat: the droplet stops and deposits what it carries
-    deposit_bilinear(delta, nx, x, z, sediment);
+    deposit_bilinear(delta, changed, tiles_x, nx, x, z, sediment);
     load[d] = 0;
     s[5] = -1.0f;
     return;
@@ -136,18 +142,18 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
   if (dh > 0.0f || carried > capacity) {
     const float amount = dh > 0.0f ? fmin(dh, carried) : (carried - capacity) * DROPLET_DEPOSIT;
     const long q = min(sediment, (long)floor(amount / quantum));
-    deposit_bilinear(delta, nx, x, z, q);
+    deposit_bilinear(delta, changed, tiles_x, nx, x, z, q);
     sediment -= q;
   } else {
     const float amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
     const long q = (long)floor(amount / quantum);
-    erode_brush(delta, nx, ny, x, z, q);
+    erode_brush(delta, changed, tiles_x, nx, ny, x, z, q);
     sediment += q;
   }
   speed = sqrt(fmax(0.0f, speed * speed - dh * DROPLET_GRAVITY));
   water *= 1.0f - DROPLET_EVAPORATE;
   if (step_index == DROPLET_LIFETIME - 1) {  // the end of its life: it deposits what it still carries
-    deposit_bilinear(delta, nx, nx_pos, nz_pos, sediment);
+    deposit_bilinear(delta, changed, tiles_x, nx, nx_pos, nz_pos, sediment);
     sediment = 0;
     water = -1.0f;
   }

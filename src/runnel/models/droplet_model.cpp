@@ -112,8 +112,8 @@ double DropletModel::take_step() {
   const cl_uint count = static_cast<cl_uint>(batch_size());
   // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl).
   for (int step = 0; step < settings_.lifetime; ++step) {
+    terrain.bind_changes(kernel_);
     kernel_.set("height", terrain.height())
-        .set("delta", terrain.delta())
         .set("nx", terrain.nx())
         .set("ny", terrain.ny())
         .set("quantum", static_cast<float>(terrain.quantum()))
@@ -125,7 +125,7 @@ double DropletModel::take_step() {
         .set("load", droplet_load_)
         .set("counters", counters_)
         .launch(round_up_work(count));
-    terrain.apply();
+    terrain.apply_changed();
   }
   droplets_ += count;
   return 1.0;

@@ -103,7 +103,7 @@ void Simulation::step() {
   SphSolver& s = *solver_;
   s.drift();  // integrate.kick, sph.continuity, integrate.drift (+ collide.terrain, outflow)
   erosion_->exchange(s, s.dt());  // erode.exchange and evaporation → fixed-point deltas
-  s.terrain().apply();            // terrain.apply: deltas → heights, normals
+  s.terrain().apply_changed();    // terrain.apply: deltas → heights, normals (the tiles touched)
   // thermal.relax, whenever the clock crosses a multiple of the interval (seconds, not steps).
   if (thermal_ && std::floor((s.time() + s.dt()) / thermal_interval_) >
                       std::floor(s.time() / thermal_interval_))

@@ -99,8 +99,8 @@ void Erosion::exchange(SphSolver& solver, double dt) {
       .set("morphological_factor", static_cast<float>(settings_.morphological_factor))
       .set("seed", static_cast<cl_ulong>(seed_))
       .set("step_index", static_cast<cl_ulong>(solver.steps()))
-      .set("delta", solver.terrain().delta())
       .set("counters", solver.counters_buffer());
+  solver.terrain().bind_changes(k);
   k.launch(round_up_work(n));
 }
 

@@ -18,11 +18,19 @@ DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, 
       quantum_(quantum),
       origin_x_(terrain.origin_x),
       origin_z_(terrain.origin_z),
+      tiles_x_(terrain_tiles(terrain.nx)),
+      tiles_y_(terrain_tiles(terrain.ny)),
       height_fixed_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(cl_long)),
       delta_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(cl_long)),
       height_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(float)),
       normal_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * 3 * sizeof(float)),
-      apply_(compute, compute.program({"cl/terrain_apply.cl"}), "terrain_apply") {
+      changed_tiles_(compute.context(), CL_MEM_READ_WRITE,
+                     static_cast<std::size_t>(tiles_x_) * tiles_y_ * sizeof(cl_uint)),
+      stale_normal_tiles_(compute.context(), CL_MEM_READ_WRITE,
+                          static_cast<std::size_t>(tiles_x_) * tiles_y_ * sizeof(cl_uint)),
+      apply_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}), "terrain_apply"),
+      stale_normals_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}),
+                     "terrain_stale_normals") {
   if (!(quantum > 0)) throw input_error("erosion.height_quantum: must be positive");
   upload(terrain);
 }
@@ -59,21 +67,48 @@ void DeviceTerrain::apply() {
   refresh_view();
 }
 
+void DeviceTerrain::apply_changed() {
+  apply_.set("height_fixed", height_fixed_)
+      .set("delta", delta_)
+      .set("height", height_)
+      .set("nx", nx_)
+      .set("ny", ny_)
+      .set("quantum", static_cast<float>(quantum_))
+      .set("changed", changed_tiles_)
+      .set("tiles_x", tiles_x_)
+      .launch(round_up_work(static_cast<std::size_t>(nx_) * ny_));
+  stale_normals_.set("changed", changed_tiles_)
+      .set("stale", stale_normal_tiles_)
+      .set("tiles_x", tiles_x_)
+      .set("tiles_y", tiles_y_)
+      .launch(round_up_work(static_cast<std::size_t>(tiles_x_) * tiles_y_));
+  fill_tiles(changed_tiles_, 0);
+  normals_stale_ = true;
+}
+
 cl::Buffer& DeviceTerrain::normal() {
-  if (normals_stale_) normals_.enqueue(height_, normal_, nx_, ny_, cell_);
+  if (normals_stale_) {
+    normals_.enqueue(height_, normal_, nx_, ny_, cell_, stale_normal_tiles_, tiles_x_);
+    fill_tiles(stale_normal_tiles_, 0);
+  }
   normals_stale_ = false;
   return normal_;
 }
 
+// Everything may have changed: every tile's heights and normals are refreshed.
 void DeviceTerrain::refresh_view() {
-  const cl_uint n = static_cast<cl_uint>(nx_) * ny_;
-  apply_.set("height_fixed", height_fixed_)
-      .set("delta", delta_)
-      .set("height", height_)
-      .set("n", n)
-      .set("quantum", static_cast<float>(quantum_));
-  apply_.launch(round_up_work(n));
-  normals_stale_ = true;
+  fill_tiles(changed_tiles_, 1);
+  fill_tiles(stale_normal_tiles_, 1);
+  apply_changed();
+}
+
+void DeviceTerrain::fill_tiles(cl::Buffer& tiles, cl_uint value) {
+  compute_.queue().enqueueFillBuffer(
+      tiles, value, 0, static_cast<std::size_t>(tiles_x_) * tiles_y_ * sizeof(cl_uint));
+}
+
+void DeviceTerrain::bind_changes(Kernel& k) {
+  k.set("delta", delta_).set("changed", changed_tiles_).set("tiles_x", tiles_x_);
 }
 
 Heightmap DeviceTerrain::download() {

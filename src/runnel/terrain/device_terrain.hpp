@@ -25,10 +25,14 @@ class DeviceTerrain {
   // Replaces the heights (same size): rounds them to the quantum, refreshes the view and normals.
   void upload(const Heightmap& terrain);
   void upload_fixed(const std::vector<std::int64_t>& fixed);
-  // Adds the accumulated deltas to the fixed-point heights, clears them and refreshes the view.
-  // The normals are refreshed when next asked for (normal(), bind()): the grid models never
-  // read them, and recomputing them every step cost the pipe model a sixth of its time.
+  // Adds the accumulated deltas to the fixed-point heights, clears them and refreshes the view,
+  // after a change anywhere (a kernel that wrote height_fixed). The normals are refreshed when next
+  // asked for (normal(), bind()): the grid models never read them, and recomputing them every step
+  // cost the pipe model a sixth of its time.
   void apply();
+  // The same for the tiles marked changed by the kernels that added deltas (bind_changes), and
+  // only their normals turn stale: a step's cost follows the water, not the terrain's size.
+  void apply_changed();
   // The float view as a heightmap, and the exact fixed-point state.
   Heightmap download();
   std::vector<std::int64_t> download_fixed();
@@ -40,6 +44,9 @@ class DeviceTerrain {
   cl::Buffer& height() { return height_; }
   cl::Buffer& normal();
   cl::Buffer& delta() { return delta_; }
+  // The arguments of a kernel that adds to the deltas: delta, changed (the tiles it marks; see
+  // mark_changed_tiles in cl/common.cl) and tiles_x.
+  void bind_changes(Kernel& kernel);
   cl::Buffer& height_fixed() { return height_fixed_; }
   int nx() const { return nx_; }
   int ny() const { return ny_; }
@@ -52,15 +59,18 @@ class DeviceTerrain {
 
  private:
   void refresh_view();
+  void fill_tiles(cl::Buffer& tiles, cl_uint value);
   ComputeContext& compute_;
   TerrainNormals normals_;
   int nx_, ny_;
   float cell_;
   double quantum_;
   double origin_x_, origin_z_;
+  int tiles_x_, tiles_y_;
   cl::Buffer height_fixed_, delta_, height_, normal_;
-  bool normals_stale_ = true;
-  Kernel apply_;
+  cl::Buffer changed_tiles_, stale_normal_tiles_;  // one cl_uint per tile, 1: marked
+  bool normals_stale_ = true;                      // some tile of stale_normal_tiles_ may be marked
+  Kernel apply_, stale_normals_;
 };
 
 }  // namespace runnel

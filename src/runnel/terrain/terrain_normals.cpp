@@ -11,9 +11,10 @@ TerrainNormals::TerrainNormals(ComputeContext& compute)
               "terrain_normals") {}
 
 void TerrainNormals::enqueue(const cl::Buffer& height, const cl::Buffer& normal, int nx, int ny,
-                             float cell) {
+                             float cell, const cl::Buffer& stale, int tiles_x) {
   kernel_.set("height", height).set("normal", normal).set("nx", nx).set("ny", ny);
-  kernel_.set("cell", cell).launch(round_up_work(static_cast<std::size_t>(nx) * ny));
+  kernel_.set("cell", cell).set("stale", stale).set("tiles_x", tiles_x);
+  kernel_.launch(round_up_work(static_cast<std::size_t>(nx) * ny));
 }
 
 std::vector<float> TerrainNormals::compute(const Heightmap& terrain) {
@@ -21,7 +22,11 @@ std::vector<float> TerrainNormals::compute(const Heightmap& terrain) {
   cl::Buffer height(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, terrain.size() * sizeof(float),
                     const_cast<float*>(terrain.h.data()));
   cl::Buffer normal(ctx, CL_MEM_WRITE_ONLY, terrain.size() * 3 * sizeof(float));
-  enqueue(height, normal, terrain.nx, terrain.ny, static_cast<float>(terrain.cell));
+  const int tiles_x = terrain_tiles(terrain.nx);
+  std::vector<cl_uint> every_tile(static_cast<std::size_t>(tiles_x) * terrain_tiles(terrain.ny), 1);
+  cl::Buffer stale(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                   every_tile.size() * sizeof(cl_uint), every_tile.data());
+  enqueue(height, normal, terrain.nx, terrain.ny, static_cast<float>(terrain.cell), stale, tiles_x);
   std::vector<float> out(terrain.size() * 3);
   compute_.queue().enqueueReadBuffer(normal, CL_TRUE, 0, out.size() * sizeof(float), out.data());
   return out;

@@ -9,12 +9,22 @@
 
 namespace runnel {
 
+// The side of a terrain tile in vertices (TERRAIN_TILE in cl/common.cl): the unit in which kernels
+// mark the terrain they changed.
+inline constexpr int kTerrainTileShift = 4;
+inline constexpr int kTerrainTile = 1 << kTerrainTileShift;
+inline int terrain_tiles(int vertices) {
+  return (vertices + kTerrainTile - 1) >> kTerrainTileShift;
+}
+
 // Host side of cl/terrain_normals.cl.
 class TerrainNormals {
  public:
   explicit TerrainNormals(ComputeContext& compute);
-  // Enqueues the kernel on buffers already on the device.
-  void enqueue(const cl::Buffer& height, const cl::Buffer& normal, int nx, int ny, float cell);
+  // Enqueues the kernel on buffers already on the device, for the vertices of the tiles marked in
+  // `stale` (one uint per tile of kTerrainTile² vertices, rows of tiles_x).
+  void enqueue(const cl::Buffer& height, const cl::Buffer& normal, int nx, int ny, float cell,
+               const cl::Buffer& stale, int tiles_x);
   // Convenience: upload, compute, read back.
   std::vector<float> compute(const Heightmap& terrain);
 
