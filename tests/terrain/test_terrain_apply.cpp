@@ -3,10 +3,14 @@
 // float view (h_fixed + delta)·q rounded once, for heights far from zero and below it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "runnel/core/parameters.hpp"
+#include "runnel/models/droplet_model.hpp"
 #include "runnel/terrain/device_terrain.hpp"
+#include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -40,6 +44,69 @@ TEST(TerrainApply, AddsTheDeltasExactlyAndRefreshesTheFloatView) {
     // The high and low parts each round once: within two float ulps of the exact height.
     ASSERT_NEAR(view.h[k], metres, 2.5e-7 * std::fabs(metres) + 1e-9) << k;
   }
+}
+
+// apply_changed applies the deltas of the tiles marked changed and leaves the others: a kernel that
+// adds deltas must mark their tiles (mark_changed_tiles), and this is what it relies on.
+TEST(TerrainApply, ApplyChangedTouchesOnlyTheMarkedTiles) {
+  const int nx = 50, ny = 40;  // 4 × 3 tiles of 16, the last ones partial
+  DeviceTerrain terrain(compute(), Heightmap(nx, ny, 1.0), 1e-6);
+  ASSERT_EQ(terrain.tiles_x(), 4);
+  ASSERT_EQ(terrain.tiles_y(), 3);
+  std::vector<std::int64_t> delta(nx * ny, 7);
+  compute().queue().enqueueWriteBuffer(terrain.delta(), CL_TRUE, 0, delta.size() * 8, delta.data());
+  std::vector<cl_uint> marked(12, 0);
+  marked[1 * 4 + 3] = 1;  // the tile of vertices i 48..49, j 16..31
+  compute().queue().enqueueWriteBuffer(terrain.changed_tiles(), CL_TRUE, 0, marked.size() * 4,
+                                       marked.data());
+  terrain.apply_changed();
+  const auto fixed = terrain.download_fixed();
+  compute().queue().enqueueReadBuffer(terrain.delta(), CL_TRUE, 0, delta.size() * 8, delta.data());
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const bool in_tile = i >= 48 && j >= 16 && j < 32;
+      ASSERT_EQ(fixed[j * nx + i], in_tile ? 7 : 0) << i << " " << j;
+      ASSERT_EQ(delta[j * nx + i], in_tile ? 0 : 7) << i << " " << j;
+    }
+  }
+  std::vector<cl_uint> after(12, 9);
+  compute().queue().enqueueReadBuffer(terrain.changed_tiles(), CL_TRUE, 0, after.size() * 4,
+                                      after.data());
+  EXPECT_EQ(after, std::vector<cl_uint>(12, 0)) << "the marks are cleared once applied";
+}
+
+// After droplet batches that touch part of a terrain, every vertex is consistent: no delta left
+// behind (every tile that got one was marked), the float view equals the fixed-point heights, and
+// the normals equal the oracle's for the final terrain (the stale tiles and their neighbours were
+// refreshed).
+TEST(TerrainApply, AfterDropletBatchesNoDeltaIsLeftAndTheNormalsAreFresh) {
+  const Heightmap hills = generate_terrain("fbm", 90, 70, 1.0, 3, {{"relief", 0.3}});
+  Parameters p;
+  p.set("droplet.batch", std::int64_t{6});
+  p.set("droplet.lifetime", std::int64_t{20});
+  DropletModel model(compute(), p, hills);
+  DeviceTerrain& terrain = model.state().terrain();
+  terrain.normal();  // fresh normals of the initial terrain: only the droplets' tiles go stale
+  for (int batch = 0; batch < 3; ++batch) model.step();
+  const std::size_t n = hills.size();
+  std::vector<std::int64_t> delta(n, -1);
+  compute().queue().enqueueReadBuffer(terrain.delta(), CL_TRUE, 0, n * 8, delta.data());
+  EXPECT_EQ(std::count(delta.begin(), delta.end(), 0), static_cast<std::ptrdiff_t>(n));
+  const auto fixed = terrain.download_fixed();
+  const Heightmap view = terrain.download();
+  std::size_t changed = 0;
+  const auto initial = model.state().initial_fixed();
+  for (std::size_t k = 0; k < n; ++k) {
+    changed += fixed[k] != initial[k];
+    const double metres = static_cast<double>(fixed[k]) * terrain.quantum();
+    ASSERT_NEAR(view.h[k], metres, 2.5e-7 * std::fabs(metres) + 1e-9) << k;
+  }
+  EXPECT_GT(changed, 50u) << "the droplets changed the terrain";
+  EXPECT_LT(changed, n / 2) << "and only part of it, so some tiles stayed untouched";
+  const std::vector<float> normals = terrain.download_normals();
+  const std::vector<float> oracle = terrain_normals_reference(view);
+  for (std::size_t k = 0; k < normals.size(); ++k)
+    ASSERT_NEAR(normals[k], oracle[k], 2e-5) << k / 3;
 }
 
 }  // namespace

@@ -47,6 +47,9 @@ class DeviceTerrain {
   // The arguments of a kernel that adds to the deltas: delta, changed (the tiles it marks; see
   // mark_changed_tiles in cl/common.cl) and tiles_x.
   void bind_changes(Kernel& kernel);
+  cl::Buffer& changed_tiles() { return changed_tiles_; }
+  int tiles_x() const { return tiles_x_; }
+  int tiles_y() const { return tiles_y_; }
   cl::Buffer& height_fixed() { return height_fixed_; }
   int nx() const { return nx_; }
   int ny() const { return ny_; }
