@@ -9,6 +9,7 @@ packages=(
   libglm-dev libglfw3-dev libepoxy-dev libimgui-dev
   libnanoflann-dev libhdf5-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
   libtomlplusplus-dev libcli11-dev
+  libgdal-dev gdal-bin  # GeoTIFF in and out; gdalinfo checks the georeferencing in the tests
   python3 python3-numpy python3-h5py
   xvfb xdotool x11-utils libgl1-mesa-dri
   clang-format

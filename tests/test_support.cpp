@@ -49,12 +49,17 @@ std::string shell_quote(const std::string& s) {
 }  // namespace
 
 CliResult run_cli(const std::vector<std::string>& args, const std::string& env) {
+  return run_program(RUNNEL_BINARY, args, env);
+}
+
+CliResult run_program(const std::string& program, const std::vector<std::string>& args,
+                      const std::string& env) {
   const auto dir = std::filesystem::temp_directory_path();
   const std::string tag = std::to_string(getpid()) + "-" + std::to_string(std::random_device{}());
   const std::string out_path = (dir / ("runnel-cli-out-" + tag)).string();
   const std::string err_path = (dir / ("runnel-cli-err-" + tag)).string();
   std::string cmd = env.empty() ? "" : env + " ";
-  cmd += shell_quote(RUNNEL_BINARY);
+  cmd += shell_quote(program);
   for (auto& a : args) cmd.append(" ").append(shell_quote(a));
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
   cmd.append(" </dev/null >").append(out_path).append(" 2>").append(err_path);

@@ -38,6 +38,9 @@ struct CliResult {
 };
 // Runs the runnel binary with `args` (shell-quoted here) and captures its output.
 CliResult run_cli(const std::vector<std::string>& args, const std::string& env = "");
+// The same for another program (found on PATH), e.g. GDAL's gdalinfo.
+CliResult run_program(const std::string& program, const std::vector<std::string>& args,
+                      const std::string& env = "");
 
 std::string source_dir();
 

@@ -45,7 +45,8 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--models", opt->models, "comma-separated models to run, in order")
       ->capture_default_str();
   cmd->add_option("--terrain", opt->terrain,
-                  "terrain file (.asc, .png, .npy) instead of the scenario's");
+                  "terrain file (.asc, .png, .npy, .tif or another raster GDAL reads) instead of "
+                  "the scenario's");
   cmd->add_option("--out", opt->out, "output folder (created)")->capture_default_str();
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");

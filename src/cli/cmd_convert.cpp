@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// runnel convert: between the terrain formats (.asc, .png, .npy), formats from the extensions.
+// runnel convert: between the terrain formats (.asc, .png, .npy, .tif), formats from the
+// extensions.
 #include <cstdio>
 
 #include "cli/commands.hpp"
@@ -15,8 +16,11 @@ void add_convert_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   auto* cmd =
       app.add_subcommand("convert",
-                         "Convert a terrain between ESRI ASCII grid (.asc), 16-bit PNG (.png) "
-                         "and NumPy (.npy); formats from the extensions");
+                         "Convert a terrain between ESRI ASCII grid (.asc), 16-bit PNG (.png), "
+                         "NumPy (.npy) and GeoTIFF (.tif; any raster GDAL reads as input); formats "
+                         "from the extensions. The georeferencing is kept where the output can "
+                         "hold it: GeoTIFF keeps the CRS, corner, cell size and NODATA value, ASC "
+                         "the corner and cell size");
   cmd->add_option("input", opt->input, "terrain to read")->required();
   cmd->add_option("output", opt->output, "terrain to write")->required();
   cmd->add_option("--range", opt->range,

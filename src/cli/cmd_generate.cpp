@@ -56,8 +56,8 @@ void add_generate_command(CLI::App& app) {
   auto opt = std::make_shared<GenerateOptions>();
   auto* cmd =
       app.add_subcommand("generate",
-                         "Generate a terrain (seeded, deterministic) and write it as .asc, .png "
-                         "or .npy (format from the extension)");
+                         "Generate a terrain (seeded, deterministic) and write it as .asc, .png, "
+                         ".npy or .tif (format from the extension)");
   cmd->add_option("name", opt->name, "generator name (see below); omit with --scenario");
   cmd->add_option("--size", opt->size, "vertices per side N, or NXxNY")->capture_default_str();
   cmd->add_option("--cell", opt->cell, "cell size (vertex spacing) in metres")
@@ -65,7 +65,7 @@ void add_generate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", opt->seed, "random seed")->check(at_least(0))->capture_default_str();
   cmd->add_option("--set", opt->sets, "generator parameter key=value (repeatable)");
-  cmd->add_option("-o,--output", opt->output, "output file (.asc, .png, .npy)")->required();
+  cmd->add_option("-o,--output", opt->output, "output file (.asc, .png, .npy, .tif)")->required();
   cmd->add_option("--range", opt->range,
                   "PNG only: heights MIN:MAX (m) mapped to 0..65535 (default: the terrain's)");
   cmd->add_option("--scenario", opt->scenario,

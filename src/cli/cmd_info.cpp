@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel::cli {
 namespace {
@@ -58,6 +59,8 @@ void print_checkpoint_info(const std::string& file, bool json) {
               d.runnel_version.c_str(), d.source_revision.c_str());
   std::printf("  terrain %d x %d vertices, cell %g m, heights %.3f .. %.3f m\n", d.terrain.nx,
               d.terrain.ny, d.terrain.cell, d.terrain.min_height(), d.terrain.max_height());
+  if (!d.terrain.georef.crs_wkt.empty())
+    std::printf("  CRS %s\n", crs_name(d.terrain.georef.crs_wkt).c_str());
   if (d.model == "sph") {
     std::printf("  step %llu, t = %.6g s, dt = %.3g s, %zu particles, seed %lld\n",
                 static_cast<unsigned long long>(d.steps), d.time, d.dt, d.particles.size(),
@@ -79,8 +82,9 @@ void add_info_command(CLI::App& app) {
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand(
-      "info", "Summarise a terrain file (.asc, .png, .npy) or a checkpoint (.h5)");
+  auto* cmd = app.add_subcommand("info",
+                                 "Summarise a terrain file (.asc, .png, .npy, .tif or another "
+                                 "raster GDAL reads) or a checkpoint (.h5)");
   cmd->add_option("file", opt->file, "file to describe")->required();
   cmd->add_flag("--json", opt->json, "print JSON");
   cmd->callback([opt] {
@@ -98,6 +102,10 @@ void add_info_command(CLI::App& app) {
                        .add("min_height", t.min_height())
                        .add("max_height", t.max_height())
                        .add("volume", t.volume())
+                       .add("origin_x", t.origin_x)
+                       .add("origin_z", t.origin_z)
+                       .add("crs", crs_name(t.georef.crs_wkt))
+                       .add("crs_wkt", t.georef.crs_wkt)
                        .str()
                 << "\n";
       return;
@@ -107,6 +115,10 @@ void add_info_command(CLI::App& app) {
         "%.6g m^3\n",
         opt->file.c_str(), t.nx, t.ny, t.cell, (t.nx - 1) * t.cell, (t.ny - 1) * t.cell,
         t.min_height(), t.max_height(), t.volume());
+    if (!t.georef.crs_wkt.empty() || t.origin_x != 0 || t.origin_z != 0) {
+      std::printf("  lower-left corner (%.10g, %.10g), CRS %s\n", t.origin_x, t.origin_z,
+                  crs_name(t.georef.crs_wkt).c_str());
+    }
   });
 }
 

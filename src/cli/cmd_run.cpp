@@ -27,12 +27,14 @@ void add_run_command(CLI::App& app) {
       "run",
       "Run an erosion model on a terrain: by default runnel's SPH rain erosion (rain falls, flows, "
       "erodes and deposits), or droplet, pipe, olsen or thermal (--model). Writes "
-      "height_initial.png, height_final.png, erosion.png, final.asc, final.npy, final.h5 and "
+      "height_initial.png, height_final.png, erosion.png, final.asc, final.npy, final.tif, "
+      "erosion.tif (GeoTIFF, georeferenced like the input), final.h5 and "
       "metrics.json into --out");
   cmd->add_option("scenario", opt->scenario,
                   "scenario file (TOML; see 'runnel params'); default: built-in defaults");
   auto* terrain = cmd->add_option("--terrain", opt->terrain,
-                                  "terrain file (.asc, .png, .npy) instead of the scenario's");
+                                  "terrain file (.asc, .png, .npy, .tif or another raster GDAL "
+                                  "reads) instead of the scenario's");
   cmd->add_option("--generate", opt->generate, "generate the terrain with this generator instead")
       ->excludes(terrain);
   cmd->add_option("--model", opt->model,

@@ -242,7 +242,10 @@ TEST(TerrainIo, MalformedPngAndNpyGiveOneLineErrors) {
   expect_input_error([&] { read_terrain(dir.path("threed.npy")); }, "threed.npy", "3 dimensions");
   expect_input_error([&] { read_terrain(dir.path("nan.npy")); }, "nan.npy", "not a finite");
   expect_input_error([&] { read_terrain(dir.path("missing.asc")); }, "missing.asc", "no such file");
-  expect_input_error([&] { read_terrain(dir.path("t.tif")); }, "t.tif", "unknown terrain format");
+  expect_input_error([&] { read_terrain(dir.path("t.xyz")); }, "t.xyz", "unknown terrain format");
+  test::write_text(dir.path("junk.tif"), "not a TIFF at all");
+  expect_input_error([&] { read_terrain(dir.path("junk.tif")); }, "junk.tif",
+                     "not a raster GDAL reads");
 }
 
 TEST(TerrainIo, FailedWriteLeavesTheOldFileIntact) {

@@ -19,11 +19,18 @@ double Heightmap::volume() const {
   return sum * cell * cell;
 }
 
+Heightmap height_change(const Heightmap& before, const Heightmap& after) {
+  Heightmap change = before;
+  for (std::size_t k = 0; k < change.size(); ++k) change.h[k] = after.h[k] - before.h[k];
+  return change;
+}
+
 Heightmap subsample(const Heightmap& t, int factor) {
   if (factor <= 1) return t;
   Heightmap out((t.nx - 1) / factor + 1, (t.ny - 1) / factor + 1, t.cell * factor);
   out.origin_x = t.origin_x;
   out.origin_z = t.origin_z;
+  out.georef = t.georef;
   for (int j = 0; j < out.ny; ++j)
     for (int i = 0; i < out.nx; ++i) out.at(i, j) = t.at(i * factor, j * factor);
   return out;

@@ -1,9 +1,20 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstddef>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace runnel {
+
+// Where a heightmap lies on the Earth, as a georeferenced source gave it (docs/terrain-formats.md):
+// its coordinate reference system and the value that marked missing data there. Carried through
+// runs, comparisons and checkpoints to every raster written.
+struct Georeference {
+  std::string crs_wkt;           // OGC WKT; empty: not georeferenced
+  std::optional<double> nodata;  // the source's NODATA value, written back as the rasters' own
+  bool operator==(const Georeference&) const = default;
+};
 
 // A terrain heightmap: nx × ny vertices, spacing `cell` metres, heights in metres.
 // Vertex (i, j) sits at world (i·cell, h, j·cell): x east, z south (grid rows), y up.
@@ -11,10 +22,13 @@ namespace runnel {
 struct Heightmap {
   int nx = 0;
   int ny = 0;
-  double cell = 1.0;      // m
-  double origin_x = 0.0;  // m, world position of vertex (0,0) as read from a georeferenced file
+  double cell = 1.0;  // m
+  // The grid's lower-left corner in the source's coordinates (ESRI ASCII's xllcorner/yllcorner;
+  // GeoTIFF's top-left corner is (origin_x, origin_z + ny·cell)). Row 0 is the northern row.
+  double origin_x = 0.0;  // m
   double origin_z = 0.0;  // m
-  std::vector<float> h;   // m
+  Georeference georef;
+  std::vector<float> h;  // m
 
   Heightmap() = default;
   Heightmap(int nx_, int ny_, double cell_, float fill = 0.0f)
@@ -29,6 +43,10 @@ struct Heightmap {
   // V_terrain = cell² · Σ_v h_v (physics.md §1): the one definition of terrain volume, in m³.
   double volume() const;
 };
+
+// after − before per vertex (m; negative where the terrain was eroded, positive where deposited),
+// on the grid and georeferencing of `before`.
+Heightmap height_change(const Heightmap& before, const Heightmap& after);
 
 // Every `factor`-th vertex in each direction (the cell grows by `factor`): a preview of a large
 // terrain for pictures.

@@ -101,6 +101,9 @@ std::string digest_of(const CheckpointData& d) {
   Digest g;
   g.add(d.model).add(d.parameters_toml).add(d.terrain.h).add(d.terrain.cell);
   g.add(d.terrain.origin_x).add(d.terrain.origin_z).add(d.height_quantum);
+  // Only when present, so files written before georeferencing still verify.
+  if (!d.terrain.georef.crs_wkt.empty()) g.add(d.terrain.georef.crs_wkt);
+  if (d.terrain.georef.nodata) g.add(*d.terrain.georef.nodata);
   g.add(d.height_fixed).add(d.initial_fixed);
   for (const auto& field : d.particles.f) g.add(field);
   g.add(d.particles.sediment).add(d.particles.contacts).add(d.particles.id);
@@ -185,6 +188,9 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.attribute("/terrain", "cell", t.cell);
     f.attribute("/terrain", "origin_x", t.origin_x);
     f.attribute("/terrain", "origin_z", t.origin_z);
+    // The source's georeferencing (absent when it had none): the CRS as OGC WKT, its NODATA value.
+    if (!t.georef.crs_wkt.empty()) f.attribute("/terrain", "crs_wkt", t.georef.crs_wkt);
+    if (t.georef.nodata) f.attribute("/terrain", "nodata", *t.georef.nodata);
     f.attribute("/terrain", "height_quantum", d.height_quantum);
 
     const hsize_t n = d.particles.size();
@@ -295,6 +301,10 @@ CheckpointData read_checkpoint(const std::string& path) {
   require_finite(path, "/terrain/height", d.terrain.h);
   d.terrain.origin_x = f.read_double_attribute("/terrain", "origin_x");
   d.terrain.origin_z = f.read_double_attribute("/terrain", "origin_z");
+  if (f.has_attribute("/terrain", "crs_wkt"))
+    d.terrain.georef.crs_wkt = f.read_string_attribute("/terrain", "crs_wkt");
+  if (f.has_attribute("/terrain", "nodata"))
+    d.terrain.georef.nodata = f.read_double_attribute("/terrain", "nodata");
   d.height_quantum = f.read_double_attribute("/terrain", "height_quantum");
   if (!(d.height_quantum > 0))
     throw input_error(path + ": /terrain@height_quantum is not positive");

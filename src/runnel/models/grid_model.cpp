@@ -26,6 +26,7 @@ Heightmap GridModel::terrain() {
   Heightmap t = state_.terrain().download();
   t.origin_x = state_.initial_terrain().origin_x;
   t.origin_z = state_.initial_terrain().origin_z;
+  t.georef = state_.initial_terrain().georef;
   return t;
 }
 

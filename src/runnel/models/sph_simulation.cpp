@@ -180,6 +180,7 @@ Heightmap Simulation::terrain() {
   Heightmap t = solver_->terrain().download();
   t.origin_x = initial_.origin_x;
   t.origin_z = initial_.origin_z;
+  t.georef = initial_.georef;
   return t;
 }
 

@@ -215,6 +215,9 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                  "erosion and deposition"));
   write_terrain((out / "final.asc").string(), final_terrain);
   write_terrain((out / "final.npy").string(), final_terrain);
+  // GeoTIFF with the input's CRS, corner and NODATA value: they overlay the input in a GIS.
+  write_terrain((out / "final.tif").string(), final_terrain);
+  write_terrain((out / "erosion.tif").string(), height_change(initial, final_terrain));
   // The D8 drainage area of the final terrain (m², docs/metrics.md), as a map for analysis.
   Heightmap drainage(final_terrain.nx, final_terrain.ny, final_terrain.cell);
   const std::vector<double> area = metrics::flow_accumulation(final_terrain);

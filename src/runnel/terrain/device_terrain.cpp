@@ -18,6 +18,7 @@ DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, 
       quantum_(quantum),
       origin_x_(terrain.origin_x),
       origin_z_(terrain.origin_z),
+      georef_(terrain.georef),
       tiles_x_(terrain_tiles(terrain.nx)),
       tiles_y_(terrain_tiles(terrain.ny)),
       height_fixed_(compute.context(), CL_MEM_READ_WRITE, terrain.size() * sizeof(cl_long)),
@@ -115,6 +116,7 @@ Heightmap DeviceTerrain::download() {
   Heightmap t(nx_, ny_, cell_);
   t.origin_x = origin_x_;
   t.origin_z = origin_z_;
+  t.georef = georef_;
   compute_.queue().enqueueReadBuffer(height_, CL_TRUE, 0, t.size() * sizeof(float), t.h.data());
   return t;
 }

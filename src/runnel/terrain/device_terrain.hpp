@@ -69,6 +69,7 @@ class DeviceTerrain {
   float cell_;
   double quantum_;
   double origin_x_, origin_z_;
+  Georeference georef_;
   int tiles_x_, tiles_y_;
   cl::Buffer height_fixed_, delta_, height_, normal_;
   cl::Buffer changed_tiles_, stale_normal_tiles_;  // one cl_uint per tile, 1: marked

@@ -17,7 +17,11 @@ TerrainFormat terrain_format_from_path(const std::string& path) {
   if (ext == ".asc") return TerrainFormat::kAsc;
   if (ext == ".png") return TerrainFormat::kPng;
   if (ext == ".npy") return TerrainFormat::kNpy;
-  throw input_error(path + ": unknown terrain format '" + ext + "' (expected .asc, .png or .npy)");
+  if (ext == ".tif" || ext == ".tiff") return TerrainFormat::kGeoTiff;
+  for (const char* gdal : {".vrt", ".img", ".hgt", ".dem", ".bil", ".flt", ".grd", ".nc"})
+    if (ext == gdal) return TerrainFormat::kGdal;
+  throw input_error(path + ": unknown terrain format '" + ext +
+                    "' (expected .asc, .png, .npy, .tif or a raster GDAL reads)");
 }
 
 Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
@@ -36,6 +40,10 @@ Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
       break;
     case TerrainFormat::kNpy:
       terrain = read_npy(path);
+      break;
+    case TerrainFormat::kGeoTiff:
+    case TerrainFormat::kGdal:
+      terrain = read_gdal(path, options.nodata);
       break;
   }
   if (options.cell) terrain.cell = *options.cell;
@@ -60,6 +68,13 @@ void write_terrain(const std::string& path, const Heightmap& terrain, const Writ
     case TerrainFormat::kNpy:
       write_npy(path, terrain);
       break;
+    case TerrainFormat::kGeoTiff:
+      write_geotiff(path, terrain);
+      break;
+    case TerrainFormat::kGdal:
+      throw input_error(path +
+                        ": runnel writes GeoTIFF (.tif), not this format; convert with "
+                        "gdal_translate");
   }
 }
 

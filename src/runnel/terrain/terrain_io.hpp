@@ -29,7 +29,9 @@ struct WriteOptions {
   std::optional<HeightRange> png_range;  // default: the terrain's own min and max
 };
 
-enum class TerrainFormat { kAsc, kPng, kNpy };
+// kGeoTiff: .tif/.tiff, read and written through GDAL with the georeferencing; kGdal: other
+// rasters GDAL reads (.vrt .img .hgt .dem .bil .flt .grd .nc), read only.
+enum class TerrainFormat { kAsc, kPng, kNpy, kGeoTiff, kGdal };
 
 // What every terrain read or written must satisfy: heights finite and within ±1e7 m (the deepest
 // trench is 11 km; far beyond, the fixed-point heights lose their headroom), the cell size within
@@ -40,7 +42,8 @@ inline constexpr double kMaxAbsOrigin = 1e12;             // m
 void check_terrain_values(const std::string& path, const Heightmap& terrain);
 void check_height_range(const std::string& path, const HeightRange& range);
 
-// The format from the file name's extension (.asc, .png, .npy; any case). Throws an input error.
+// The format from the file name's extension (.asc, .png, .npy, .tif, ...; any case). Throws an
+// input error.
 TerrainFormat terrain_format_from_path(const std::string& path);
 
 // Readers validate everything and throw runnel::Error (exit code 2) naming the file and the reason.
@@ -57,6 +60,12 @@ void write_png16(const std::string& path, const Heightmap& terrain,
                  const std::optional<HeightRange>& range);
 Heightmap read_npy(const std::string& path);
 void write_npy(const std::string& path, const Heightmap& terrain);
+// Any raster GDAL reads, band 1, with its CRS (which must be projected in metres), geotransform
+// (north-up, square pixels) and NODATA value; GeoTIFF out, float32, DEFLATE-compressed.
+Heightmap read_gdal(const std::string& path, NodataPolicy nodata);
+void write_geotiff(const std::string& path, const Heightmap& terrain);
+// The name of a CRS given as WKT ("WGS 84 / UTM zone 16N"); "none" for an empty one.
+std::string crs_name(const std::string& wkt);
 
 // Shared validation for every reader: sizes within limits.
 void check_terrain_size(const std::string& path, long long nx, long long ny);
