@@ -3,5 +3,10 @@
 # Configures and builds runnel into build/ (Release, -Wall -Wextra).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${RUNNEL_CMAKE_ARGS:-} >/dev/null
+# The Python module is built for Debian's python3 (its headers come with python3-dev); its tests
+# run in the package's virtual environment when scripts/setup-python.sh made one.
+python_args=()
+if [ -x /usr/bin/python3 ]; then python_args+=(-DPython3_EXECUTABLE=/usr/bin/python3); fi
+if [ -x .venv/bin/python ]; then python_args+=(-DRUNNEL_TEST_PYTHON="$PWD/.venv/bin/python"); fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${python_args[@]}" ${RUNNEL_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j "$(nproc)"

@@ -11,6 +11,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev
   libgdal-dev gdal-bin  # GeoTIFF in and out; gdalinfo checks the georeferencing in the tests
   python3 python3-numpy python3-h5py
+  python3-dev python3-venv pybind11-dev python3-pybind11 python3-pytest python3-matplotlib  # the Python package
   xvfb xdotool x11-utils libgl1-mesa-dri
   clang-format
   clang libclang-rt-14-dev  # scripts/sanitize.sh: ASan + UBSan build and the libFuzzer targets
