@@ -12,6 +12,7 @@ packages=(
   libgdal-dev gdal-bin  # GeoTIFF in and out; gdalinfo checks the georeferencing in the tests
   python3 python3-numpy python3-h5py
   python3-dev python3-venv pybind11-dev python3-pybind11 python3-pytest python3-matplotlib  # the Python package
+  python3-vtk9 python3-meshio  # the tests read the PLY and XDMF outputs back with independent readers
   xvfb xdotool x11-utils libgl1-mesa-dri
   clang-format
   clang libclang-rt-14-dev  # scripts/sanitize.sh: ASan + UBSan build and the libFuzzer targets

@@ -44,7 +44,13 @@ void add_output_flags(CLI::App& cmd, OutputFlags& flags) {
       ->check(at_least(1))
       ->capture_default_str();
   cmd.add_option("--series-every", flags.series_every,
-                 "append the heightmap to DIR/series.h5 every N steps")
+                 "append the heightmap to DIR/series.h5 every N steps (series.xmf indexes it for "
+                 "ParaView)")
+      ->check(at_least(0));
+  cmd.add_option(
+         "--particles-every", flags.particles_every,
+         "SPH: snapshot the particles (position, velocity, density, sediment, age, id) into "
+         "DIR/series.h5 every N steps")
       ->check(at_least(0));
   cmd.add_flag("--overwrite", flags.overwrite,
                "replace checkpoints of another run found in DIR/checkpoints (refused otherwise)");
@@ -54,6 +60,7 @@ void OutputFlags::apply(RunOptions& options) const {
   options.checkpoint_every = checkpoint_every;
   options.keep_checkpoints = keep_checkpoints;
   options.series_every = series_every;
+  options.particles_every = particles_every;
   options.overwrite = overwrite;
 }
 

@@ -7,6 +7,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/sim/series.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
 
 namespace runnel::cli {
@@ -44,11 +45,14 @@ void add_export_command(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
-      "export", "Export the terrain of a checkpoint (.h5) as asc, png, npy or obj");
+      "export",
+      "Export the terrain of a checkpoint (.h5) as asc, png, npy, tif or obj, or its SPH particles "
+      "as ply (binary PLY in the map frame, for splashsurf and ParaView)");
   cmd->add_option("checkpoint", opt->file, "checkpoint file (.h5)")->required();
-  cmd->add_option("--format", opt->format, "asc, png, npy or obj (a triangle mesh)")
+  cmd->add_option("--format", opt->format,
+                  "asc, png, npy, tif (GeoTIFF), obj (a triangle mesh) or ply (the particles)")
       ->required()
-      ->check(CLI::IsMember({"asc", "png", "npy", "obj"}));
+      ->check(CLI::IsMember({"asc", "png", "npy", "tif", "obj", "ply"}));
   cmd->add_option("-o,--output", opt->output, "file to write")->required();
   cmd->add_option("--range", opt->range, "png: heights MIN:MAX in metres mapped to 0..65535");
   cmd->callback([opt] {
@@ -56,6 +60,12 @@ void add_export_command(CLI::App& app) {
       throw input_error("--range: only a png export has a height range (--format " + opt->format +
                         ")");
     const CheckpointData data = read_checkpoint(opt->file);
+    if (opt->format == "ply") {
+      write_particles_ply(opt->output, data);
+      std::fprintf(stderr, "runnel: wrote %s (%zu particles, step %llu)\n", opt->output.c_str(),
+                   data.particles.size(), static_cast<unsigned long long>(data.steps));
+      return;
+    }
     if (opt->format == "obj") {
       write_obj(opt->output, data.terrain);
     } else {

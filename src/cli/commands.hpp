@@ -27,6 +27,7 @@ struct OutputFlags {
   long long checkpoint_every = 0;
   int keep_checkpoints = 3;
   long long series_every = 0;
+  long long particles_every = 0;
   bool overwrite = false;
   void apply(RunOptions& options) const;
 };

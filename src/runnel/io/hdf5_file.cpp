@@ -111,6 +111,11 @@ void H5File::write(const std::string& n, const std::vector<float>& d,
                    const std::vector<hsize_t>& dims) {
   write_typed(n, d, dims, H5T_NATIVE_FLOAT);
 }
+
+void H5File::write(const std::string& n, const std::vector<double>& d,
+                   const std::vector<hsize_t>& dims) {
+  write_typed(n, d, dims, H5T_NATIVE_DOUBLE);
+}
 void H5File::write(const std::string& n, const std::vector<std::int64_t>& d,
                    const std::vector<hsize_t>& dims) {
   write_typed(n, d, dims, H5T_NATIVE_INT64);

@@ -42,6 +42,8 @@ class H5File {
   void create_group(const std::string& name);
   void write(const std::string& name, const std::vector<float>& data,
              const std::vector<hsize_t>& dims);
+  void write(const std::string& name, const std::vector<double>& data,
+             const std::vector<hsize_t>& dims);
   void write(const std::string& name, const std::vector<std::int64_t>& data,
              const std::vector<hsize_t>& dims);
   void write(const std::string& name, const std::vector<std::int32_t>& data,

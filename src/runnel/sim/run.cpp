@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/sim/run.hpp"
 
+#include "runnel/sim/series.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -123,6 +125,9 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   if (ec || !fs::is_directory(options.out_dir)) {
     throw input_error("--out " + options.out_dir + ": cannot create the output folder");
   }
+  if (options.particles_every > 0 && model.info().name != "sph") {
+    throw input_error("--particles-every: the " + model.info().name + " model has no particles");
+  }
   const fs::path out(options.out_dir);
   RollingCheckpoints checkpoints(out, model, options.keep_checkpoints, options.overwrite);
   if (!options.quiet) {
@@ -140,14 +145,9 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   double work = 0;  // particle-, cell- or droplet-steps
   const std::uint64_t first_step = model.steps();
   const double first_time = model.time();
-  // The series grows during the run as series.h5.partial and becomes series.h5 when the run
-  // ends: a killed or failed run leaves no partial file under the final name.
-  std::unique_ptr<H5File> series;
-  const fs::path series_partial = out / "series.h5.partial";
-  if (options.series_every > 0) {
-    series = std::make_unique<H5File>(H5File::create(series_partial.string()));
-    series->attribute("/", "series_every_steps", static_cast<std::int64_t>(options.series_every));
-  }
+  // The series grows during the run as series.h5.partial and becomes series.h5 (with its XDMF
+  // index) when the run ends: a killed or failed run leaves no partial file under the final name.
+  SeriesWriter series(out, options.series_every, options.particles_every, model.initial_terrain());
   auto done = [&] {
     return options.until_step > 0 ? model.steps() >= options.until_step
                                   : model.time() >= options.until_time;
@@ -177,18 +177,10 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
     if (options.checkpoint_every > 0 && model.steps() % options.checkpoint_every == 0) {
       checkpoints.write(model);
     }
-    if (series && model.steps() % options.series_every == 0) {
-      const Heightmap t = model.terrain();
-      series->append_frame("/height", t.h, t.ny, t.nx);
-    }
+    series.after_step(model);
     progress.update(fraction, status, report);
   }
-  if (series) {
-    series.reset();
-    write_path_atomically((out / "series.h5").string(), [&](const std::string& temporary) {
-      fs::rename(series_partial, temporary);
-    });
-  }
+  series.finish();
   compute.queue().finish();
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -19,6 +19,7 @@ struct RunOptions {
   long long checkpoint_every = 0;  // steps; 0: none (final.h5 is always written)
   int keep_checkpoints = 3;        // the newest K checkpoints are kept
   long long series_every = 0;      // steps between heightmap frames in series.h5; 0: none
+  long long particles_every = 0;   // steps between SPH particle snapshots in series.h5; 0: none
   bool overwrite = false;          // replace checkpoints another run left in out_dir/checkpoints
 };
 

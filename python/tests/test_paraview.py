@@ -1,0 +1,131 @@
+# SPDX-License-Identifier: MIT
+"""The ParaView-ready outputs, read back by independent readers and compared with the checkpoint:
+series.xmf (resolved here from its XML and series.h5 with h5py, the way an XDMF reader does:
+HDF references and hyperslabs), and the PLY particle frame (VTK's vtkPLYReader and meshio)."""
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+h5py = pytest.importorskip("h5py", reason="h5py is not installed (python3-h5py)")
+
+SPH = """
+[run]
+model = "sph"
+steps = 60
+seed = 4
+[terrain]
+generator = "fbm"
+size = 33
+cell = 1.0
+"""
+
+
+@pytest.fixture(scope="module")
+def sph_run(tmp_path_factory):
+    from conftest import RUNNEL_BINARY
+    import subprocess
+
+    out = tmp_path_factory.mktemp("sph")
+    (out / "s.toml").write_text(SPH)
+    r = subprocess.run([RUNNEL_BINARY, "run", str(out / "s.toml"), "--out", str(out / "run"), "--quiet",
+                        "--series-every", "20", "--particles-every", "30"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    return out / "run"
+
+
+def resolve(item, folder):
+    """The array an XDMF DataItem stands for."""
+    if item.get("ItemType") == "HyperSlab":
+        selection, source = list(item)
+        start, stride, count = np.array(selection.text.split(), dtype=int).reshape(3, -1)
+        data = resolve(source, folder)
+        index = tuple(slice(s, s + c * t, t) for s, t, c in zip(start, stride, count))
+        return data[index].reshape([int(d) for d in item.get("Dimensions").split()])
+    assert item.get("Format") == "HDF"
+    name, path = item.text.strip().split(":")
+    with h5py.File(folder / name, "r") as f:
+        data = f[path][()]
+    assert list(data.shape) == [int(d) for d in item.get("Dimensions").split()], path
+    return data
+
+
+def grids(folder, collection):
+    root = ET.parse(folder / "series.xmf").getroot()
+    for grid in root.iter("Grid"):
+        if grid.get("Name") == collection and grid.get("CollectionType") == "Temporal":
+            return [(float(g.find("Time").get("Value")), g) for g in grid.findall("Grid")]
+    return []
+
+
+def test_the_terrain_series_is_the_runs_heightmaps(sph_run):
+    frames = grids(sph_run, "terrain")
+    assert len(frames) == 3, "steps 20, 40 and 60"
+    with h5py.File(sph_run / "final.h5", "r") as f:
+        final = f["/terrain/height"][()]
+        time = f["/state"].attrs["time"] if "time" in f["/state"].attrs else None
+        cell = f["/terrain"].attrs["cell"]
+    t_last, last = frames[-1]
+    x, y, z = (resolve(item, sph_run) for item in last.find("Geometry"))
+    assert np.array_equal(z, final), "the last frame is the final terrain"
+    assert np.array_equal(resolve(last.find("Attribute")[0], sph_run), final)
+    ny, nx = final.shape
+    assert x[0, 1] - x[0, 0] == cell and y[0, 0] - y[1, 0] == cell, "x east, y north"
+    quads = resolve(last.find("Topology")[0], sph_run)
+    assert quads.shape == ((nx - 1) * (ny - 1), 4) and quads.max() == nx * ny - 1
+    if time is not None:
+        assert t_last == pytest.approx(time)
+    assert [t for t, _ in frames] == sorted(t for t, _ in frames)
+
+
+def test_the_particle_snapshots_match_the_checkpoint_and_keep_their_ids(sph_run):
+    frames = grids(sph_run, "particles")
+    assert len(frames) == 2, "steps 30 and 60"
+    with h5py.File(sph_run / "final.h5", "r") as f:
+        p = {k: f["/particles/" + k][()] for k in ("x", "y", "z", "vx", "vy", "vz", "id", "age", "rho")}
+        ny = f["/terrain/height"].shape[0]
+        cell = f["/terrain"].attrs["cell"]
+    _, last = frames[-1]
+    position = resolve(last.find("Geometry")[0], sph_run)
+    attributes = {a.get("Name"): resolve(a[0], sph_run) for a in last.findall("Attribute")}
+    north = (ny - 1) * cell
+    assert np.array_equal(position[:, 0], p["x"].astype(np.float64))
+    assert np.array_equal(position[:, 1], north - p["z"].astype(np.float64))
+    assert np.array_equal(position[:, 2], p["y"].astype(np.float64))
+    assert np.array_equal(attributes["id"], p["id"] & 0x7FFFFFFF)
+    assert np.array_equal(attributes["density"], p["rho"])
+    assert np.array_equal(attributes["velocity"][:, 1], -p["vz"])
+    # Stable ids: a particle of the first snapshot alive in the last is older by the time between.
+    (t0, first), (t1, _) = frames
+    ids0 = resolve(first.find("Attribute[@Name='id']")[0], sph_run)
+    age0 = resolve(first.find("Attribute[@Name='age']")[0], sph_run)
+    common, i0, i1 = np.intersect1d(ids0, attributes["id"], return_indices=True)
+    assert len(common) > 10
+    assert np.allclose(attributes["age"][i1] - age0[i0], t1 - t0, rtol=1e-4, atol=1e-4)
+
+
+def test_the_ply_frame_is_the_checkpoints_particles(sph_run, run_cli):
+    vtk = pytest.importorskip("vtk", reason="VTK's Python module is not installed (python3-vtk9)")
+    meshio = pytest.importorskip("meshio", reason="meshio is not installed (python3-meshio)")
+    r = run_cli("export", sph_run / "final.h5", "--format", "ply", "-o", sph_run / "particles.ply")
+    assert r.returncode == 0, r.stderr
+    with h5py.File(sph_run / "final.h5", "r") as f:
+        x, y, z = (f["/particles/" + k][()] for k in ("x", "y", "z"))
+        ids = f["/particles/id"][()] & 0x7FFFFFFF
+        north = (f["/terrain/height"].shape[0] - 1) * f["/terrain"].attrs["cell"]
+    reader = vtk.vtkPLYReader()
+    reader.SetFileName(str(sph_run / "particles.ply"))
+    reader.Update()
+    points = reader.GetOutput().GetPoints()
+    assert points.GetNumberOfPoints() == len(x)
+    got = np.array([points.GetPoint(k) for k in range(len(x))])
+    assert np.allclose(got, np.stack([x, north - z, y], axis=1), atol=1e-5)
+    mesh = meshio.read(sph_run / "particles.ply")
+    assert np.array_equal(mesh.point_data["id"], ids)
+    assert set(mesh.point_data) >= {"vx", "vy", "vz", "density", "sediment", "age", "id"}
+
+
+def test_particles_every_is_refused_for_a_grid_model(run_cli, tmp_path):
+    r = run_cli("run", "--model", "pipe", "--steps", "5", "--particles-every", "2", "--out", tmp_path / "o")
+    assert r.returncode == 2
+    assert "--particles-every" in r.stderr and r.stderr.count("\n") == 1

@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sim/series.hpp"
+
+#include <bit>
+#include <cstdio>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/sph/particle_store.hpp"
+
+namespace runnel {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kPartial = "series.h5.partial";
+
+std::string step_name(std::uint64_t step) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%010llu", static_cast<unsigned long long>(step));
+  return name;
+}
+
+// An HDF5 data item of series.h5 in XDMF.
+std::string hdf_item(const std::string& dims, const char* type, int precision,
+                     const std::string& path) {
+  return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + type + "\" Precision=\"" +
+         std::to_string(precision) + "\" Format=\"HDF\">series.h5:" + path + "</DataItem>";
+}
+
+}  // namespace
+
+SeriesWriter::SeriesWriter(const fs::path& out, long long height_every, long long particle_every,
+                           const Heightmap& initial)
+    : out_(out), height_every_(height_every), particle_every_(particle_every), grid_(initial) {
+  if (height_every_ <= 0 && particle_every_ <= 0) return;
+  file_ = std::make_unique<H5File>(H5File::create((out_ / kPartial).string()));
+  file_->attribute("/", "series_every_steps", static_cast<std::int64_t>(height_every_));
+  file_->attribute("/", "particles_every_steps", static_cast<std::int64_t>(particle_every_));
+  // The grid in the map frame (double: map coordinates can be millions of metres), and its quads.
+  const MapFrame map(grid_);
+  const std::size_t nx = static_cast<std::size_t>(grid_.nx),
+                    ny = static_cast<std::size_t>(grid_.ny);
+  std::vector<double> x(nx * ny), y(nx * ny);
+  for (std::size_t j = 0; j < ny; ++j) {
+    for (std::size_t i = 0; i < nx; ++i) {
+      x[j * nx + i] = map.x(static_cast<double>(i) * grid_.cell);
+      y[j * nx + i] = map.y(static_cast<double>(j) * grid_.cell);
+    }
+  }
+  std::vector<std::int32_t> quads;
+  quads.reserve(4 * (nx - 1) * (ny - 1));
+  for (std::size_t j = 0; j + 1 < ny; ++j) {
+    for (std::size_t i = 0; i + 1 < nx; ++i) {
+      const auto k = static_cast<std::int32_t>(j * nx + i), w = static_cast<std::int32_t>(nx);
+      for (std::int32_t v : {k, k + 1, k + w + 1, k + w}) quads.push_back(v);
+    }
+  }
+  file_->create_group("/grid");
+  file_->write("/grid/x", x, {ny, nx});
+  file_->write("/grid/y", y, {ny, nx});
+  file_->write("/grid/quads", quads, {(nx - 1) * (ny - 1), 4});
+  file_->attribute("/grid", "crs_wkt", grid_.georef.crs_wkt);
+  file_->create_group("/particles");
+}
+
+SeriesWriter::~SeriesWriter() = default;
+
+void SeriesWriter::after_step(Model& model) {
+  if (!file_) return;
+  const std::uint64_t step = model.steps();
+  if (height_every_ > 0 && step % static_cast<std::uint64_t>(height_every_) == 0) {
+    const Heightmap t = model.terrain();
+    file_->append_frame("/height", t.h, t.ny, t.nx);
+    height_frames_.push_back({step, model.time(), 0});
+  }
+  if (particle_every_ > 0 && step % static_cast<std::uint64_t>(particle_every_) == 0) {
+    const CheckpointData d = model.checkpoint();
+    write_particles(d, step);
+    particle_frames_.push_back({step, model.time(), d.particles.size()});
+  }
+}
+
+void SeriesWriter::write_particles(const CheckpointData& d, std::uint64_t step) {
+  const HostParticles& p = d.particles;
+  const std::size_t n = p.size();
+  const MapFrame map(grid_);
+  std::vector<double> position(3 * n);
+  std::vector<float> velocity(3 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    position[3 * k] = map.x(p.f[kX][k]);
+    position[3 * k + 1] = map.y(p.f[kZ][k]);
+    position[3 * k + 2] = p.f[kY][k];
+    velocity[3 * k] = p.f[kVx][k];
+    velocity[3 * k + 1] = -p.f[kVz][k];
+    velocity[3 * k + 2] = p.f[kVy][k];
+  }
+  const std::string group = "/particles/" + step_name(step);
+  file_->create_group(group);
+  file_->attribute(group, "time", d.time);
+  file_->write(group + "/position", position, {n, 3});
+  file_->write(group + "/velocity", velocity, {n, 3});
+  file_->write(group + "/density", p.f[kRho], {n});
+  file_->write(group + "/sediment", p.sediment, {n});
+  file_->write(group + "/age", p.f[kAge], {n});
+  std::vector<std::uint32_t> id(p.id);
+  for (auto& v : id) v &= ~kDeadFlag;
+  file_->write(group + "/id", id, {n});
+}
+
+void SeriesWriter::finish() {
+  if (!file_) return;
+  for (auto [frames, name] :
+       {std::pair{&height_frames_, "height"}, std::pair{&particle_frames_, "particle"}}) {
+    std::vector<double> time;
+    std::vector<std::int64_t> step;
+    for (const Frame& f : *frames) {
+      time.push_back(f.time);
+      step.push_back(static_cast<std::int64_t>(f.step));
+    }
+    file_->write(std::string("/") + name + "_time", time, {time.size()});
+    file_->write(std::string("/") + name + "_step", step, {step.size()});
+  }
+  file_.reset();
+  write_path_atomically((out_ / "series.h5").string(), [&](const std::string& temporary) {
+    fs::rename(out_ / kPartial, temporary);
+  });
+  write_xdmf();
+}
+
+void SeriesWriter::write_xdmf() const {
+  const std::string ny = std::to_string(grid_.ny), nx = std::to_string(grid_.nx);
+  const std::string grid = ny + " " + nx;
+  const std::string quads = std::to_string(static_cast<long long>(grid_.nx - 1) * (grid_.ny - 1));
+  const std::string frames = std::to_string(height_frames_.size());
+  std::string x = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n";
+  // The terrain: one quad surface per height frame, its z the frame's heights (a hyperslab of
+  // /height), x and y the grid's map coordinates.
+  if (!height_frames_.empty()) {
+    x += "<Grid Name=\"terrain\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (std::size_t k = 0; k < height_frames_.size(); ++k) {
+      const std::string slab = "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" + grid +
+                               "\" Type=\"HyperSlab\">"
+                               "<DataItem Dimensions=\"3 3\" Format=\"XML\">" +
+                               std::to_string(k) + " 0 0 1 1 1 1 " + grid + "</DataItem>" +
+                               hdf_item(frames + " " + grid, "Float", 4, "/height") + "</DataItem>";
+      char time[64];
+      std::snprintf(time, sizeof time, "%.17g", height_frames_[k].time);
+      x += " <Grid Name=\"terrain_" + step_name(height_frames_[k].step) +
+           "\" GridType=\"Uniform\">\n";
+      x += "  <Time Value=\"" + std::string(time) + "\"/>\n";
+      x += "  <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" + quads + "\">" +
+           hdf_item(quads + " 4", "Int", 4, "/grid/quads") + "</Topology>\n";
+      x += "  <Geometry GeometryType=\"X_Y_Z\">" + hdf_item(grid, "Float", 8, "/grid/x") +
+           hdf_item(grid, "Float", 8, "/grid/y") + slab + "</Geometry>\n";
+      x += "  <Attribute Name=\"height\" AttributeType=\"Scalar\" Center=\"Node\">" + slab +
+           "</Attribute>\n </Grid>\n";
+    }
+    x += "</Grid>\n";
+  }
+  // The particles: a point cloud per snapshot.
+  if (!particle_frames_.empty()) {
+    x += "<Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const Frame& f : particle_frames_) {
+      if (f.count == 0) continue;  // an empty point set upsets readers; the frame is in series.h5
+      const std::string n = std::to_string(f.count), group = "/particles/" + step_name(f.step);
+      char time[64];
+      std::snprintf(time, sizeof time, "%.17g", f.time);
+      x += " <Grid Name=\"particles_" + step_name(f.step) + "\" GridType=\"Uniform\">\n";
+      x += "  <Time Value=\"" + std::string(time) + "\"/>\n";
+      x += "  <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n +
+           "\" NodesPerElement=\"1\"/>\n";
+      x += "  <Geometry GeometryType=\"XYZ\">" +
+           hdf_item(n + " 3", "Float", 8, group + "/position") + "</Geometry>\n";
+      x += "  <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" +
+           hdf_item(n + " 3", "Float", 4, group + "/velocity") + "</Attribute>\n";
+      for (auto [name, type] : {std::pair{"density", "Float"}, std::pair{"age", "Float"},
+                                std::pair{"sediment", "Int"}, std::pair{"id", "UInt"}}) {
+        x += "  <Attribute Name=\"" + std::string(name) +
+             "\" AttributeType=\"Scalar\" Center=\"Node\">" +
+             hdf_item(n, type, 4, group + "/" + name) + "</Attribute>\n";
+      }
+      x += " </Grid>\n";
+    }
+    x += "</Grid>\n";
+  }
+  x += "</Domain>\n</Xdmf>\n";
+  write_file_atomically((out_ / "series.xmf").string(),
+                        [&](std::FILE* f) { std::fwrite(x.data(), 1, x.size(), f); });
+}
+
+void write_particles_ply(const std::string& path, const CheckpointData& d) {
+  static_assert(std::endian::native == std::endian::little,
+                "the PLY body is written as it lies in memory");
+  if (d.model != "sph")
+    throw input_error(path + ": the " + d.model + " model has no particles to export");
+  const HostParticles& p = d.particles;
+  const MapFrame map(d.terrain);
+  write_file_atomically(path, [&](std::FILE* f) {
+    std::fprintf(
+        f,
+        "ply\nformat binary_little_endian 1.0\ncomment runnel SPH particles, step %llu, t = %.9g "
+        "s, "
+        "map frame (x east, y north, z up)\nelement vertex %zu\nproperty double x\nproperty double "
+        "y\nproperty double z\nproperty float vx\nproperty float vy\nproperty float vz\nproperty "
+        "float density\nproperty int sediment\nproperty float age\nproperty uint id\nend_header\n",
+        static_cast<unsigned long long>(d.steps), d.time, p.size());
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const double position[3] = {map.x(p.f[kX][k]), map.y(p.f[kZ][k]), p.f[kY][k]};
+      const float velocity[3] = {p.f[kVx][k], -p.f[kVz][k], p.f[kVy][k]};
+      const float density = p.f[kRho][k], age = p.f[kAge][k];
+      const std::int32_t sediment = p.sediment[k];
+      const std::uint32_t id = p.id[k] & ~kDeadFlag;
+      std::fwrite(position, sizeof position, 1, f);
+      std::fwrite(velocity, sizeof velocity, 1, f);
+      std::fwrite(&density, sizeof density, 1, f);
+      std::fwrite(&sediment, sizeof sediment, 1, f);
+      std::fwrite(&age, sizeof age, 1, f);
+      std::fwrite(&id, sizeof id, 1, f);
+    }
+    if (std::ferror(f)) throw runtime_error(path + ": write failed");
+  });
+}
+
+}  // namespace runnel
