@@ -19,6 +19,7 @@ void add_validate_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_resume_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
 void add_export_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   runnel::cli::add_run_command(app);
   runnel::cli::add_resume_command(app);
   runnel::cli::add_compare_command(app);
+  runnel::cli::add_sweep_command(app);
   runnel::cli::add_export_command(app);
   runnel::cli::add_devices_command(app);
   runnel::cli::add_generate_command(app);

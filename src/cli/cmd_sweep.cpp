@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: MIT
+// runnel sweep: an ensemble of runs over parameters, seeds, models and terrains (docs/sweeps.md),
+// run here by worker processes, or one member at a time by a SLURM array task.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "cli/commands.hpp"
+#include "runnel/core/error.hpp"
+#include "runnel/core/scenario.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/sweep/sweep.hpp"
+
+extern char** environ;
+
+namespace runnel::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SweepOptions {
+  std::string file, out = "runnel-sweep", time_limit = "24:00:00";
+  int jobs = 0;
+  long long member = -1;
+  bool extend = false, force = false, slurm = false, quiet = false, collect = false;
+};
+
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  write_file_atomically(path.string(),
+                        [&](std::FILE* f) { std::fwrite(text.data(), 1, text.size(), f); });
+}
+
+// One folder, one sweep: the id of the expanded members is kept in DIR/sweep.id. A changed sweep
+// file is refused unless --extend, which accepts it when every member already begun is unchanged.
+void claim_folder(const SweepOptions& opt, const std::vector<SweepMember>& members,
+                  const std::string& id) {
+  const fs::path id_file = fs::path(opt.out) / "sweep.id";
+  std::error_code ec;
+  fs::create_directories(opt.out, ec);
+  if (ec || !fs::is_directory(opt.out))
+    throw input_error("--out " + opt.out + ": cannot create the folder");
+  if (fs::exists(id_file, ec)) {
+    const std::string old = text_of(id_file).substr(0, 16);
+    if (old == id) return;
+    if (!opt.extend) {
+      throw input_error("--out " + opt.out + ": holds another sweep (" + old + ", this is " + id +
+                        "); use another folder, or --extend if this one only adds members");
+    }
+    for (const SweepMember& m : members) {
+      const fs::path scenario = fs::path(member_dir(opt.out, m.index)) / "scenario.toml";
+      if (fs::exists(scenario, ec) && text_of(scenario) != parameters_toml(m.params)) {
+        throw input_error("--extend: member " + std::to_string(m.index) + " of the sweep in " +
+                          opt.out + " has other parameters now");
+      }
+    }
+  }
+  write_text(id_file, id + "\n");
+}
+
+int run_workers(const SweepOptions& opt, const SweepSpec& spec,
+                const std::vector<SweepMember>& members) {
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  std::vector<std::size_t> queue;
+  for (const SweepMember& m : members)
+    if (member_state(opt.out, m.index) != MemberState::kDone) queue.push_back(m.index);
+  if (!opt.quiet) {
+    std::cerr << "sweep: " << members.size() << " members, " << members.size() - queue.size()
+              << " done already, " << opt.jobs << " worker process" << (opt.jobs == 1 ? "" : "es")
+              << "\n";
+  }
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0;
+  int failed = 0;
+  auto running_list = [&] {
+    std::vector<std::size_t> list;
+    for (auto& [pid, index] : running) list.push_back(index);
+    return list;
+  };
+  while (next < queue.size() || !running.empty()) {
+    while (next < queue.size() && static_cast<int>(running.size()) < opt.jobs) {
+      const std::size_t index = queue[next++];
+      std::vector<std::string> args = {
+          self, "sweep", spec.path, "--out", opt.out, "--member", std::to_string(index), "--quiet"};
+      std::vector<char*> argv;
+      for (auto& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      pid_t pid = 0;
+      if (posix_spawn(&pid, self.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
+        throw runtime_error("sweep: cannot start a worker process");
+      running[pid] = index;
+    }
+    write_sweep_tables(spec, members, opt.out, running_list());
+    int status = 0;
+    const pid_t done = waitpid(-1, &status, 0);
+    if (done < 0) throw runtime_error("sweep: lost track of the worker processes");
+    const std::size_t index = running[done];
+    running.erase(done);
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    failed += ok ? 0 : 1;
+    if (!opt.quiet) std::cerr << "sweep: member " << index << (ok ? " done" : " failed") << "\n";
+  }
+  write_sweep_tables(spec, members, opt.out);
+  return failed;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app) {
+  auto opt = std::make_shared<SweepOptions>();
+  auto* cmd = app.add_subcommand(
+      "sweep",
+      "Run an ensemble: every combination (or zip) of the parameter values in SWEEP.toml, each a "
+      "normal run in DIR/members/NNNN, listed in DIR/manifest.csv with the metrics of the done "
+      "ones "
+      "in DIR/results.csv. Re-running skips done members and redoes interrupted ones; "
+      "--member N runs one (a SLURM array task); see docs/sweeps.md");
+  cmd->add_option("sweep", opt->file, "sweep file (TOML: [sweep] base, combine, metrics; [axes])")
+      ->required();
+  cmd->add_option("--out", opt->out, "the sweep's folder (created)")->capture_default_str();
+  cmd->add_option("-j,--jobs", opt->jobs, "worker processes (default: one per core)")
+      ->check(at_least(1));
+  cmd->add_option("--member", opt->member, "run only this member (0-based): one SLURM array task")
+      ->check(at_least(0));
+  cmd->add_flag("--extend", opt->extend,
+                "accept a changed sweep file that keeps every begun member");
+  cmd->add_flag("--force", opt->force, "run more members than the sweep's max_members");
+  cmd->add_flag("--slurm-script", opt->slurm,
+                "write DIR/sweep.slurm, an sbatch array script with one task per member, and exit");
+  cmd->add_option("--time", opt->time_limit, "--slurm-script: each task's time limit")
+      ->capture_default_str();
+  cmd->add_flag("--collect", opt->collect,
+                "only rewrite manifest.csv and results.csv from the members");
+  cmd->add_flag("--quiet", opt->quiet, "no progress output");
+  cmd->callback([opt] {
+    const SweepSpec spec = read_sweep(opt->file);
+    const std::vector<SweepMember> members = expand_sweep(spec);
+    if (static_cast<long long>(members.size()) > spec.max_members && !opt->force) {
+      throw input_error(opt->file + ": " + std::to_string(members.size()) +
+                        " members, more than max_members = " + std::to_string(spec.max_members) +
+                        " (--force to run them anyway)");
+    }
+    if (opt->member >= static_cast<long long>(members.size())) {
+      throw input_error("--member " + std::to_string(opt->member) +
+                        ": the sweep has members 0 to " + std::to_string(members.size() - 1));
+    }
+    claim_folder(*opt, members, sweep_id(members));
+    if (opt->slurm) {
+      const fs::path script = fs::path(opt->out) / "sweep.slurm";
+      write_text(script,
+                 slurm_script(spec, members, opt->out, fs::read_symlink("/proc/self/exe").string(),
+                              opt->time_limit));
+      std::cout << script.string() << ": sbatch it to run the " << members.size() << " members\n";
+      return;
+    }
+    if (opt->collect) {
+      write_sweep_tables(spec, members, opt->out);
+      return;
+    }
+    if (opt->member >= 0) {
+      const SweepMember& m = members[static_cast<std::size_t>(opt->member)];
+      if (member_state(opt->out, m.index) == MemberState::kDone) return;  // a requeued task
+      run_member(spec, m, opt->out, opt->quiet);
+      return;
+    }
+    if (opt->jobs == 0)
+      opt->jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int failed = run_workers(*opt, spec, members);
+    std::cout << opt->out << "/results.csv: " << members.size() - failed << " of " << members.size()
+              << " members done\n";
+    if (failed > 0) {
+      throw runtime_error("sweep: " + std::to_string(failed) + " members failed (messages in " +
+                          opt->out + "/manifest.csv); run the command again to retry them");
+    }
+  });
+}
+
+}  // namespace runnel::cli

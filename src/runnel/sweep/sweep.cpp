@@ -1,0 +1,343 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sweep/sweep.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "runnel/compute/context.hpp"
+#include "runnel/core/error.hpp"
+#include "runnel/core/scenario.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/models/registry.hpp"
+#include "runnel/sim/run.hpp"
+#include "runnel/terrain/terrain_io.hpp"
+#include "runnel/terrain/terrain_source.hpp"
+
+namespace runnel {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kRunMetrics[] = {
+    "eroded_volume",    "deposited_volume", "outflow_volume", "suspended_volume", "rain_volume",
+    "mass_balance_abs", "mass_balance_rel", "steps",          "sim_time"};
+
+std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// A TOML value as parameter text (what --set takes).
+std::string value_text(const toml::node& node, const std::string& where) {
+  if (auto s = node.value<std::string>(); s && node.is_string()) return *s;
+  if (node.is_integer()) return std::to_string(node.as_integer()->get());
+  if (node.is_floating_point()) return number_text(node.as_floating_point()->get());
+  if (node.is_boolean()) return node.as_boolean()->get() ? "true" : "false";
+  throw input_error(where + ": a value must be a string, number or boolean");
+}
+
+// The short axis names researchers write, and the parameter each stands for.
+std::string axis_key(const std::string& name) {
+  if (name == "model") return "run.model";
+  if (name == "seed") return "run.seed";
+  if (name == "terrain") return "terrain.file";
+  return name;
+}
+
+SweepAxis read_axis(const std::string& key, const toml::node& node, const std::string& where,
+                    const fs::path& sweep_dir) {
+  SweepAxis axis{axis_key(key), {}};
+  if (!find_param(axis.key)) throw input_error(where + ": unknown parameter (see 'runnel params')");
+  if (auto* list = node.as_array()) {
+    for (const auto& v : *list) axis.values.push_back(value_text(v, where));
+  } else if (auto* range = node.as_table()) {
+    // { from = A, to = B, count = N }: N values evenly from A to B (integers stay integers).
+    for (auto&& [k, v] : *range) {
+      if (k.str() != "from" && k.str() != "to" && k.str() != "count")
+        throw input_error(where + ": a range has from, to and count, not " + std::string(k.str()));
+    }
+    const auto from = (*range)["from"].value<double>(), to = (*range)["to"].value<double>();
+    const auto count = (*range)["count"].value<std::int64_t>();
+    if (!from || !to || !count) throw input_error(where + ": a range needs from, to and count");
+    if (*count < 1 || *count > 100000) throw input_error(where + ": count must be 1 to 100000");
+    const bool integers = (*range)["from"].is_integer() && (*range)["to"].is_integer();
+    for (std::int64_t k = 0; k < *count; ++k) {
+      const double v =
+          *count == 1 ? *from : *from + (*to - *from) * static_cast<double>(k) / (*count - 1);
+      axis.values.push_back(integers ? std::to_string(std::llround(v)) : number_text(v));
+    }
+  } else {
+    axis.values.push_back(value_text(node, where));
+  }
+  if (axis.values.empty()) throw input_error(where + ": the axis has no values");
+  if (axis.key == "terrain.file") {
+    for (std::string& file : axis.values) {
+      if (fs::path(file).is_relative()) file = (sweep_dir / file).lexically_normal().string();
+      std::error_code ec;
+      if (!fs::is_regular_file(file, ec)) throw input_error(where + ": " + file + ": no such file");
+      terrain_format_from_path(file);
+    }
+  }
+  return axis;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  write_file_atomically(path.string(), [&](std::FILE* f) {
+    if (std::fwrite(text.data(), 1, text.size(), f) != text.size())
+      throw runtime_error(path.string() + ": write failed");
+  });
+}
+
+}  // namespace
+
+std::vector<std::string> sweep_metric_names() {
+  std::vector<std::string> names(std::begin(kRunMetrics), std::end(kRunMetrics));
+  const Heightmap probe(4, 4, 1.0);
+  for (const auto& [name, value] : metrics::terrain_metric_values(probe, probe))
+    names.push_back(name);
+  return names;
+}
+
+SweepSpec read_sweep(const std::string& path) {
+  SweepSpec spec;
+  spec.path = path;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw input_error(path + ": no such sweep file");
+  toml::table table;
+  try {
+    table = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw input_error(path + ":" + std::to_string(e.source().begin.line) +
+                      ": TOML syntax error: " + std::string(e.description()));
+  }
+  const fs::path dir = fs::path(path).parent_path();
+  for (auto&& [k, node] : table) {
+    if (k.str() != "sweep" && k.str() != "axes")
+      throw input_error(path + ": unknown table or key '" + std::string(k.str()) +
+                        "' (sweep, axes)");
+  }
+  spec.metrics = {"eroded_volume",    "deposited_volume",     "outflow_volume",
+                  "mass_balance_abs", "hypsometric_integral", "erosion_flow_correlation"};
+  if (auto* sweep = table["sweep"].as_table()) {
+    for (auto&& [k, node] : *sweep) {
+      const std::string key(k.str()), where = path + ": sweep." + key;
+      if (key == "base") {
+        const auto base = node.value<std::string>();
+        if (!base) throw input_error(where + ": a scenario file name");
+        spec.base = load_scenario(fs::path(*base).is_relative() ? (dir / *base).string() : *base);
+      } else if (key == "combine") {
+        const auto combine = node.value<std::string>();
+        if (!combine || (*combine != "grid" && *combine != "zip"))
+          throw input_error(where + ": \"grid\" or \"zip\"");
+        spec.zip = *combine == "zip";
+      } else if (key == "metrics") {
+        auto* list = node.as_array();
+        if (!list || list->empty()) throw input_error(where + ": a non-empty list of metric names");
+        const auto known = sweep_metric_names();
+        spec.metrics.clear();
+        for (const auto& m : *list) {
+          const std::string name = value_text(m, where);
+          if (std::find(known.begin(), known.end(), name) == known.end())
+            throw input_error(where + ": unknown metric '" + name + "'");
+          spec.metrics.push_back(name);
+        }
+      } else if (key == "max_members") {
+        const auto max = node.value<std::int64_t>();
+        if (!max || *max < 1) throw input_error(where + ": a positive integer");
+        spec.max_members = *max;
+      } else {
+        throw input_error(where + ": unknown key (base, combine, metrics, max_members)");
+      }
+    }
+  }
+  auto* axes = table["axes"].as_table();
+  if (!axes || axes->empty())
+    throw input_error(path + ": [axes] names at least one parameter to vary");
+  for (auto&& [k, node] : *axes) {
+    spec.axes.push_back(
+        read_axis(std::string(k.str()), node, path + ": axes." + std::string(k.str()), dir));
+  }
+  if (spec.zip) {
+    for (const SweepAxis& a : spec.axes) {
+      if (a.values.size() != spec.axes.front().values.size())
+        throw input_error(path + ": combine = \"zip\" needs axes of one length (" + a.key +
+                          " has " + std::to_string(a.values.size()) + ")");
+    }
+  }
+  return spec;
+}
+
+std::vector<SweepMember> expand_sweep(const SweepSpec& spec) {
+  std::size_t count = spec.zip ? spec.axes.front().values.size() : 1;
+  if (!spec.zip) {
+    for (const SweepAxis& a : spec.axes) count *= a.values.size();
+  }
+  std::vector<SweepMember> members(count);
+  for (std::size_t m = 0; m < count; ++m) {
+    SweepMember& member = members[m];
+    member.index = m;
+    member.params = spec.base;
+    // Grid: the last axis varies fastest.
+    std::size_t rest = m;
+    member.values.resize(spec.axes.size());
+    for (std::size_t a = spec.axes.size(); a-- > 0;) {
+      const auto& values = spec.axes[a].values;
+      const std::size_t pick = spec.zip ? m : rest % values.size();
+      if (!spec.zip) rest /= values.size();
+      member.values[a] = values[pick];
+    }
+    for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+      member.params.set_text(spec.axes[a].key, member.values[a],
+                             spec.path + ": axes." + spec.axes[a].key);
+    }
+    const ModelClock clock = model_entry(member.params.text("run.model")).info().clock;
+    try {
+      require_run_length(member.params, clock);
+    } catch (const Error& e) {
+      throw input_error(spec.path + ": member " + std::to_string(m) + ": " + e.what());
+    }
+  }
+  return members;
+}
+
+std::string sweep_id(const std::vector<SweepMember>& members) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const SweepMember& m : members) {
+    for (unsigned char c : parameters_toml(m.params)) h = (h ^ c) * 0x100000001b3ULL;
+  }
+  char id[24];
+  std::snprintf(id, sizeof id, "%016llx", static_cast<unsigned long long>(h));
+  return id;
+}
+
+std::string member_dir(const std::string& out, std::size_t index) {
+  char name[16];
+  std::snprintf(name, sizeof name, "%04zu", index);
+  return (fs::path(out) / "members" / name).string();
+}
+
+MemberState member_state(const std::string& out, std::size_t index, std::string* message) {
+  const fs::path dir = member_dir(out, index);
+  std::error_code ec;
+  if (fs::is_regular_file(dir / "result.csv", ec)) return MemberState::kDone;
+  if (fs::is_regular_file(dir / "failed", ec)) {
+    if (message) *message = read_text(dir / "failed");
+    return MemberState::kFailed;
+  }
+  return MemberState::kPending;
+}
+
+void run_member(const SweepSpec& spec, const SweepMember& member, const std::string& out,
+                bool quiet) {
+  const fs::path dir = member_dir(out, member.index);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw input_error(dir.string() + ": cannot create the member folder");
+  fs::remove(dir / "failed", ec);
+  fs::remove(dir / "result.csv", ec);
+  write_text(dir / "scenario.toml", parameters_toml(member.params));
+  try {
+    static ComputeContext compute;  // one per process: every member of a worker shares its kernels
+    const Heightmap terrain = load_terrain(member.params);
+    const std::unique_ptr<Model> model = make_model(compute, member.params, terrain);
+    RunOptions options = run_options_from(member.params, model->info().clock);
+    options.out_dir = dir.string();
+    options.quiet = quiet;
+    options.overwrite = true;  // an interrupted member's checkpoints are this member's own
+    const RunSummary s = run_model(compute, *model, options);
+    std::vector<std::pair<std::string, double>> values = {{"eroded_volume", s.balance.eroded},
+                                                          {"deposited_volume", s.balance.deposited},
+                                                          {"outflow_volume", s.balance.outflow},
+                                                          {"suspended_volume", s.balance.suspended},
+                                                          {"rain_volume", s.rain_volume},
+                                                          {"mass_balance_abs", s.balance.residual},
+                                                          {"mass_balance_rel", s.balance.relative},
+                                                          {"steps", static_cast<double>(s.steps)},
+                                                          {"sim_time", s.sim_time}};
+    values.insert(values.end(), s.terrain_values.begin(), s.terrain_values.end());
+    std::string row = std::to_string(member.index);
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+    for (const std::string& v : member.values) row.append(",").append(csv_field(v));
+    for (const std::string& metric : spec.metrics) {
+      for (const auto& [name, value] : values)
+        if (name == metric) row.append(",").append(number_text(value));
+    }
+    // Written last: the member is done only once every output is complete.
+    write_text(dir / "result.csv", row + "\n");
+  } catch (const Error& e) {
+    write_text(dir / "failed", std::string(e.what()) + "\n");
+    throw;
+  }
+}
+
+void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepMember>& members,
+                        const std::string& out, const std::vector<std::size_t>& running) {
+  std::string header = "member";
+  for (const SweepAxis& a : spec.axes) header.append(",").append(csv_field(a.key));
+  std::string manifest = header + ",state,message\n", results = header;
+  for (const std::string& m : spec.metrics) results.append(",").append(m);
+  results += "\n";
+  for (const SweepMember& m : members) {
+    std::string row = std::to_string(m.index);
+    for (const std::string& v : m.values) row.append(",").append(csv_field(v));
+    std::string message;
+    MemberState state = member_state(out, m.index, &message);
+    if (state == MemberState::kPending &&
+        std::find(running.begin(), running.end(), m.index) != running.end())
+      state = MemberState::kRunning;
+    static const char* names[] = {"pending", "running", "done", "failed"};
+    while (!message.empty() && message.back() == '\n') message.pop_back();
+    manifest += row + "," + names[static_cast<int>(state)] + "," + csv_field(message) + "\n";
+    if (state == MemberState::kDone)
+      results += read_text(fs::path(member_dir(out, m.index)) / "result.csv");
+  }
+  write_text(fs::path(out) / "manifest.csv", manifest);
+  write_text(fs::path(out) / "results.csv", results);
+}
+
+std::string slurm_script(const SweepSpec& spec, const std::vector<SweepMember>& members,
+                         const std::string& out, const std::string& runnel_binary,
+                         const std::string& time_limit) {
+  const std::string sweep = fs::absolute(spec.path).string(), folder = fs::absolute(out).string();
+  std::ostringstream s;
+  s << "#!/bin/bash\n"
+    << "# runnel sweep " << spec.path << ": " << members.size() << " members, one per array task.\n"
+    << "# Submit with: sbatch " << (fs::path(folder) / "sweep.slurm").string() << "\n"
+    << "# A task whose member is done exits at once, so resubmitting (or a requeue after the time\n"
+    << "# limit or a node failure) only redoes unfinished members. Afterwards: runnel sweep "
+    << spec.path << " --out " << out << " --collect\n"
+    << "#SBATCH --job-name=runnel-sweep\n"
+    << "#SBATCH --array=0-" << members.size() - 1 << "\n"
+    << "#SBATCH --time=" << time_limit << "\n"
+    << "#SBATCH --ntasks=1\n"
+    << "#SBATCH --requeue\n"
+    << "#SBATCH --output=" << folder << "/slurm-%A_%a.out\n"
+    << "set -euo pipefail\n"
+    << "exec " << fs::absolute(runnel_binary).string() << " sweep " << sweep << " --out " << folder
+    << " --member \"$SLURM_ARRAY_TASK_ID\" --quiet\n";
+  return s.str();
+}
+
+}  // namespace runnel

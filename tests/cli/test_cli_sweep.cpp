@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: MIT
+// runnel sweep end to end: the same 2 × 2 × 2 sweep run by one worker, by two, and member by member
+// (as SLURM array tasks would) gives byte-identical member outputs and the same results.csv; a
+// rerun skips done members and redoes interrupted ones; bad sweep files are refused before anything
+// runs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::run_cli;
+using test::ScratchDir;
+
+const char* kBase = R"([run]
+steps = 15
+[terrain]
+generator = "fbm"
+size = 33
+cell = 2.0
+)";
+
+const char* kSweep = R"([sweep]
+base = "base.toml"
+metrics = ["eroded_volume", "hypsometric_integral", "mass_balance_abs"]
+[axes]
+model = ["pipe", "olsen"]
+"pipe.rain" = [0.01, 0.02]
+seed = [1, 2]
+)";
+
+std::string member_file(const ScratchDir& dir, const std::string& sweep, int member,
+                        const std::string& name) {
+  char folder[16];
+  std::snprintf(folder, sizeof folder, "%04d", member);
+  return dir.path(sweep + "/members/" + folder + "/" + name);
+}
+
+TEST(CliSweep, SerialParallelAndMemberByMemberGiveIdenticalResults) {
+  ScratchDir dir;
+  test::write_text(dir.path("base.toml"), kBase);
+  test::write_text(dir.path("sweep.toml"), kSweep);
+  const std::string sweep = dir.path("sweep.toml");
+  auto r = run_cli({"sweep", sweep, "--out", dir.path("serial"), "-j", "1", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli({"sweep", sweep, "--out", dir.path("parallel"), "-j", "2", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int m = 0; m < 8; ++m) {
+    r = run_cli(
+        {"sweep", sweep, "--out", dir.path("tasks"), "--member", std::to_string(m), "--quiet"});
+    ASSERT_EQ(r.exit_code, 0) << m << ": " << r.err;
+  }
+  ASSERT_EQ(run_cli({"sweep", sweep, "--out", dir.path("tasks"), "--collect"}).exit_code, 0);
+
+  const std::string results = test::read_text(dir.path("serial/results.csv"));
+  EXPECT_EQ(std::count(results.begin(), results.end(), '\n'), 9) << results;
+  EXPECT_EQ(
+      results.substr(0, results.find('\n')),
+      "member,run.model,pipe.rain,run.seed,eroded_volume,hypsometric_integral,mass_balance_abs");
+  EXPECT_EQ(test::read_text(dir.path("parallel/results.csv")), results);
+  EXPECT_EQ(test::read_text(dir.path("tasks/results.csv")), results);
+  for (int m = 0; m < 8; ++m) {
+    for (const char* name :
+         {"final.npy", "final.tif", "final.asc", "result.csv", "scenario.toml"}) {
+      const std::string serial = test::read_text(member_file(dir, "serial", m, name));
+      ASSERT_FALSE(serial.empty()) << m << " " << name;
+      EXPECT_EQ(test::read_text(member_file(dir, "parallel", m, name)), serial) << m << " " << name;
+      EXPECT_EQ(test::read_text(member_file(dir, "tasks", m, name)), serial) << m << " " << name;
+    }
+  }
+  // The pipe members differ with the rain and the seed: the axes reach the runs.
+  EXPECT_NE(test::read_text(member_file(dir, "serial", 0, "final.npy")),
+            test::read_text(member_file(dir, "serial", 2, "final.npy")));
+  const std::string manifest = test::read_text(dir.path("serial/manifest.csv"));
+  EXPECT_EQ(std::count(manifest.begin(), manifest.end(), '\n'), 9);
+  EXPECT_EQ(manifest.find("pending"), std::string::npos) << manifest;
+
+  // A rerun skips the done members; an interrupted one (no result row) is redone alone, the same.
+  const std::string before = test::read_text(member_file(dir, "serial", 5, "final.npy"));
+  std::filesystem::remove(member_file(dir, "serial", 5, "result.csv"));
+  std::filesystem::remove(member_file(dir, "serial", 5, "final.npy"));
+  r = run_cli({"sweep", sweep, "--out", dir.path("serial"), "-j", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("7 done already"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("member 5 done"), std::string::npos) << r.err;
+  EXPECT_EQ(test::read_text(member_file(dir, "serial", 5, "final.npy")), before);
+  EXPECT_EQ(test::read_text(dir.path("serial/results.csv")), results);
+
+  // Another sweep in the same folder is refused, with nothing started.
+  std::string changed = kSweep;
+  changed.replace(changed.find("[1, 2]"), 6, "[1, 3]");
+  test::write_text(dir.path("changed.toml"), changed);
+  r = run_cli({"sweep", dir.path("changed.toml"), "--out", dir.path("serial")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("holds another sweep"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+
+  // The SLURM array script runs one member per task.
+  r = run_cli(
+      {"sweep", sweep, "--out", dir.path("serial"), "--slurm-script", "--time", "02:00:00"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string script = test::read_text(dir.path("serial/sweep.slurm"));
+  EXPECT_NE(script.find("#SBATCH --array=0-7"), std::string::npos) << script;
+  EXPECT_NE(script.find("#SBATCH --time=02:00:00"), std::string::npos) << script;
+  EXPECT_NE(script.find("--member \"$SLURM_ARRAY_TASK_ID\""), std::string::npos) << script;
+}
+
+TEST(CliSweep, BadSweepFilesAreRefusedBeforeAnythingRuns) {
+  ScratchDir dir;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[axes]\n\"pipe.nonsense\" = [1, 2]\n", "unknown parameter"},
+      {"[axes]\n\"pipe.rain\" = []\n", "no values"},
+      {"[sweep]\nmax_members = 3\n[axes]\n\"pipe.rain\" = [0.01, 0.02, 0.03, 0.04]\n", "--force"},
+      {"[axes]\nterrain = [\"missing.asc\"]\n", "no such file"},
+      {"[sweep]\nmetrics = [\"nope\"]\n[axes]\nseed = [1]\n", "unknown metric"},
+      {"[sweep]\ncombine = \"zip\"\n[axes]\nseed = [1, 2]\nmodel = [\"pipe\"]\n", "one length"},
+      {"[sweep]\nspeed = 3\n[axes]\nseed = [1]\n", "unknown key"},
+      {"[axes]\n\"pipe.rain\" = [-1]\n", "pipe.rain"},
+      {"[sweep]\n", "[axes]"},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string file = dir.path("bad" + std::to_string(k) + ".toml");
+    test::write_text(file, cases[k].first);
+    const std::string out = dir.path("out" + std::to_string(k));
+    const auto r = run_cli({"sweep", file, "--out", out});
+    EXPECT_EQ(r.exit_code, 2) << cases[k].first << r.err;
+    EXPECT_NE(r.err.find(cases[k].second), std::string::npos) << cases[k].first << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "nothing started: " << cases[k].first;
+  }
+}
+
+}  // namespace
+}  // namespace runnel
