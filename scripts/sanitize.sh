@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:abort_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 CC=clang CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRUNNEL_SANITIZE=ON \
-  -DRUNNEL_FUZZ=ON -DRUNNEL_BUILD_VIEWER=OFF -DRUNNEL_PYTHON=OFF >/dev/null  # an ASan module cannot load into python
+  -DRUNNEL_FUZZ=ON -DRUNNEL_BUILD_VIEWER=OFF -DRUNNEL_PYTHON=OFF -DRUNNEL_MPI=OFF >/dev/null  # an ASan module cannot load into python; MPI: tested in the main build
 cmake --build build-asan -j "$(nproc)"
 cd build-asan
 ctest -j "$(nproc)" --output-on-failure

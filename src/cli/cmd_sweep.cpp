@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: MIT
 // runnel sweep: an ensemble of runs over parameters, seeds, models and terrains (docs/sweeps.md),
 // run here by worker processes, or one member at a time by a SLURM array task.
+#if RUNNEL_HAVE_MPI
+#define OMPI_SKIP_MPICXX 1  // the C API only: the deprecated C++ bindings need their own library
+#define MPICH_SKIP_MPICXX 1
+#include <mpi.h>
+#endif
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -31,7 +37,7 @@ struct SweepOptions {
   std::string file, out = "runnel-sweep", time_limit = "24:00:00";
   int jobs = 0;
   long long member = -1;
-  bool extend = false, force = false, slurm = false, quiet = false, collect = false;
+  bool extend = false, force = false, slurm = false, quiet = false, collect = false, report = false;
 };
 
 std::string text_of(const fs::path& path) {
@@ -119,6 +125,67 @@ int run_workers(const SweepOptions& opt, const SweepSpec& spec,
   return failed;
 }
 
+// Under mpirun (Open MPI's or a PMI launcher's environment), when runnel was built with MPI.
+bool launched_by_mpi() {
+#if RUNNEL_HAVE_MPI
+  return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE");
+#else
+  return false;
+#endif
+}
+
+// mpirun -np K runnel sweep: rank r runs members r, r + K, r + 2K, ... that are not done yet, each
+// in this process (a deterministic stride: the same member always lands on the same rank); rank 0
+// claims the folder first and writes the tables last. Returns the number of failed members.
+int run_mpi(const SweepOptions& opt, const SweepSpec& spec,
+            const std::vector<SweepMember>& members) {
+#if RUNNEL_HAVE_MPI
+  MPI_Init(nullptr, nullptr);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  int claim_failed = 0;
+  std::string claim_message;
+  if (rank == 0) {
+    try {
+      claim_folder(opt, members, sweep_id(members));
+    } catch (const Error& e) {
+      claim_failed = 1;
+      claim_message = e.what();
+    }
+  }
+  MPI_Bcast(&claim_failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (claim_failed) {
+    MPI_Finalize();
+    if (rank == 0) throw input_error(claim_message);
+    std::exit(2);
+  }
+  if (rank == 0 && !opt.quiet)
+    std::cerr << "sweep: " << members.size() << " members on " << size << " MPI ranks\n";
+  int failed = 0;
+  for (std::size_t m = static_cast<std::size_t>(rank); m < members.size();
+       m += static_cast<std::size_t>(size)) {
+    if (member_state(opt.out, m) == MemberState::kDone) continue;
+    try {
+      run_member(spec, members[m], opt.out, true);
+      if (!opt.quiet) std::cerr << "sweep: member " << m << " done on rank " << rank << "\n";
+    } catch (const Error& e) {
+      ++failed;
+      std::cerr << "sweep: member " << m << " failed on rank " << rank << ": " << e.what() << "\n";
+    }
+  }
+  int total = 0;
+  MPI_Reduce(&failed, &total, 1, MPI_INT, MPI_SUM, 0, MPI_COMM_WORLD);
+  if (rank == 0) write_sweep_tables(spec, members, opt.out);
+  MPI_Finalize();
+  if (rank != 0) std::exit(total > 0 ? 1 : 0);
+  return total;
+#else
+  (void)opt, (void)spec, (void)members;
+  return 0;
+#endif
+}
+
 }  // namespace
 
 void add_sweep_command(CLI::App& app) {
@@ -146,6 +213,9 @@ void add_sweep_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--collect", opt->collect,
                 "only rewrite manifest.csv and results.csv from the members");
+  cmd->add_flag("--report", opt->report,
+                "draw DIR/report_METRIC_vs_PARAMETER.png for the done members: each metric against "
+                "each varied numeric parameter, one line per model");
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
   cmd->callback([opt] {
     const SweepSpec spec = read_sweep(opt->file);
@@ -159,6 +229,13 @@ void add_sweep_command(CLI::App& app) {
       throw input_error("--member " + std::to_string(opt->member) +
                         ": the sweep has members 0 to " + std::to_string(members.size() - 1));
     }
+    if (launched_by_mpi() && opt->member < 0 && !opt->slurm && !opt->collect && !opt->report) {
+      const int failed = run_mpi(*opt, spec, members);
+      std::cout << opt->out << "/results.csv: " << members.size() - failed << " of "
+                << members.size() << " members done\n";
+      if (failed > 0) throw runtime_error("sweep: " + std::to_string(failed) + " members failed");
+      return;
+    }
     claim_folder(*opt, members, sweep_id(members));
     if (opt->slurm) {
       const fs::path script = fs::path(opt->out) / "sweep.slurm";
@@ -168,8 +245,12 @@ void add_sweep_command(CLI::App& app) {
       std::cout << script.string() << ": sbatch it to run the " << members.size() << " members\n";
       return;
     }
-    if (opt->collect) {
+    if (opt->collect || opt->report) {
       write_sweep_tables(spec, members, opt->out);
+      if (opt->report) {
+        for (const std::string& file : write_sweep_report(spec, members, opt->out))
+          std::cout << file << "\n";
+      }
       return;
     }
     if (opt->member >= 0) {

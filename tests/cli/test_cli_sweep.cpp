@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
-// runnel sweep end to end: the same 2 × 2 × 2 sweep run by one worker, by two, and member by member
-// (as SLURM array tasks would) gives byte-identical member outputs and the same results.csv; a
-// rerun skips done members and redoes interrupted ones; bad sweep files are refused before anything
-// runs.
+// runnel sweep end to end: the same 2 × 2 × 2 sweep run by one worker, by two, member by member
+// (as SLURM array tasks would) and by two MPI ranks gives byte-identical member outputs and the
+// same results.csv; a rerun skips done members and redoes interrupted ones; bad sweep files are
+// refused before anything runs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "test_support.hpp"
@@ -55,6 +56,17 @@ TEST(CliSweep, SerialParallelAndMemberByMemberGiveIdenticalResults) {
     ASSERT_EQ(r.exit_code, 0) << m << ": " << r.err;
   }
   ASSERT_EQ(run_cli({"sweep", sweep, "--out", dir.path("tasks"), "--collect"}).exit_code, 0);
+  std::vector<std::string> ways = {"parallel", "tasks"};
+  if (RUNNEL_HAVE_MPI && test::run_program("mpirun", {"--version"}).exit_code == 0) {
+    // Allowed to run as root and oversubscribed, as in CI.
+    r = test::run_program(
+        "mpirun", {"--allow-run-as-root", "--oversubscribe", "-np", "2", RUNNEL_BINARY, "sweep",
+                   sweep, "--out", dir.path("mpi"), "--quiet"});
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    ways.push_back("mpi");
+  } else {
+    std::printf("[  SKIPPED ] the MPI way: runnel was built without MPI or mpirun is missing\n");
+  }
 
   const std::string results = test::read_text(dir.path("serial/results.csv"));
   EXPECT_EQ(std::count(results.begin(), results.end(), '\n'), 9) << results;
@@ -98,6 +110,17 @@ TEST(CliSweep, SerialParallelAndMemberByMemberGiveIdenticalResults) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("holds another sweep"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+
+  // The summary figures: each metric against each numeric axis, one line per model.
+  r = run_cli({"sweep", sweep, "--out", dir.path("serial"), "--report"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* figure :
+       {"report_eroded_volume_vs_pipe.rain.png", "report_hypsometric_integral_vs_run.seed.png"}) {
+    const std::string png = test::read_text(dir.path(std::string("serial/") + figure));
+    ASSERT_GT(png.size(), 1000u) << figure;
+    EXPECT_EQ(png.substr(1, 3), "PNG") << figure;
+  }
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 6) << r.out;
 
   // The SLURM array script runs one member per task.
   r = run_cli(

@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/io/plot.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
@@ -108,6 +110,10 @@ void write_text(const fs::path& path, const std::string& text) {
     if (std::fwrite(text.data(), 1, text.size(), f) != text.size())
       throw runtime_error(path.string() + ": write failed");
   });
+}
+
+std::string member_model(const SweepMember& m) {
+  return m.params.text("run.model");
 }
 
 }  // namespace
@@ -315,6 +321,70 @@ void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepMember>& m
   }
   write_text(fs::path(out) / "manifest.csv", manifest);
   write_text(fs::path(out) / "results.csv", results);
+}
+
+std::vector<std::string> write_sweep_report(const SweepSpec& spec,
+                                            const std::vector<SweepMember>& members,
+                                            const std::string& out) {
+  // The done members' metric values, from their result rows (member, axis values..., metrics...).
+  std::map<std::size_t, std::vector<double>> values;
+  for (const SweepMember& m : members) {
+    if (member_state(out, m.index) != MemberState::kDone) continue;
+    std::string row = read_text(fs::path(member_dir(out, m.index)) / "result.csv");
+    std::vector<double> metrics;
+    std::size_t field = 0, start = 0;
+    while (start <= row.size()) {
+      const std::size_t end = std::min(row.find(',', start), row.find('\n', start));
+      if (field > spec.axes.size())
+        metrics.push_back(std::strtod(row.substr(start, end - start).c_str(), nullptr));
+      if (end == std::string::npos || row[end] == '\n') break;
+      start = end + 1;
+      ++field;
+    }
+    values[m.index] = metrics;
+  }
+  if (values.empty()) throw input_error(out + ": no member is done yet; nothing to report");
+  std::size_t model_axis = spec.axes.size();
+  for (std::size_t a = 0; a < spec.axes.size(); ++a)
+    if (spec.axes[a].key == "run.model") model_axis = a;
+  static const PlotColour colours[] = {
+      kPlotSimulation, kPlotSecondary, kPlotReference, {30, 150, 60}, {150, 60, 160}};
+  std::vector<std::string> written;
+  for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+    const SweepAxis& axis = spec.axes[a];
+    char* end = nullptr;
+    std::strtod(axis.values.front().c_str(), &end);
+    if (a == model_axis || *end != '\0') continue;  // only numeric parameters have an x axis
+    for (std::size_t k = 0; k < spec.metrics.size(); ++k) {
+      Plot plot("runnel sweep: " + spec.metrics[k] + " against " + axis.key, axis.key,
+                spec.metrics[k]);
+      std::vector<std::string> models =
+          model_axis < spec.axes.size() ? spec.axes[model_axis].values
+                                        : std::vector<std::string>{member_model(members.front())};
+      for (std::size_t g = 0; g < models.size(); ++g) {
+        std::map<double, std::pair<double, int>> mean;  // x → (sum, count) over the other axes
+        for (const SweepMember& m : members) {
+          if (!values.count(m.index) ||
+              (model_axis < spec.axes.size() && m.values[model_axis] != models[g]))
+            continue;
+          auto& [sum, count] = mean[std::strtod(m.values[a].c_str(), nullptr)];
+          sum += values[m.index][k];
+          ++count;
+        }
+        std::vector<double> x, y;
+        for (auto& [key, acc] : mean) {
+          x.push_back(key);
+          y.push_back(acc.first / acc.second);
+        }
+        if (!x.empty()) plot.line(x, y, colours[g % 5], models[g]);
+      }
+      const std::string file =
+          (fs::path(out) / ("report_" + spec.metrics[k] + "_vs_" + axis.key + ".png")).string();
+      plot.write(file);
+      written.push_back(file);
+    }
+  }
+  return written;
 }
 
 std::string slurm_script(const SweepSpec& spec, const std::vector<SweepMember>& members,
