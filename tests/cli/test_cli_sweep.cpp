@@ -132,6 +132,33 @@ TEST(CliSweep, SerialParallelAndMemberByMemberGiveIdenticalResults) {
   EXPECT_NE(script.find("--member \"$SLURM_ARRAY_TASK_ID\""), std::string::npos) << script;
 }
 
+// A member whose run fails (a collapsing time step) is reported as failed with its message, the
+// others finish, the sweep exits 1; a rerun retries only the failed one.
+TEST(CliSweep, AFailedMemberIsListedWithItsMessage) {
+  ScratchDir dir;
+  test::write_text(dir.path("base.toml"), kBase);
+  test::write_text(dir.path("sweep.toml"), R"([sweep]
+base = "base.toml"
+[axes]
+model = ["pipe"]
+"pipe.dt_min" = [1e-9, 0.5]
+"pipe.rain" = [50.0]
+)");
+  auto r = run_cli({"sweep", dir.path("sweep.toml"), "--out", dir.path("s"), "-j", "2", "--quiet"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("1 members failed"), std::string::npos) << r.err;
+  const std::string manifest = test::read_text(dir.path("s/manifest.csv"));
+  EXPECT_NE(manifest.find("0,pipe,1e-09,50,done,"), std::string::npos) << manifest;
+  EXPECT_NE(manifest.find("1,pipe,0.5,50,failed,"), std::string::npos) << manifest;
+  EXPECT_NE(manifest.find("time step collapsed"), std::string::npos) << manifest;
+  const std::string results = test::read_text(dir.path("s/results.csv"));
+  EXPECT_EQ(std::count(results.begin(), results.end(), '\n'), 2)
+      << "header and the done member: " << results;
+  r = run_cli({"sweep", dir.path("sweep.toml"), "--out", dir.path("s"), "-j", "1"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("1 done already"), std::string::npos) << r.err;
+}
+
 TEST(CliSweep, BadSweepFilesAreRefusedBeforeAnythingRuns) {
   ScratchDir dir;
   const std::vector<std::pair<std::string, std::string>> cases = {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -31,9 +32,14 @@ const char* kRunMetrics[] = {
     "eroded_volume",    "deposited_volume", "outflow_volume", "suspended_volume", "rain_volume",
     "mass_balance_abs", "mass_balance_rel", "steps",          "sim_time"};
 
+// The shortest of %.15g .. %.17g that reads back as the same double: 0.01, not
+// 0.01000000000000000021.
 std::string number_text(double v) {
   char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
   return buf;
 }
 
