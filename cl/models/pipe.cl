@@ -100,11 +100,14 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
   previous_depth[k] = d1;
   depth[k] = d2;
   // Mean flux through the cell in x (from the left in, out to the right, ...) over the mean depth.
+  // x and z are written differently on purpose (see pipe_erode): isomorphic pairs get packed by the
+  // SLP vectoriser, and then the loop over cells is not vectorised.
   const float wx = 0.5f * (in_l - out_l + out_r - in_r);
-  const float wz = 0.5f * (in_t - out_t + out_b - in_b);
+  const float wz = ((in_t + out_b) - (out_t + in_b)) * 0.5f;
   const float mean_depth = 0.5f * (d1 + d2);
-  velocity[k] = mean_depth > 1e-6f ? wx / (cell * mean_depth) : 0.0f;
-  velocity[n + k] = mean_depth > 1e-6f ? wz / (cell * mean_depth) : 0.0f;
+  const float per_area = mean_depth > 1e-6f ? 1.0f / (cell * mean_depth) : 0.0f;
+  velocity[k] = wx * per_area;
+  velocity[n + k] = per_area * wz;
 }
 
 #define PIPE_ERODE_STREAM 0x70657264UL      // "perd"
@@ -125,12 +128,16 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   const int j = grid_row(k, nx), i = k - j * nx;
   // The slope from the heights as the step began (height_view), not from height, which this kernel
   // changes: no cell reads what another work-item writes.
-  const int i0 = max(i - 1, 0), i1 = min(i + 1, nx - 1), j0 = max(j - 1, 0), j1 = min(j + 1, ny - 1);
-  const float gx = (height_view[j * nx + i1] - height_view[j * nx + i0]) / ((float)(i1 - i0) * cell);
-  const float gz = (height_view[j1 * nx + i] - height_view[j0 * nx + i]) / ((float)(j1 - j0) * cell);
-  const float sin_slope = sqrt(gx * gx + gz * gz) / sqrt(1.0f + gx * gx + gz * gz);
+  // Central differences, one-sided at the edges. x and z are written differently on purpose, and the
+  // sums of squares as fma: isomorphic x/z pairs are what the SLP vectoriser packs into 2-wide vectors
+  // first, and a work-item holding such vectors is not vectorised across cells.
+  const int has_l = i > 0, has_r = i < nx - 1, up = j > 0 ? nx : 0, down = j < ny - 1 ? nx : 0;
+  const float gx = (height_view[k + has_r] - height_view[k - has_l]) / ((float)(has_l + has_r) * cell);
+  const float gz = (height_view[k + down] - height_view[k - up]) * ((up && down ? 0.5f : 1.0f) / cell);
+  const float slope2 = fma(gx, gx, gz * gz);
+  const float sin_slope = sqrt(slope2) / sqrt(1.0f + slope2);
   const float vx = velocity[k], vz = velocity[n + k];
-  const float speed = sqrt(vx * vx + vz * vz);  // not hypot: no overflow to guard against, and it is slow on CPUs
+  const float speed = sqrt(fma(vx, vx, vz * vz));  // not hypot: no overflow to guard against, and it is slow on CPUs
   // The water cannot carry more sediment than its own depth (thin films move fast).
   const float capacity = fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth[k]);  // m
   const long load = sediment[k];
