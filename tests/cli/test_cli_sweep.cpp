@@ -66,7 +66,8 @@ TEST(CliSweep, SerialParallelAndMemberByMemberGiveIdenticalResults) {
     ways.push_back("mpi");
   } else {
     // Not a skip of the test (the other three ways ran): say why this way did not.
-    std::printf("note: the MPI way did not run: runnel was built without MPI or mpirun is missing\n");
+    std::printf(
+        "note: the MPI way did not run: runnel was built without MPI or mpirun is missing\n");
   }
 
   const std::string results = test::read_text(dir.path("serial/results.csv"));
