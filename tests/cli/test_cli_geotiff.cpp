@@ -121,6 +121,9 @@ TEST(CliGeoTiff, AProjectedDemRunsAndItsOutputsOverlayTheInput) {
   const auto info = run_cli({"info", dir.path("run/final.h5")});
   EXPECT_EQ(info.exit_code, 0) << info.err;
   EXPECT_NE(info.out.find("UTM zone 16N"), std::string::npos) << info.out;
+  const auto json = run_cli({"info", dir.path("run/final.h5"), "--json"});
+  EXPECT_NE(json.out.find("\"crs\": \"WGS 84 / UTM zone 16N\""), std::string::npos) << json.out;
+  EXPECT_EQ(test::json_number(json.out, "origin_x"), 700000.0);
 }
 
 TEST(CliGeoTiff, RastersRunnelCannotUseAreRefusedWithOneLine) {
