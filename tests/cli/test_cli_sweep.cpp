@@ -134,6 +134,47 @@ TEST(CliSweep, SerialParallelAndMemberByMemberGiveIdenticalResults) {
   EXPECT_NE(script.find("--member \"$SLURM_ARRAY_TASK_ID\""), std::string::npos) << script;
 }
 
+// With checkpoint_every, an interrupted member goes on from its newest checkpoint, and ends as the
+// uninterrupted member did, bit for bit (what a SLURM requeue after the time limit relies on).
+TEST(CliSweep, AnInterruptedMemberResumesFromItsNewestCheckpoint) {
+  ScratchDir dir;
+  test::write_text(dir.path("base.toml"), kBase);  // 15 steps
+  test::write_text(dir.path("sweep.toml"), R"([sweep]
+base = "base.toml"
+checkpoint_every = 5
+[axes]
+model = ["pipe", "sph"]
+)");
+  const std::string sweep = dir.path("sweep.toml");
+  ASSERT_EQ(run_cli({"sweep", sweep, "--out", dir.path("s"), "-j", "1", "--quiet"}).exit_code, 0);
+  for (int m = 0; m < 2; ++m) {
+    // The member "was killed" after its checkpoint at step 10: no step 15, no outputs, no result
+    // row.
+    for (const char* gone :
+         {"checkpoints/step_00000015.h5", "final.npy", "result.csv", "metrics.json"})
+      std::filesystem::remove(member_file(dir, "s", m, gone));
+    ASSERT_TRUE(std::filesystem::exists(member_file(dir, "s", m, "checkpoints/step_00000010.h5")));
+  }
+  const auto r = run_cli({"sweep", sweep, "--out", dir.path("s"), "-j", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("0 done already"), std::string::npos) << r.err;
+  // The same sweep, never interrupted.
+  ASSERT_EQ(run_cli({"sweep", sweep, "--out", dir.path("whole"), "-j", "1", "--quiet"}).exit_code,
+            0);
+  for (int m = 0; m < 2; ++m) {
+    EXPECT_EQ(test::json_number(test::read_text(member_file(dir, "s", m, "metrics.json")),
+                                "resumed_from_step"),
+              10)
+        << m;
+    EXPECT_EQ(test::read_text(member_file(dir, "s", m, "final.npy")),
+              test::read_text(member_file(dir, "whole", m, "final.npy")))
+        << m;
+    EXPECT_EQ(test::read_text(member_file(dir, "s", m, "result.csv")),
+              test::read_text(member_file(dir, "whole", m, "result.csv")))
+        << m;
+  }
+}
+
 // A member whose run fails (a collapsing time step) is reported as failed with its message, the
 // others finish, the sweep exits 1; a rerun retries only the failed one.
 TEST(CliSweep, AFailedMemberIsListedWithItsMessage) {

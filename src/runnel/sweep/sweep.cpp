@@ -17,6 +17,7 @@
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/plot.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
 #include "runnel/terrain/terrain_io.hpp"
@@ -122,6 +123,19 @@ std::string member_model(const SweepMember& m) {
   return m.params.text("run.model");
 }
 
+// The newest step_XXXXXXXX.h5 in `dir` (names sort by step), or "" when there is none.
+std::string newest_checkpoint(const fs::path& dir) {
+  std::error_code ec;
+  std::string newest;
+  if (!fs::is_directory(dir, ec)) return newest;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("step_", 0) == 0 && e.path().extension() == ".h5" && e.path().string() > newest)
+      newest = e.path().string();
+  }
+  return newest;
+}
+
 }  // namespace
 
 std::vector<std::string> sweep_metric_names() {
@@ -175,12 +189,17 @@ SweepSpec read_sweep(const std::string& path) {
             throw input_error(where + ": unknown metric '" + name + "'");
           spec.metrics.push_back(name);
         }
+      } else if (key == "checkpoint_every") {
+        const auto every = node.value<std::int64_t>();
+        if (!every || *every < 0) throw input_error(where + ": a step count, 0 for none");
+        spec.checkpoint_every = *every;
       } else if (key == "max_members") {
         const auto max = node.value<std::int64_t>();
         if (!max || *max < 1) throw input_error(where + ": a positive integer");
         spec.max_members = *max;
       } else {
-        throw input_error(where + ": unknown key (base, combine, metrics, max_members)");
+        throw input_error(where +
+                          ": unknown key (base, combine, metrics, max_members, checkpoint_every)");
       }
     }
   }
@@ -272,11 +291,17 @@ void run_member(const SweepSpec& spec, const SweepMember& member, const std::str
   write_text(dir / "scenario.toml", parameters_toml(member.params));
   try {
     static ComputeContext compute;  // one per process: every member of a worker shares its kernels
-    const Heightmap terrain = load_terrain(member.params);
-    const std::unique_ptr<Model> model = make_model(compute, member.params, terrain);
+    // An interrupted member goes on from its newest checkpoint (bit for bit the run it would have
+    // been).
+    const std::string checkpoint = newest_checkpoint(dir / "checkpoints");
+    const std::unique_ptr<Model> model =
+        checkpoint.empty()
+            ? make_model(compute, member.params, load_terrain(member.params))
+            : make_model_from_checkpoint(compute, read_checkpoint(checkpoint), checkpoint);
     RunOptions options = run_options_from(member.params, model->info().clock);
     options.out_dir = dir.string();
     options.quiet = quiet;
+    options.checkpoint_every = spec.checkpoint_every;
     options.overwrite = true;  // an interrupted member's checkpoints are this member's own
     const RunSummary s = run_model(compute, *model, options);
     std::vector<std::pair<std::string, double>> values = {{"eroded_volume", s.balance.eroded},
@@ -402,7 +427,8 @@ std::string slurm_script(const SweepSpec& spec, const std::vector<SweepMember>& 
     << "# runnel sweep " << spec.path << ": " << members.size() << " members, one per array task.\n"
     << "# Submit with: sbatch " << (fs::path(folder) / "sweep.slurm").string() << "\n"
     << "# A task whose member is done exits at once, so resubmitting (or a requeue after the time\n"
-    << "# limit or a node failure) only redoes unfinished members. Afterwards: runnel sweep "
+    << "# limit or a node failure) only redoes unfinished members, from their newest checkpoint when\n"
+    << "# the sweep sets checkpoint_every. Afterwards: runnel sweep "
     << spec.path << " --out " << out << " --collect\n"
     << "#SBATCH --job-name=runnel-sweep\n"
     << "#SBATCH --array=0-" << members.size() - 1 << "\n"

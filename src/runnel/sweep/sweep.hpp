@@ -22,6 +22,7 @@ struct SweepSpec {
   bool zip = false;             // combine: "grid" (every combination) or "zip" (the i-th of each)
   std::vector<std::string> metrics;  // collected into results.csv
   long long max_members = 1000;      // more needs --force
+  long long checkpoint_every = 0;    // members checkpoint every N steps and resume from the newest
 };
 
 struct SweepMember {
