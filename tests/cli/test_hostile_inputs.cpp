@@ -3,6 +3,8 @@
 // problem, with nothing written; bytes from the file are echoed escaped.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
@@ -194,10 +196,18 @@ TEST(HostileInputs, ScenarioContradictionsAreRefusedWithTheirKeys) {
   expect_refused(with({"terrain.size=33", "rain.max_particles=100000000"}),
                  {"rain.max_particles", "MB of device memory"},
                  "a particle budget beyond the device");
-  expect_refused(run_cli({"run", "--generate", "plane", "--model", "droplet", "--steps", "1",
-                          "--set", "droplet.batch=100000000", "--out", dir.path("o")}),
-                 {"droplet.batch"}, "droplet.batch 1e8");
-  EXPECT_FALSE(std::filesystem::exists(dir.path("o")));
+  // 10^8 droplets (the key's largest value) need 2.4 GB in one buffer: beyond PoCL's usual largest
+  // allocation (a quarter of its memory), but a device that allows more would rightly run them (for
+  // a long time), so the case is checked only where it must be refused.
+  if (100000000.0 * 6 * sizeof(float) > static_cast<double>(test::compute().info().max_alloc)) {
+    expect_refused(run_cli({"run", "--generate", "plane", "--model", "droplet", "--steps", "1",
+                            "--set", "droplet.batch=100000000", "--out", dir.path("o")}),
+                   {"droplet.batch"}, "droplet.batch 1e8");
+    EXPECT_FALSE(std::filesystem::exists(dir.path("o")));
+  } else {
+    std::printf("note: droplet.batch 1e8 not checked: this device allows %.0f MB in one buffer\n",
+                static_cast<double>(test::compute().info().max_alloc) / 1e6);
+  }
 }
 
 }  // namespace
