@@ -74,7 +74,7 @@ class RunnelBmi(Bmi):
         return _GRID
 
     def get_var_type(self, name):
-        return str(self._value(name).dtype)
+        return str(self._dtype(name))
 
     def get_var_units(self, name):
         self._check(name)
@@ -83,10 +83,12 @@ class RunnelBmi(Bmi):
         return self._model.field_info(name)["unit"]
 
     def get_var_itemsize(self, name):
-        return self._value(name).dtype.itemsize
+        return self._dtype(name).itemsize
 
     def get_var_nbytes(self, name):
-        return self._value(name).nbytes
+        # From the field's description: asking for a type or a size does not copy the field off the device.
+        components = 1 if name == "topographic__elevation" else self._model.field_info(name)["components"]
+        return self._dtype(name).itemsize * components * self.get_grid_size(_GRID)
 
     def get_var_location(self, name):
         self._check(name)
@@ -225,6 +227,12 @@ class RunnelBmi(Bmi):
     def _check_grid(self, grid):
         if grid != _GRID:
             raise InputError(f"grid {grid}: runnel has one grid, 0")
+
+    def _dtype(self, name):
+        self._check(name)
+        if name == "topographic__elevation":
+            return np.dtype(np.float32)  # metres, the float view of the exact integer state
+        return np.dtype(self._model.field_info(name)["type"])
 
     def _value(self, name):
         self._check(name)

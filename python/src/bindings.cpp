@@ -93,8 +93,11 @@ py::dict balance_dict(const MassBalance& m) {
 // A field of the model as it is now, by its dictionary name (docs/fields.md).
 py::array model_field(PyModel& self, const std::string& name) {
   Model& m = self.get();
-  const Heightmap t = m.terrain();
-  if (name == kTopographicElevation) return grid_array(t.h, t.ny, t.nx, 1);
+  if (name == kTopographicElevation) {
+    const Heightmap t = m.terrain();
+    return grid_array(t.h, t.ny, t.nx, 1);
+  }
+  const Heightmap& t = m.initial_terrain();  // the grid's shape, without a download
   const CheckpointData d = m.checkpoint();
   for (const StoredField& f : d.fields) {
     if (f.name != name) continue;

@@ -40,45 +40,6 @@ struct SweepOptions {
   bool extend = false, force = false, slurm = false, quiet = false, collect = false, report = false;
 };
 
-std::string text_of(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  write_file_atomically(path.string(),
-                        [&](std::FILE* f) { std::fwrite(text.data(), 1, text.size(), f); });
-}
-
-// One folder, one sweep: the id of the expanded members is kept in DIR/sweep.id. A changed sweep
-// file is refused unless --extend, which accepts it when every member already begun is unchanged.
-void claim_folder(const SweepOptions& opt, const std::vector<SweepMember>& members,
-                  const std::string& id) {
-  const fs::path id_file = fs::path(opt.out) / "sweep.id";
-  std::error_code ec;
-  fs::create_directories(opt.out, ec);
-  if (ec || !fs::is_directory(opt.out))
-    throw input_error("--out " + opt.out + ": cannot create the folder");
-  if (fs::exists(id_file, ec)) {
-    const std::string old = text_of(id_file).substr(0, 16);
-    if (old == id) return;
-    if (!opt.extend) {
-      throw input_error("--out " + opt.out + ": holds another sweep (" + old + ", this is " + id +
-                        "); use another folder, or --extend if this one only adds members");
-    }
-    for (const SweepMember& m : members) {
-      const fs::path scenario = fs::path(member_dir(opt.out, m.index)) / "scenario.toml";
-      if (fs::exists(scenario, ec) && text_of(scenario) != parameters_toml(m.params)) {
-        throw input_error("--extend: member " + std::to_string(m.index) + " of the sweep in " +
-                          opt.out + " has other parameters now");
-      }
-    }
-  }
-  write_text(id_file, id + "\n");
-}
-
 int run_workers(const SweepOptions& opt, const SweepSpec& spec,
                 const std::vector<SweepMember>& members) {
   const std::string self = fs::read_symlink("/proc/self/exe").string();
@@ -148,7 +109,7 @@ int run_mpi(const SweepOptions& opt, const SweepSpec& spec,
   std::string claim_message;
   if (rank == 0) {
     try {
-      claim_folder(opt, members, sweep_id(members));
+      claim_sweep_folder(opt.out, members, opt.extend);
     } catch (const Error& e) {
       claim_failed = 1;
       claim_message = e.what();
@@ -236,12 +197,13 @@ void add_sweep_command(CLI::App& app) {
       if (failed > 0) throw runtime_error("sweep: " + std::to_string(failed) + " members failed");
       return;
     }
-    claim_folder(*opt, members, sweep_id(members));
+    claim_sweep_folder(opt->out, members, opt->extend);
     if (opt->slurm) {
       const fs::path script = fs::path(opt->out) / "sweep.slurm";
-      write_text(script,
-                 slurm_script(spec, members, opt->out, fs::read_symlink("/proc/self/exe").string(),
-                              opt->time_limit));
+      write_text_atomically(
+          script.string(),
+          slurm_script(spec, members, opt->out, fs::read_symlink("/proc/self/exe").string(),
+                       opt->time_limit));
       std::cout << script.string() << ": sbatch it to run the " << members.size() << " members\n";
       return;
     }

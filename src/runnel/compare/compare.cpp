@@ -140,12 +140,10 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
   }
   const fs::path out(options.out_dir);
   const std::string csv = metrics_csv(results);
-  write_file_atomically((out / "metrics.csv").string(),
-                        [&](std::FILE* f) { std::fwrite(csv.data(), 1, csv.size(), f); });
+  write_text_atomically((out / "metrics.csv").string(), csv);
   write_compare_png((out / "compare.png").string(), initial, results);
   const std::string report = report_markdown(results, budget, initial, options);
-  write_file_atomically((out / "report.md").string(),
-                        [&](std::FILE* f) { std::fwrite(report.data(), 1, report.size(), f); });
+  write_text_atomically((out / "report.md").string(), report);
   return results;
 }
 

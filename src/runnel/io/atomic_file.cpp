@@ -40,6 +40,13 @@ void write_file_atomically(const std::string& path, const std::function<void(std
   });
 }
 
+void write_text_atomically(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](std::FILE* f) {
+    if (std::fwrite(text.data(), 1, text.size(), f) != text.size())
+      throw runtime_error(path + ": write failed: " + std::strerror(errno));
+  });
+}
+
 void write_path_atomically(const std::string& path,
                            const std::function<void(const std::string&)>& write) {
   namespace fs = std::filesystem;

@@ -11,6 +11,9 @@ namespace runnel {
 // `write` gets an open FILE*; it throws on failure, and then the temporary file is removed.
 void write_file_atomically(const std::string& path, const std::function<void(std::FILE*)>& write);
 
+// A whole text file, atomically.
+void write_text_atomically(const std::string& path, const std::string& text);
+
 // The same for writers that need a path (HDF5): `write` creates and fills the temporary file at the
 // path it is given; then it is synced and renamed over `path`.
 void write_path_atomically(const std::string& path,

@@ -8,23 +8,15 @@ namespace runnel {
 
 namespace {
 
-// The host's layout (components of a vertex together: the checkpoint's (ny, nx, c)) from the
-// device's (one plane per component), and back.
+// A rows × cols matrix, row-major, transposed. Device (one plane per component: components ×
+// vertices) to host (components of a vertex together, the checkpoint's (ny, nx, c)): rows =
+// components; back: rows = vertices.
 template <typename T>
-std::vector<T> interleaved(const std::vector<T>& planar, std::size_t vertices, int components) {
-  if (components == 1) return planar;
-  std::vector<T> out(planar.size());
-  for (std::size_t k = 0; k < vertices; ++k)
-    for (int c = 0; c < components; ++c) out[k * components + c] = planar[c * vertices + k];
-  return out;
-}
-
-template <typename T>
-std::vector<T> planar(const std::vector<T>& interleaved, std::size_t vertices, int components) {
-  if (components == 1) return interleaved;
-  std::vector<T> out(interleaved.size());
-  for (std::size_t k = 0; k < vertices; ++k)
-    for (int c = 0; c < components; ++c) out[c * vertices + k] = interleaved[k * components + c];
+std::vector<T> transposed(const std::vector<T>& values, std::size_t rows, std::size_t cols) {
+  if (rows == 1 || cols == 1) return values;
+  std::vector<T> out(values.size());
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t c = 0; c < cols; ++c) out[c * rows + r] = values[r * cols + c];
   return out;
 }
 
@@ -117,11 +109,11 @@ void GridState::upload(const std::vector<StoredField>& stored) {
                     (f.is_int64 ? s.i64.size() == count : s.f32.size() == count);
     if (!ok) throw input_error("checkpoint: field " + s.name + " has the wrong size or type");
     if (f.is_int64) {
-      const auto device = planar(s.i64, vertices_, f.components);
+      const auto device = transposed(s.i64, vertices_, static_cast<std::size_t>(f.components));
       compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(),
                                           device.data());
     } else {
-      const auto device = planar(s.f32, vertices_, f.components);
+      const auto device = transposed(s.f32, vertices_, static_cast<std::size_t>(f.components));
       compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(),
                                           device.data());
     }
@@ -132,14 +124,14 @@ std::vector<float> GridState::download_float(const std::string& name) {
   Field& f = fields_.at(index_of(name));
   std::vector<float> out(vertices_ * static_cast<std::size_t>(f.components));
   compute_.queue().enqueueReadBuffer(f.buffer, CL_TRUE, 0, out.size() * 4, out.data());
-  return interleaved(out, vertices_, f.components);
+  return transposed(out, static_cast<std::size_t>(f.components), vertices_);
 }
 
 std::vector<std::int64_t> GridState::download_int64(const std::string& name) {
   Field& f = fields_.at(index_of(name));
   std::vector<std::int64_t> out(vertices_ * static_cast<std::size_t>(f.components));
   compute_.queue().enqueueReadBuffer(f.buffer, CL_TRUE, 0, out.size() * 8, out.data());
-  return interleaved(out, vertices_, f.components);
+  return transposed(out, static_cast<std::size_t>(f.components), vertices_);
 }
 
 }  // namespace runnel

@@ -255,10 +255,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       .add("kernel_seconds", kernel_seconds)
       .add("parameters", parameters_json(params))
       .add("mass_balance_reports", reports);
-  write_file_atomically((out / "metrics.json").string(), [&](std::FILE* f) {
-    const std::string text = s.metrics.str() + "\n";
-    std::fwrite(text.data(), 1, text.size(), f);
-  });
+  write_text_atomically((out / "metrics.json").string(), s.metrics.str() + "\n");
   char buf[200];
   std::snprintf(
       buf, sizeof buf,

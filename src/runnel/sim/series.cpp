@@ -186,8 +186,7 @@ void SeriesWriter::write_xdmf() const {
     x += "</Grid>\n";
   }
   x += "</Domain>\n</Xdmf>\n";
-  write_file_atomically((out_ / "series.xmf").string(),
-                        [&](std::FILE* f) { std::fwrite(x.data(), 1, x.size(), f); });
+  write_text_atomically((out_ / "series.xmf").string(), x);
 }
 
 void write_particles_ply(const std::string& path, const CheckpointData& d) {

@@ -112,13 +112,6 @@ std::string read_text(const fs::path& path) {
   return s.str();
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  write_file_atomically(path.string(), [&](std::FILE* f) {
-    if (std::fwrite(text.data(), 1, text.size(), f) != text.size())
-      throw runtime_error(path.string() + ": write failed");
-  });
-}
-
 std::string member_model(const SweepMember& m) {
   return m.params.text("run.model");
 }
@@ -253,6 +246,32 @@ std::vector<SweepMember> expand_sweep(const SweepSpec& spec) {
   return members;
 }
 
+void claim_sweep_folder(const std::string& out, const std::vector<SweepMember>& members,
+                        bool extend) {
+  const std::string id = sweep_id(members);
+  const fs::path id_file = fs::path(out) / "sweep.id";
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out))
+    throw input_error("--out " + out + ": cannot create the folder");
+  if (fs::exists(id_file, ec)) {
+    const std::string old = read_text(id_file).substr(0, 16);
+    if (old == id) return;
+    if (!extend) {
+      throw input_error("--out " + out + ": holds another sweep (" + old + ", this is " + id +
+                        "); use another folder, or --extend if this one only adds members");
+    }
+    for (const SweepMember& m : members) {
+      const fs::path scenario = fs::path(member_dir(out, m.index)) / "scenario.toml";
+      if (fs::exists(scenario, ec) && read_text(scenario) != parameters_toml(m.params)) {
+        throw input_error("--extend: member " + std::to_string(m.index) + " of the sweep in " +
+                          out + " has other parameters now");
+      }
+    }
+  }
+  write_text_atomically(id_file.string(), id + "\n");
+}
+
 std::string sweep_id(const std::vector<SweepMember>& members) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (const SweepMember& m : members) {
@@ -288,7 +307,7 @@ void run_member(const SweepSpec& spec, const SweepMember& member, const std::str
   if (ec) throw input_error(dir.string() + ": cannot create the member folder");
   fs::remove(dir / "failed", ec);
   fs::remove(dir / "result.csv", ec);
-  write_text(dir / "scenario.toml", parameters_toml(member.params));
+  write_text_atomically((dir / "scenario.toml").string(), parameters_toml(member.params));
   try {
     static ComputeContext compute;  // one per process: every member of a worker shares its kernels
     // An interrupted member goes on from its newest checkpoint (bit for bit the run it would have
@@ -322,9 +341,9 @@ void run_member(const SweepSpec& spec, const SweepMember& member, const std::str
         if (name == metric) row.append(",").append(number_text(value));
     }
     // Written last: the member is done only once every output is complete.
-    write_text(dir / "result.csv", row + "\n");
+    write_text_atomically((dir / "result.csv").string(), row + "\n");
   } catch (const Error& e) {
-    write_text(dir / "failed", std::string(e.what()) + "\n");
+    write_text_atomically((dir / "failed").string(), std::string(e.what()) + "\n");
     throw;
   }
 }
@@ -350,8 +369,8 @@ void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepMember>& m
     if (state == MemberState::kDone)
       results += read_text(fs::path(member_dir(out, m.index)) / "result.csv");
   }
-  write_text(fs::path(out) / "manifest.csv", manifest);
-  write_text(fs::path(out) / "results.csv", results);
+  write_text_atomically((fs::path(out) / "manifest.csv").string(), manifest);
+  write_text_atomically((fs::path(out) / "results.csv").string(), results);
 }
 
 std::vector<std::string> write_sweep_report(const SweepSpec& spec,

@@ -41,6 +41,10 @@ SweepSpec read_sweep(const std::string& path);
 std::vector<SweepMember> expand_sweep(const SweepSpec& spec);
 // Identifies the expanded sweep (every member's resolved scenario, in order): a folder holds one.
 std::string sweep_id(const std::vector<SweepMember>& members);
+// Makes `out` this sweep's folder: created if missing, its sweep.id written. Another sweep's folder
+// is refused, unless `extend` and every member already begun there keeps its parameters.
+void claim_sweep_folder(const std::string& out, const std::vector<SweepMember>& members,
+                        bool extend);
 
 // The member folder DIR/members/NNNN and the states a member is in, read from its folder: done
 // (its result row was written, atomically, after its outputs), failed (its message), or pending.

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -161,15 +160,7 @@ Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
     throw input_error(path + ": line " + std::to_string(tokens.line()) +
                       ": more values than ncols x nrows = " + std::to_string(expected));
   }
-  if (holes > 0) {
-    if (nodata == NodataPolicy::kRefuse) {
-      throw input_error(path + ": " + std::to_string(holes) +
-                        " NODATA cells (fill them with --nodata fill)");
-    }
-    if (fill_holes(terrain) < 0) throw input_error(path + ": every cell is NODATA");
-    std::cerr << "runnel: " << path << ": filled " << holes
-              << " NODATA cells from their neighbours\n";
-  }
+  apply_nodata_policy(path, terrain, holes, nodata);
   return terrain;
 }
 

@@ -5,7 +5,6 @@
 #include <ogr_srs_api.h>
 
 #include <cmath>
-#include <iostream>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -44,14 +43,22 @@ struct SrsDestroyer {
   void operator()(void* srs) const { OSRDestroySpatialReference(srs); }
 };
 
+using Srs = std::unique_ptr<void, SrsDestroyer>;
+
+// The spatial reference of a WKT text; null when it cannot be read.
+Srs srs_from_wkt(const std::string& wkt) {
+  Srs srs(OSRNewSpatialReference(nullptr));
+  char* text = const_cast<char*>(wkt.c_str());
+  if (OSRImportFromWkt(srs.get(), &text) != OGRERR_NONE) srs.reset();
+  return srs;
+}
+
 // Heights and cells are metres in runnel's physics, so a CRS must be projected in metres (or
 // absent).
 void check_crs(const std::string& path, const std::string& wkt) {
   if (wkt.empty()) return;
-  std::unique_ptr<void, SrsDestroyer> srs(OSRNewSpatialReference(nullptr));
-  char* text = const_cast<char*>(wkt.c_str());
-  if (OSRImportFromWkt(srs.get(), &text) != OGRERR_NONE)
-    throw input_error(path + ": its coordinate reference system could not be read");
+  const Srs srs = srs_from_wkt(wkt);
+  if (!srs) throw input_error(path + ": its coordinate reference system could not be read");
   if (OSRIsGeographic(srs.get())) {
     throw input_error(path +
                       ": geographic coordinates (degrees); runnel needs a projected CRS in metres: "
@@ -71,9 +78,8 @@ void check_crs(const std::string& path, const std::string& wkt) {
 
 std::string crs_name(const std::string& wkt) {
   if (wkt.empty()) return "none";
-  std::unique_ptr<void, SrsDestroyer> srs(OSRNewSpatialReference(nullptr));
-  char* text = const_cast<char*>(wkt.c_str());
-  if (OSRImportFromWkt(srs.get(), &text) != OGRERR_NONE) return "unreadable";
+  const Srs srs = srs_from_wkt(wkt);
+  if (!srs) return "unreadable";
   const char* name = OSRGetName(srs.get());
   return name ? name : "unnamed";
 }
@@ -140,15 +146,7 @@ Heightmap read_gdal(const std::string& path, NodataPolicy nodata) {
       terrain.at(i, j) = static_cast<float>(v);
     }
   }
-  if (holes > 0) {
-    if (nodata == NodataPolicy::kRefuse) {
-      throw input_error(path + ": " + std::to_string(holes) +
-                        " NODATA cells (fill them with --nodata fill)");
-    }
-    if (fill_holes(terrain) < 0) throw input_error(path + ": every cell is NODATA");
-    std::cerr << "runnel: " << path << ": filled " << holes
-              << " NODATA cells from their neighbours\n";
-  }
+  apply_nodata_policy(path, terrain, holes, nodata);
   return terrain;
 }
 

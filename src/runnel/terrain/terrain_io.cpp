@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 
 #include "runnel/core/error.hpp"
 
@@ -127,6 +128,18 @@ void check_finite_heights(const std::string& path, const Heightmap& terrain) {
       }
     }
   }
+}
+
+void apply_nodata_policy(const std::string& path, Heightmap& terrain, long long holes,
+                         NodataPolicy policy) {
+  if (holes == 0) return;
+  if (policy == NodataPolicy::kRefuse) {
+    throw input_error(path + ": " + std::to_string(holes) +
+                      " NODATA cells (fill them with --nodata fill)");
+  }
+  if (fill_holes(terrain) < 0) throw input_error(path + ": every cell is NODATA");
+  std::cerr << "runnel: " << path << ": filled " << holes
+            << " NODATA cells from their neighbours\n";
 }
 
 long long fill_holes(Heightmap& terrain) {

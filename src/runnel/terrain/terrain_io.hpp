@@ -73,5 +73,9 @@ void check_terrain_size(const std::string& path, long long nx, long long ny);
 void check_finite_heights(const std::string& path, const Heightmap& terrain);
 // Fills NaN holes (marked as NaN) from their neighbours. Returns the number filled.
 long long fill_holes(Heightmap& terrain);
+// What a reader does with the `holes` NODATA cells it marked as NaN: refuses the file, or fills
+// them and says so on stderr.
+void apply_nodata_policy(const std::string& path, Heightmap& terrain, long long holes,
+                         NodataPolicy policy);
 
 }  // namespace runnel
