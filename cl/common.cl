@@ -48,3 +48,14 @@ inline void mark_changed_tiles(__global uint* changed, int tiles_x, int i0, int 
   for (int tj = j0 >> TERRAIN_TILE_SHIFT; tj <= j1 >> TERRAIN_TILE_SHIFT; ++tj)
     for (int ti = i0 >> TERRAIN_TILE_SHIFT; ti <= i1 >> TERRAIN_TILE_SHIFT; ++ti) changed[tj * tiles_x + ti] = 1u;
 }
+
+// The ground's per-vertex factors (cl/ground.cl, docs/layers.md), for the kernels that erode or
+// rain: compiled with GROUND = 0 or RAIN_MASK = 0 they are the constant 1, and the field is never read.
+#ifndef GROUND
+#define GROUND 0
+#endif
+#ifndef RAIN_MASK
+#define RAIN_MASK 0
+#endif
+#define ERODIBILITY(field, k) (GROUND ? (field)[k] : 1.0f)
+#define RAIN_WEIGHT(field, k) (RAIN_MASK ? (field)[k] : 1.0f)

@@ -74,7 +74,8 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
                              const ulong seed, const ulong step_index,
                              const __global float* terrain_height, const __global float* terrain_normal,
                              const int tnx, const int tny, const float tcell, volatile __global long* delta,
-                             __global uint* changed, const int tiles_x, volatile __global long* counters) {
+                             __global uint* changed, const int tiles_x, volatile __global long* counters,
+                             const __global float* erodibility) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   if (id[i] & DEAD_FLAG) return;
@@ -96,6 +97,14 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   const float water_depth = fmax(depth[i], 1e-6f);                            // D, m
   if (gap > water_depth) return;  // above the water on the bed (a falling drop)
 
+  // The exposed material's erodibility at the vertex under the particle (docs/layers.md): a factor on
+  // the detachment, never on the deposition.
+#if GROUND
+  const int vi = clamp((int)(px / tcell + 0.5f), 0, tnx - 1), vj = clamp((int)(pz / tcell + 0.5f), 0, tny - 1);
+  const float bed_factor = erodibility[vj * tnx + vi];
+#else
+  const float bed_factor = 1.0f;
+#endif
 #if EROSION_MODEL == 0
   const float3 vel = (float3)(vx[i], vy[i], vz[i]);
   const float speed = length(vel - dot(vel, s.normal) * s.normal);
@@ -108,7 +117,8 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   const float load = (float)carried * EROSION_VOLUME_QUANTUM;                         // m³
   const float concentration = load / EROSION_PARTICLE_VOLUME;                         // c
   if (concentration < capacity) {
-    const float rate = morphological_factor * EROSION_DETACHMENT * excess * (1.0f - concentration / capacity);
+    const float rate =
+        morphological_factor * EROSION_DETACHMENT * excess * (1.0f - concentration / capacity) * bed_factor;
     const float amount = fmin(rate * area * dt, (capacity - concentration) * EROSION_PARTICLE_VOLUME);
     const long q = stochastic_quanta(amount, exchange_random(seed, id[i], step_index, 0));
     if (q > 0 && carried + q < 0x7fffffffL) {
@@ -128,7 +138,8 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   }
 #else
   if ((contacts[i] & ~TOUCHING_FLAG) < EROSION_CAPACITY_CONTACTS) {
-    const long q = stochastic_quanta(EROSION_ACIDITY * tcell * tcell, exchange_random(seed, id[i], step_index, 0));
+    const long q = stochastic_quanta(EROSION_ACIDITY * tcell * tcell * bed_factor,
+                                     exchange_random(seed, id[i], step_index, 0));
     if (q > 0 && carried + q < 0x7fffffffL) {
       land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, q, -1,
                   exchange_random(seed, id[i], step_index, 1));

@@ -4,7 +4,9 @@
 // contact surface, `contact_radius` above it, where the particle would be inside the ground),
 // falling at `speed`. Slot k draws from the counter first_counter + k of the run's seed: the same particles
 // whatever the thread count, and a resumed run draws what an uninterrupted one would.
-// Regions: 0 the whole terrain, 1 a rectangle [a, b] × [c, d] (x, z), 2 a disc at (a, c) of radius b.
+// Regions: 0 the whole terrain, 1 a rectangle [a, b] × [c, d] (x, z), 2 a disc at (a, c) of radius b,
+// 3 the whole terrain by a rain mask: the cell m with cell_cdf[m − 1] ≤ u < cell_cdf[m] (the cumulative
+// share of the rain through each cell), then a uniform place in it.
 
 #define RAIN_STREAM 0x7261696eUL  // "rain"
 
@@ -17,7 +19,7 @@ __kernel void rain_emit(__global float* x, __global float* y, __global float* z,
                         const float surface_eps, const float speed, const float rho0,
                         const float lifespan_mean, const float lifespan_jitter,
                         const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
-                        const int tny, const float tcell) {
+                        const int tny, const float tcell, const __global float* cell_cdf, const int cells) {
   const uint k = get_global_id(0);
   if (k >= count) return;
   const ulong counter = 4UL * (first_counter + k);
@@ -26,7 +28,16 @@ __kernel void rain_emit(__global float* x, __global float* y, __global float* z,
   const float u3 = rng_uniform(seed, RAIN_STREAM, counter + 2);
   const float extent_x = (float)(tnx - 1) * tcell, extent_z = (float)(tny - 1) * tcell;
   float px, pz;
-  if (region == 2) {  // uniform in the disc: radius ∝ sqrt(u)
+  if (region == 3) {
+    int lo = 0, hi = cells - 1;
+    while (lo < hi) {  // the first cell whose cumulative share exceeds u1
+      const int mid = (lo + hi) >> 1;
+      if (cell_cdf[mid] > u1) hi = mid; else lo = mid + 1;
+    }
+    const int cj = lo / (tnx - 1), ci = lo - cj * (tnx - 1);
+    px = ((float)ci + u2) * tcell;
+    pz = ((float)cj + rng_uniform(seed, RAIN_STREAM, counter + 3)) * tcell;
+  } else if (region == 2) {  // uniform in the disc: radius ∝ sqrt(u)
     const float r = b * sqrt(u1), theta = 2.0f * M_PI_F * u2;
     px = a + r * cos(theta);
     pz = c + r * sin(theta);

@@ -7,19 +7,22 @@
 // thermal_gather moves them (the vertex loses its outflows, gains its neighbours' inflows). All
 // amounts are integer counts of the height quantum, so volume is conserved exactly. The outflows are
 // stored one plane per direction (L R T B: outflow[d·n + k]), so that both passes read them contiguously.
+// With a layer stack (GROUND = 1, docs/layers.md) the threshold is the exposed material's (talus_field,
+// quanta) and c is scaled by its erodibility (at most 1; 0 where frozen).
 // Height-aware variant (HEIGHT_AWARE = 1): the threshold grows with height,
 //   T(h) = T · (1 + hardness · (h − h_min)/(h_max − h_min)), which keeps peaks sharp.
 
 __kernel void thermal_outflow(const __global long* height, __global long* outflow, const int nx, const int ny,
                               const long talus, const float rate, const int height_aware, const float hardness,
-                              const long h_min, const long h_range) {
+                              const long h_min, const long h_range, const __global float* erodibility,
+                              const __global float* talus_field) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
   const long h = height[k];
-  long threshold = talus;
+  long threshold = GROUND ? (long)talus_field[k] : talus;
   if (height_aware && h_range > 0) {
-    threshold = (long)((float)talus * (1.0f + hardness * (float)(h - h_min) / (float)h_range));
+    threshold = (long)((float)threshold * (1.0f + hardness * (float)(h - h_min) / (float)h_range));
   }
   // A neighbour outside the map reads the vertex itself: a drop of 0, never above the threshold (≥ 0).
   // Scalars and selects rather than arrays and branches: the loop over vertices vectorises.
@@ -30,7 +33,8 @@ __kernel void thermal_outflow(const __global long* height, __global long* outflo
   const long excess_sum = excess_l + excess_r + excess_t + excess_b;
   const long d_max = max(max(drop_l, drop_r), max(drop_t, drop_b));
   // Both amounts are ≥ 0, so truncation is the floor (and, unlike floor(), vectorises).
-  const long total = excess_sum > 0 ? (long)(rate * (float)(d_max - threshold)) : 0;
+  const float c = GROUND ? fmin(rate * erodibility[k], 1.0f) : rate;
+  const long total = excess_sum > 0 ? (long)(c * (float)(d_max - threshold)) : 0;
   const float sum = (float)max(excess_sum, 1L);
   outflow[0 * n + k] = (long)((float)total * ((float)excess_l / sum));
   outflow[1 * n + k] = (long)((float)total * ((float)excess_r / sum));

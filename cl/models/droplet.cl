@@ -17,6 +17,7 @@
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 
 #define DROPLET_STREAM 0x64726f70UL  // "drop"
+#define DROPLET_MASK_STREAM 0x64726d6bUL  // "drmk"
 
 inline float height_at(const __global float* h, int nx, float x, float z, float* gx, float* gz) {
   const int i = (int)x, j = (int)z;
@@ -96,7 +97,8 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
                            const int tiles_x, const int nx, const int ny,
                            const float quantum, const ulong seed, const ulong first_droplet, const uint count,
                            const int step_index, __global float* state, __global long* load,
-                           volatile __global long* counters) {
+                           volatile __global long* counters, const __global float* erodibility,
+                           const __global float* rain_weight) {
   const uint d = get_global_id(0);
   if (d >= count) return;
   __global float* s = state + 6 * d;
@@ -109,6 +111,15 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
     s[4] = DROPLET_INITIAL_SPEED;
     s[5] = DROPLET_INITIAL_WATER;
     load[d] = 0;
+#if RAIN_MASK
+    // The rain mask: a droplet falls at its place with the probability the mask gives there
+    // (docs/layers.md); one that does not fall finishes at once, having done nothing.
+    const int spawn = (int)(s[1] + 0.5f) * nx + (int)(s[0] + 0.5f);
+    if (rng_uniform(seed, DROPLET_MASK_STREAM, id) >= rain_weight[spawn]) {
+      s[5] = -1.0f;
+      atom_inc(&counters[2]);
+    }
+#endif
   }
   if (s[5] < 0.0f) return;
   float x = s[0], z = s[1], speed = s[4], water = s[5];
@@ -145,7 +156,9 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
     deposit_bilinear(delta, changed, tiles_x, nx, x, z, q);
     sediment -= q;
   } else {
-    const float amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
+    // The exposed material's erodibility at the droplet's vertex scales what it takes (docs/layers.md).
+    const int here = (int)(z + 0.5f) * nx + (int)(x + 0.5f);
+    const float amount = fmin((capacity - carried) * DROPLET_ERODE * ERODIBILITY(erodibility, here), -dh);
     const long q = (long)floor(amount / quantum);
     erode_brush(delta, changed, tiles_x, nx, ny, x, z, q);
     sediment += q;

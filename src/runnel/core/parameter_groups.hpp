@@ -16,5 +16,6 @@ std::vector<ParamSpec> thermal_parameters();  // terrain/thermal.cpp
 std::vector<ParamSpec> droplet_parameters();  // models/droplet_model.cpp
 std::vector<ParamSpec> olsen_parameters();    // models/olsen_model.cpp
 std::vector<ParamSpec> pipe_parameters();     // models/pipe_model.cpp
+std::vector<ParamSpec> ground_parameters();   // ground/ground_settings.cpp
 
 }  // namespace runnel

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/layers.hpp"
 
 namespace runnel {
 namespace {
@@ -62,6 +63,44 @@ ParamValue parse_text(const ParamSpec& spec, std::string text, const std::string
 
 }  // namespace
 
+ParamValue validated_value(const ParamSpec& spec_ref, const ParamValue& value_in,
+                           const std::string& where) {
+  const ParamSpec* spec = &spec_ref;
+  auto to_text = [](const ParamValue& v) { return Parameters::to_text(v); };
+  ParamValue value = value_in;
+  // An integer is a fine value for a real parameter.
+  if (spec->type == ParamType::kReal) {
+    if (auto* i = std::get_if<std::int64_t>(&value)) value = static_cast<double>(*i);
+  }
+  const bool type_ok =
+      (spec->type == ParamType::kReal && std::holds_alternative<double>(value)) ||
+      (spec->type == ParamType::kInteger && std::holds_alternative<std::int64_t>(value)) ||
+      (spec->type == ParamType::kBool && std::holds_alternative<bool>(value)) ||
+      (spec->type == ParamType::kString && std::holds_alternative<std::string>(value));
+  if (!type_ok)
+    throw input_error(where + ": expected " + type_name(spec->type) + ", got '" + to_text(value) +
+                      "'");
+  if (spec->type == ParamType::kReal || spec->type == ParamType::kInteger) {
+    const double v = spec->type == ParamType::kReal
+                         ? std::get<double>(value)
+                         : static_cast<double>(std::get<std::int64_t>(value));
+    if (!std::isfinite(v) || v < spec->min_value || v > spec->max_value) {
+      throw input_error(where + ": " + to_text(value) + " is outside the valid range [" +
+                        format_number(spec->min_value) + ", " + format_number(spec->max_value) +
+                        "]" + (spec->unit.empty() ? "" : " " + spec->unit));
+    }
+  }
+  if (spec->type == ParamType::kString && !spec->choices.empty()) {
+    const auto& s = std::get<std::string>(value);
+    if (std::find(spec->choices.begin(), spec->choices.end(), s) == spec->choices.end()) {
+      std::string list;
+      for (auto& c : spec->choices) list += (list.empty() ? "" : ", ") + c;
+      throw input_error(where + ": '" + s + "' is not one of " + list);
+    }
+  }
+  return value;
+}
+
 const ParamSpec* find_param(const std::string& key) {
   for (auto& p : parameter_table()) {
     if (p.key == key) return &p;
@@ -105,37 +144,7 @@ void Parameters::set(const std::string& key, const ParamValue& value_in,
   }
   const ParamSpec* spec = find_param(key);
   if (!spec) throw input_error(where + ": unknown parameter (see 'runnel params')");
-  ParamValue value = value_in;
-  // An integer is a fine value for a real parameter.
-  if (spec->type == ParamType::kReal) {
-    if (auto* i = std::get_if<std::int64_t>(&value)) value = static_cast<double>(*i);
-  }
-  const bool type_ok =
-      (spec->type == ParamType::kReal && std::holds_alternative<double>(value)) ||
-      (spec->type == ParamType::kInteger && std::holds_alternative<std::int64_t>(value)) ||
-      (spec->type == ParamType::kBool && std::holds_alternative<bool>(value)) ||
-      (spec->type == ParamType::kString && std::holds_alternative<std::string>(value));
-  if (!type_ok)
-    throw input_error(where + ": expected " + type_name(spec->type) + ", got '" + to_text(value) +
-                      "'");
-  if (spec->type == ParamType::kReal || spec->type == ParamType::kInteger) {
-    const double v = spec->type == ParamType::kReal
-                         ? std::get<double>(value)
-                         : static_cast<double>(std::get<std::int64_t>(value));
-    if (!std::isfinite(v) || v < spec->min_value || v > spec->max_value) {
-      throw input_error(where + ": " + to_text(value) + " is outside the valid range [" +
-                        format_number(spec->min_value) + ", " + format_number(spec->max_value) +
-                        "]" + (spec->unit.empty() ? "" : " " + spec->unit));
-    }
-  }
-  if (spec->type == ParamType::kString && !spec->choices.empty()) {
-    const auto& s = std::get<std::string>(value);
-    if (std::find(spec->choices.begin(), spec->choices.end(), s) == spec->choices.end()) {
-      std::string list;
-      for (auto& c : spec->choices) list += (list.empty() ? "" : ", ") + c;
-      throw input_error(where + ": '" + s + "' is not one of " + list);
-    }
-  }
+  const ParamValue value = validated_value(*spec, value_in, where);
   values_[key] = value;
   explicit_.insert(key);
 }
@@ -201,6 +210,7 @@ std::string parameters_markdown() {
     out << "| `" << p.key << "` | " << type << " | `" << p.default_value << "` | " << p.unit
         << " | " << range << " | " << p.help << " |\n";
   }
+  out << layers_markdown();
   return out.str();
 }
 

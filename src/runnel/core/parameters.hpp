@@ -30,6 +30,15 @@ const ParamSpec* find_param(const std::string& key);
 
 using ParamValue = std::variant<double, std::int64_t, bool, std::string>;
 
+// `value` checked against `spec` (an integer is accepted for a real): the type, the range, the
+// choices. Throws an input error starting with `where`.
+ParamValue validated_value(const ParamSpec& spec, const ParamValue& value,
+                           const std::string& where);
+
+// One stratum of a scenario's [[layers]]: the keys it sets, each validated against layer_table()
+// (core/layers.cpp); the ground builds the stratum from them (ground/strata.cpp).
+using LayerValues = std::map<std::string, ParamValue>;
+
 // A validated set of parameter values: every key of the table has a value (its default unless set).
 class Parameters {
  public:
@@ -53,6 +62,15 @@ class Parameters {
   std::map<std::string, double>& generator_values() { return generator_values_; }
   const std::map<std::string, double>& generator_values() const { return generator_values_; }
 
+  // The strata, top first ([[layers]] in the scenario). Checked when added: known keys, valid
+  // values, a unique name and one way of giving the thickness.
+  void add_layer(const LayerValues& layer, const std::string& origin);
+  const std::vector<LayerValues>& layers() const { return layers_; }
+  // Replaces one key of layer `index` (already validated; the scenario reader resolves paths).
+  void set_layer_value(std::size_t index, const std::string& key, const ParamValue& value) {
+    layers_.at(index)[key] = value;
+  }
+
   const std::map<std::string, ParamValue>& values() const { return values_; }
   static std::string to_text(const ParamValue& value);
 
@@ -60,6 +78,7 @@ class Parameters {
   const ParamValue& get(const std::string& key) const;
   std::map<std::string, ParamValue> values_;
   std::map<std::string, double> generator_values_;
+  std::vector<LayerValues> layers_;
   std::set<std::string> explicit_;
 };
 

@@ -11,15 +11,41 @@
 #include <variant>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/layers.hpp"
 
 namespace runnel {
 namespace {
+
+// A TOML value as a parameter value; `where` names it in the error.
+ParamValue toml_value(const toml::node& node, const std::string& where) {
+  if (node.is_integer()) return static_cast<std::int64_t>(node.as_integer()->get());
+  if (node.is_floating_point()) return node.as_floating_point()->get();
+  if (node.is_boolean()) return node.as_boolean()->get();
+  if (node.is_string()) return node.as_string()->get();
+  throw input_error(where + ": unsupported value (arrays and dates are not parameters)");
+}
+
+// [[layers]]: an array of tables, one stratum each, top first.
+void read_layers(const toml::node& node, Parameters& params, const std::string& origin) {
+  const toml::array* layers = node.as_array();
+  if (!layers || !layers->is_array_of_tables())
+    throw input_error(origin + " layers: expected [[layers]] tables, one per stratum");
+  for (const toml::node& entry : *layers) {
+    LayerValues layer;
+    const std::string where =
+        origin + " layers[" + std::to_string(params.layers().size() + 1) + "]";
+    for (auto&& [k, value] : *entry.as_table())
+      layer[std::string(k.str())] = toml_value(value, where + "." + std::string(k.str()));
+    params.add_layer(layer, origin);
+  }
+}
 
 void flatten(const toml::table& table, const std::string& prefix, Parameters& params,
              const std::string& origin) {
   for (auto&& [k, node] : table) {
     const std::string key =
         prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+    if (key == "layers") continue;  // read after every flat key (ground.bedrock_name)
     if (auto* sub = node.as_table()) {
       const bool known_group =
           key == "terrain.set" ||
@@ -29,18 +55,30 @@ void flatten(const toml::table& table, const std::string& prefix, Parameters& pa
       flatten(*sub, key, params, origin);
       continue;
     }
-    if (node.is_integer())
-      params.set(key, static_cast<std::int64_t>(node.as_integer()->get()), origin);
-    else if (node.is_floating_point())
-      params.set(key, node.as_floating_point()->get(), origin);
-    else if (node.is_boolean())
-      params.set(key, node.as_boolean()->get(), origin);
-    else if (node.is_string())
-      params.set(key, node.as_string()->get(), origin);
-    else
-      throw input_error(origin + " " + key +
-                        ": unsupported value (arrays and dates are not parameters)");
+    params.set(key, toml_value(node, origin + " " + key), origin);
   }
+}
+
+// A file name relative to the scenario's folder, made absolute-or-normal; "" stays "".
+std::string resolved(const std::string& file, const std::string& base_dir) {
+  if (file.empty() || base_dir.empty() || !std::filesystem::path(file).is_relative()) return file;
+  return (std::filesystem::path(base_dir) / file).lexically_normal().string();
+}
+
+// A value as TOML text that reads back to the same value.
+std::string toml_text(const ParamValue& value) {
+  std::string text = Parameters::to_text(value);
+  if (std::holds_alternative<std::string>(value)) {
+    std::string quoted = "\"";
+    for (char c : text) {
+      if (c == '"' || c == '\\') quoted += '\\';
+      quoted += c;
+    }
+    return quoted + "\"";
+  }
+  if (std::holds_alternative<double>(value) && text.find_first_of(".eEn") == std::string::npos)
+    text += ".0";  // keep reals real in TOML
+  return text;
 }
 
 }  // namespace
@@ -58,10 +96,16 @@ Parameters parse_scenario(const std::string& text, const std::string& origin,
   }
   Parameters params;
   flatten(table, "", params, origin);
-  const std::string& file = params.text("terrain.file");
-  if (!file.empty() && !base_dir.empty() && std::filesystem::path(file).is_relative()) {
-    params.set("terrain.file", (std::filesystem::path(base_dir) / file).lexically_normal().string(),
-               origin);
+  if (const toml::node* layers = table.get("layers")) read_layers(*layers, params, origin);
+  for (const char* key :
+       {"terrain.file", "ground.hardness_mask", "ground.rain_mask", "ground.frozen_mask"}) {
+    if (params.was_set(key)) params.set(key, resolved(params.text(key), base_dir), origin);
+  }
+  for (std::size_t l = 0; l < params.layers().size(); ++l) {
+    const LayerValues& layer = params.layers()[l];
+    if (layer.count("thickness_file"))
+      params.set_layer_value(l, "thickness_file",
+                             resolved(layer_text(layer, "thickness_file"), base_dir));
   }
   return params;
 }
@@ -91,19 +135,7 @@ std::string parameters_toml(const Parameters& params) {
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> tables;
   for (auto& [key, value] : params.values()) {
     const auto dot = key.rfind('.');
-    std::string text = Parameters::to_text(value);
-    if (std::holds_alternative<std::string>(value)) {
-      std::string quoted = "\"";
-      for (char c : text) {
-        if (c == '"' || c == '\\') quoted += '\\';
-        quoted += c;
-      }
-      text = quoted + "\"";
-    } else if (std::holds_alternative<double>(value) &&
-               text.find_first_of(".eEn") == std::string::npos) {
-      text += ".0";  // keep reals real in TOML
-    }
-    tables[key.substr(0, dot)].emplace_back(key.substr(dot + 1), text);
+    tables[key.substr(0, dot)].emplace_back(key.substr(dot + 1), toml_text(value));
   }
   for (auto& [key, value] : params.generator_values()) {
     std::ostringstream s;
@@ -115,6 +147,10 @@ std::string parameters_toml(const Parameters& params) {
   for (auto& [table, entries] : tables) {
     out += "[" + table + "]\n";
     for (auto& [k, v] : entries) out += k + " = " + v + "\n";
+  }
+  for (const LayerValues& layer : params.layers()) {
+    out += "[[layers]]\n";
+    for (auto& [k, v] : layer) out += k + " = " + toml_text(v) + "\n";
   }
   return out;
 }

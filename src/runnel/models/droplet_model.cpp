@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/droplet_model.hpp"
 
+#include "runnel/ground/ground_settings.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -85,13 +87,15 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       settings_(DropletSettings::from(params)),
       seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
       kernel_(compute,
-              compute.program({"cl/common.cl", "cl/models/droplet.cl"}, settings_.build_options()),
+              compute.program({"cl/common.cl", "cl/models/droplet.cl"},
+                              settings_.build_options() + ground_defines(params)),
               "droplet_step"),
-      counters_(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long)),
+      counters_(compute.context(), CL_MEM_READ_WRITE, 3 * sizeof(cl_long)),
       droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, batch_size())),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
                     static_cast<std::size_t>(batch_size()) * sizeof(cl_long)) {
-  compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 2 * sizeof(cl_long));
+  compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
+  kernel_.set("erodibility", erodibility()).set("rain_weight", rain_weight());
 }
 
 long long DropletModel::batch_size() const {
@@ -131,8 +135,8 @@ double DropletModel::take_step() {
   return 1.0;
 }
 
-std::array<cl_long, 2> DropletModel::read_counters() {
-  std::array<cl_long, 2> c{};
+std::array<cl_long, 3> DropletModel::read_counters() {
+  std::array<cl_long, 3> c{};
   compute_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof(c), c.data());
   return c;
 }
@@ -145,15 +149,30 @@ long long DropletModel::droplets_out() {
   return read_counters()[0];
 }
 
+long long DropletModel::droplets_fallen() {
+  return static_cast<long long>(droplets_) - read_counters()[2];
+}
+
 std::vector<std::pair<std::string, std::int64_t>> DropletModel::counters() {
   return {{"droplets", static_cast<std::int64_t>(droplets_)},
           {"droplets_out", droplets_out()},
-          {"outflow_quanta", outflow_quanta()}};
+          {"outflow_quanta", outflow_quanta()},
+          {"droplets_masked", read_counters()[2]}};
 }
+
+namespace {
+// Checkpoints from before rain masks have no droplets_masked: none were.
+std::int64_t masked_counter(const std::vector<std::pair<std::string, std::int64_t>>& c) {
+  for (auto& [key, value] : c)
+    if (key == "droplets_masked") return value;
+  return 0;
+}
+}  // namespace
 
 void DropletModel::restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) {
   droplets_ = static_cast<std::uint64_t>(counter_value(c, "droplets"));
-  const cl_long device[2] = {counter_value(c, "droplets_out"), counter_value(c, "outflow_quanta")};
+  const cl_long device[3] = {counter_value(c, "droplets_out"), counter_value(c, "outflow_quanta"),
+                             masked_counter(c)};
   compute_.queue().enqueueWriteBuffer(counters_, CL_TRUE, 0, sizeof(device), device);
 }
 
@@ -161,6 +180,7 @@ JsonObject DropletModel::diagnostics() {
   return JsonObject()
       .add("droplets", static_cast<long long>(droplets_))
       .add("droplets_out", droplets_out())
+      .add("droplets_fallen", droplets_fallen())
       .add("droplets_per_batch", batch_size())
       .add("droplet_volume_m3", droplet_volume());
 }

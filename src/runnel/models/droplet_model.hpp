@@ -42,9 +42,13 @@ class DropletModel final : public GridModel {
   long long batch_size() const;
   long long outflow_quanta() override;  // height quanta carried out of the map
   long long droplets_out();             // droplets that left the map
+  long long droplets_fallen();          // droplets the rain mask let fall (all without one)
   // m³ of rain one droplet stands for (droplet.volume, or cell³).
   double droplet_volume() const;
-  double rain_volume() override { return droplet_volume() * static_cast<double>(droplets_); }
+  // The droplets that fell (all of them, or those the rain mask let fall).
+  double rain_volume() override {
+    return droplet_volume() * static_cast<double>(droplets_fallen());
+  }
   JsonObject diagnostics() override;
   double step_work() override {
     return static_cast<double>(batch_size()) * static_cast<double>(settings_.lifetime);
@@ -57,12 +61,12 @@ class DropletModel final : public GridModel {
   void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
 
  private:
-  std::array<cl_long, 2> read_counters();  // {droplets out, outflow quanta}
+  std::array<cl_long, 3> read_counters();
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;
   Kernel kernel_;
-  cl::Buffer counters_;                      // {droplets out, outflow quanta}
+  cl::Buffer counters_;  // {droplets out, outflow quanta, droplets the rain mask kept from falling}
   cl::Buffer droplet_state_, droplet_load_;  // per droplet of a batch, between its steps
 };
 

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/grid_model.hpp"
-#include "runnel/core/scenario.hpp"
 
 #include <numeric>
 
@@ -13,10 +12,17 @@ namespace runnel {
 GridModel::GridModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
     : compute_(compute),
       params_(params),
-      state_(compute, terrain, params.real("erosion.height_quantum")) {}
+      state_(compute, terrain, params.real("erosion.height_quantum")),
+      ground_(make_ground(compute, params, state_.terrain(), state_.initial_terrain(),
+                          state_.initial_fixed())),
+      placeholder_(placeholder_buffer(compute)),
+      rain_weight_(rain_weight_buffer(compute, params, terrain.nx, terrain.ny)) {
+  for (float w : rain_weights(params, terrain.nx, terrain.ny)) rained_vertices_ += w;
+}
 
 double GridModel::step() {
   const double dt = take_step();
+  if (ground_) ground_->update();
   time_ += dt;
   ++steps_;
   return dt;
@@ -68,6 +74,8 @@ CheckpointData GridModel::checkpoint() {
   d.steps = steps_;
   d.seed = params_.integer("run.seed");
   d.fields = state_.download();
+  if (ground_)
+    for (StoredField& f : ground_->fields()) d.fields.push_back(std::move(f));
   d.model_counters = counters();
   return d;
 }
@@ -79,7 +87,8 @@ void GridModel::restore(const CheckpointData& d) {
     throw input_error("checkpoint: terrain size does not match the model");
   state_.set_initial_fixed(d.initial_fixed);
   state_.terrain().upload_fixed(d.height_fixed);
-  state_.upload(d.fields);
+  state_.upload(without_ground_fields(d.fields));
+  if (ground_) ground_->restore(d.fields);
   restore_counters(d.model_counters);
   time_ = d.time;
   steps_ = d.steps;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/ground/ground.hpp"
 #include "runnel/models/grid_state.hpp"
 #include "runnel/models/model.hpp"
 
@@ -35,6 +36,7 @@ class GridModel : public Model {
   double device_bytes() const override { return state_.device_bytes(); }
 
   GridState& state() { return state_; }
+  Ground* ground() final { return ground_.get(); }
   // Height quanta that left the map (outflow edges), and that the model has in suspension.
   virtual long long outflow_quanta() { return 0; }
   // Height quanta a documented non-conserving option destroyed (negative: created).
@@ -53,9 +55,19 @@ class GridModel : public Model {
   virtual double next_dt() const { return 1.0; }
   virtual void restore_next_dt(double) {}
 
+  // The erodibility and rain-weight fields the model's kernels read: the ground's and the rain
+  // mask's, or placeholders when the run has none (the kernels then never read them).
+  cl::Buffer& erodibility() { return ground_ ? ground_->erodibility() : placeholder_; }
+  cl::Buffer& rain_weight() { return rain_weight_; }
+  // Σ rain weight over the vertices: the number of vertices rain falls on in full.
+  double rained_vertices() const { return rained_vertices_; }
+
   ComputeContext& compute_;
   Parameters params_;
   GridState state_;
+  std::unique_ptr<Ground> ground_;
+  cl::Buffer placeholder_, rain_weight_;
+  double rained_vertices_ = 0;
 
  private:
   double time_ = 0;

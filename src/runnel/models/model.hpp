@@ -13,6 +13,8 @@
 
 namespace runnel {
 
+class Ground;
+
 // How a model counts time: simulated seconds (sph, pipe) or iterations (olsen, thermal, and the
 // droplet model's batches), which have no physical duration.
 enum class ModelClock { kSeconds, kIterations };
@@ -70,6 +72,8 @@ class Model {
   virtual const char* work_unit() const = 0;  // "particle_steps", "cell_steps", "droplet_steps"
   // The most device memory the model will hold (bytes), printed before a run starts.
   virtual double device_bytes() const = 0;
+  // The run's layer stack (docs/layers.md), or nullptr when the terrain is one material.
+  virtual Ground* ground() { return nullptr; }
 };
 
 }  // namespace runnel

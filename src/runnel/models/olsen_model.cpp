@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/olsen_model.hpp"
 
+#include "runnel/ground/ground_settings.hpp"
+
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/parameter_groups.hpp"
@@ -53,11 +55,12 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
   out_water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(float));
   out_sediment_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
   const OlsenSettings& s = settings_;
-  const std::string options = settings_defines(s, kOlsenTable);
+  const std::string options = settings_defines(s, kOlsenTable) + ground_defines(params);
   cl::Program& program = compute.program({"cl/common.cl", "cl/models/olsen.cl"}, options);
   dissolve_ = Kernel(compute, program, "olsen_dissolve");
   outflow_ = Kernel(compute, program, "olsen_outflow");
   gather_settle_ = Kernel(compute, program, "olsen_gather_settle");
+  dissolve_.set("erodibility", erodibility()).set("rain_weight", rain_weight());
 }
 
 double OlsenModel::take_step() {
@@ -83,8 +86,7 @@ double OlsenModel::take_step() {
 
 double OlsenModel::rain_volume() {
   const double cell = state_.terrain().cell();
-  return settings_.rain * static_cast<double>(state_.vertices()) * cell * cell *
-         static_cast<double>(steps());
+  return settings_.rain * rained_vertices() * cell * cell * static_cast<double>(steps());
 }
 
 JsonObject OlsenModel::diagnostics() {

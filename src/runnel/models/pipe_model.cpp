@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/pipe_model.hpp"
 
+#include "runnel/ground/ground_settings.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -92,8 +94,8 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   lost_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(outflow_, cl_long{0}, 0, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(lost_, cl_long{0}, 0, sizeof(cl_long));
-  cl::Program& program =
-      compute.program({"cl/common.cl", "cl/models/pipe.cl"}, settings_.build_options());
+  cl::Program& program = compute.program({"cl/common.cl", "cl/models/pipe.cl"},
+                                         settings_.build_options() + ground_defines(params));
   flux_kernel_ = Kernel(compute, program, "pipe_flux");
   water_kernel_ = Kernel(compute, program, "pipe_water");
   erode_kernel_ = Kernel(compute, program, "pipe_erode");
@@ -102,6 +104,9 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   edge_outflow_kernel_ = Kernel(compute, program, "pipe_edge_outflow");
   advect_kernel_ = Kernel(compute, program, "pipe_advect");
   stats_kernel_ = Kernel(compute, program, "pipe_stats");
+  flux_kernel_.set("rain_weight", rain_weight());
+  water_kernel_.set("rain_weight", rain_weight());
+  erode_kernel_.set("erodibility", erodibility());
 }
 
 double PipeModel::take_step() {
@@ -232,7 +237,7 @@ void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::i
 
 double PipeModel::rain_volume() {
   const double cell = state_.terrain().cell();
-  return settings_.rain * static_cast<double>(state_.vertices()) * cell * cell * time();
+  return settings_.rain * rained_vertices() * cell * cell * time();
 }
 
 JsonObject PipeModel::diagnostics() {

@@ -31,6 +31,7 @@ class SphModel final : public Model {
   double step_work() override { return static_cast<double>(sim_->particles()); }
   const char* work_unit() const override { return "particle_steps"; }
   double device_bytes() const override { return sim_->device_bytes(); }
+  Ground* ground() override { return sim_->ground(); }
 
   Simulation& simulation() { return *sim_; }
 

@@ -8,6 +8,7 @@
 #include "runnel/core/scenario.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/core/version.hpp"
+#include "runnel/ground/ground_settings.hpp"
 
 namespace runnel {
 namespace {
@@ -65,11 +66,15 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   }
   const RainSettings rain =
       RainSettings::from(params, solver_->terrain(), spacing, reference_speed_);
-  rain_ = std::make_unique<RainEmitter>(compute, rain,
-                                        static_cast<std::uint64_t>(params.integer("run.seed")),
-                                        static_cast<float>(sph.rho0));
+  rain_ = std::make_unique<RainEmitter>(
+      compute, rain, static_cast<std::uint64_t>(params.integer("run.seed")),
+      static_cast<float>(sph.rho0),
+      has_rain_mask(params) ? rain_weights(params, terrain.nx, terrain.ny) : std::vector<float>{},
+      terrain.nx);
+  ground_ = make_ground(compute, params, solver_->terrain(), initial_, initial_fixed_);
   erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_,
-                                       static_cast<std::uint64_t>(params.integer("run.seed")));
+                                       static_cast<std::uint64_t>(params.integer("run.seed")),
+                                       ground_.get());
   const ThermalSettings thermal = ThermalSettings::from(params);
   thermal_interval_ = thermal.interval;
   // The most device memory the run will hold: the particle store at its largest (the budget with
@@ -95,7 +100,8 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                       " has " + format_number(available / 1e6) + " MB");
   }
   if (thermal_interval_ > 0) {
-    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal);
+    thermal_ =
+        std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal, ground_.get());
   }
 }
 
@@ -108,9 +114,10 @@ void Simulation::step() {
   if (thermal_ && std::floor((s.time() + s.dt()) / thermal_interval_) >
                       std::floor(s.time() / thermal_interval_))
     thermal_->relax();
-  s.project_to_surface();  // no particle stays below a terrain that rose
-  rain_->emit(s, s.dt());  // rain.emit: this step's drops at the spawn height
-  s.complete_step();       // hash, sph_forces, kick, next dt
+  if (ground_) ground_->update();  // the step's net change into the layer stack
+  s.project_to_surface();          // no particle stays below a terrain that rose
+  rain_->emit(s, s.dt());          // rain.emit: this step's drops at the spawn height
+  s.complete_step();               // hash, sph_forces, kick, next dt
 }
 
 MassBalance Simulation::mass_balance() {
@@ -151,6 +158,7 @@ CheckpointData Simulation::checkpoint() {
   d.rain_carry = rain_->carry();
   d.seed = params_.integer("run.seed");
   d.counters = solver_->counters();
+  if (ground_) d.fields = ground_->fields();
   return d;
 }
 
@@ -174,6 +182,7 @@ void Simulation::restore(const CheckpointData& d) {
   solver_->restore_clock(d.time, d.dt, d.steps);
   solver_->restore_counters(d.counters);
   rain_->restore(d.rain_spawned, d.rain_carry);
+  if (ground_) ground_->restore(d.fields);
 }
 
 Heightmap Simulation::terrain() {

@@ -51,6 +51,7 @@ class Simulation {
   void restore(const CheckpointData& data);
 
   SphSolver& solver() { return *solver_; }
+  Ground* ground() { return ground_.get(); }
   RainEmitter& rain() { return *rain_; }
   const std::vector<std::int64_t>& initial_fixed() const { return initial_fixed_; }
 
@@ -64,6 +65,7 @@ class Simulation {
   std::unique_ptr<RainEmitter> rain_;
   std::unique_ptr<Erosion> erosion_;
   std::unique_ptr<ThermalRelaxation> thermal_;
+  std::unique_ptr<Ground> ground_;
   double thermal_interval_ = 0;  // s
   double device_bytes_ = 0;      // see device_bytes()
 };

@@ -37,7 +37,7 @@ std::vector<ParamSpec> assemble() {
   };
   std::vector<ParamSpec> table = terrain;
   for (auto group : {sph_parameters, rain_parameters, erosion_parameters, thermal_parameters,
-                     droplet_parameters, olsen_parameters, pipe_parameters}) {
+                     droplet_parameters, olsen_parameters, pipe_parameters, ground_parameters}) {
     for (ParamSpec& spec : group()) table.push_back(std::move(spec));
   }
   table.insert(table.end(), run.begin(), run.end());

@@ -13,6 +13,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
 #include "runnel/core/version.hpp"
+#include "runnel/ground/ground_outputs.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/io/images.hpp"
@@ -215,6 +216,9 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   const std::vector<double> area = metrics::flow_accumulation(final_terrain);
   for (std::size_t k = 0; k < area.size(); ++k) drainage.h[k] = static_cast<float>(area[k]);
   write_terrain((out / "drainage_area.npy").string(), drainage);
+  JsonObject ground_report;
+  if (Ground* ground = model.ground())
+    ground_report = write_ground_outputs(out, *ground, final_terrain);
 
   RunSummary s;
   s.steps = model.steps();
@@ -255,6 +259,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       .add("kernel_seconds", kernel_seconds)
       .add("parameters", parameters_json(params))
       .add("mass_balance_reports", reports);
+  if (model.ground()) s.metrics.add("ground", ground_report);
   write_text_atomically((out / "metrics.json").string(), s.metrics.str() + "\n");
   char buf[200];
   std::snprintf(

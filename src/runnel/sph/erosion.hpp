@@ -6,6 +6,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/ground/ground.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sph/sph_solver.hpp"
 
@@ -41,8 +42,9 @@ struct ErosionSettings {
 // accumulated into the terrain's fixed-point deltas (applied once per step by DeviceTerrain).
 class Erosion {
  public:
+  // With a ground, the detachment is scaled by the erodibility of the vertex under each particle.
   Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver,
-          std::uint64_t seed);
+          std::uint64_t seed, Ground* ground = nullptr);
   // The exchange over the step of length dt that the solver has just drifted.
   void exchange(SphSolver& solver, double dt);
   const ErosionSettings& settings() const { return settings_; }
@@ -52,6 +54,7 @@ class Erosion {
   ErosionSettings settings_;
   std::uint64_t seed_;
   Kernel kernel_;
+  cl::Buffer placeholder_;
 };
 
 }  // namespace runnel

@@ -100,7 +100,7 @@ void RainSettings::rain_on_disc(double x, double z, double radius, double intens
 }
 
 JsonObject RainSettings::json() const {
-  const char* names[] = {"terrain", "rectangle", "disc"};
+  const char* names[] = {"terrain", "rectangle", "disc", "terrain by the rain mask"};
   return JsonObject()
       .add("region", names[static_cast<int>(region)])
       .add("area_m2", area)
@@ -115,14 +115,57 @@ JsonObject RainSettings::json() const {
 }
 
 RainEmitter::RainEmitter(ComputeContext& compute, const RainSettings& settings, std::uint64_t seed,
-                         float rest_density)
+                         float rest_density, const std::vector<float>& rain_weights, int nx)
     : compute_(compute),
       settings_(settings),
       seed_(seed),
       rest_density_(rest_density),
       kernel_(compute,
               compute.program({"cl/common.cl", "cl/grid.cl", "cl/terrain_sample.cl", "cl/rain.cl"}),
-              "rain_emit") {}
+              "rain_emit") {
+  std::vector<float> cdf(1, 1.0f);
+  if (!rain_weights.empty()) {
+    if (settings_.region != RainSettings::Region::kTerrain)
+      throw input_error(
+          "ground.rain_mask: a rain mask shapes the rain of the whole terrain; "
+          "use it with rain.region = \"terrain\"");
+    double fraction = 0;
+    std::tie(cdf, fraction) =
+        rain_cell_cdf(rain_weights, nx, static_cast<int>(rain_weights.size()) / nx);
+    settings_.region = RainSettings::Region::kMask;
+    settings_.rate *= fraction;
+    settings_.intensity_mm_h *= fraction;  // the mean over the terrain
+    cells_ = static_cast<int>(cdf.size());
+  }
+  cell_cdf_ = cl::Buffer(compute.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                         cdf.size() * sizeof(float), cdf.data());
+  kernel_.set("cell_cdf", cell_cdf_).set("cells", static_cast<cl_int>(cells_));
+}
+
+std::pair<std::vector<float>, double> rain_cell_cdf(const std::vector<float>& weights, int nx,
+                                                    int ny) {
+  const int cx = nx - 1, cz = ny - 1;
+  std::vector<double> cell(static_cast<std::size_t>(cx) * cz);
+  double total = 0;
+  for (int j = 0; j < cz; ++j) {
+    for (int i = 0; i < cx; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * nx + i;
+      const double w =
+          0.25 * (double(weights[k]) + weights[k + 1] + weights[k + nx] + weights[k + nx + 1]);
+      cell[static_cast<std::size_t>(j) * cx + i] = w;
+      total += w;
+    }
+  }
+  std::vector<float> cdf(cell.size(), 1.0f);
+  if (total <= 0) return {cdf, 0.0};
+  double sum = 0;
+  for (std::size_t m = 0; m < cell.size(); ++m) {
+    sum += cell[m];
+    cdf[m] = static_cast<float>(sum / total);
+  }
+  cdf.back() = 1.0f;
+  return {cdf, total / static_cast<double>(cell.size())};
+}
 
 std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
   if (!settings_.enabled || settings_.rate <= 0) return 0;

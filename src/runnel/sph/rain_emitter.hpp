@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
@@ -27,7 +28,8 @@ struct RainSettings {
   double lifespan_jitter;
   bool enabled;
   // Resolved: what the kernel reads.
-  enum class Region { kTerrain = 0, kRectangle = 1, kDisc = 2 };
+  // kMask: the whole terrain, by a rain mask (ground.rain_mask; set by RainEmitter).
+  enum class Region { kTerrain = 0, kRectangle = 1, kDisc = 2, kMask = 3 };
   Region region;
   double a, b, c, d;  // rectangle x0, x1, z0, z1, or disc x, radius, z
   double area;        // m²
@@ -41,14 +43,24 @@ struct RainSettings {
   void rain_on_disc(double x, double z, double radius, double intensity, double spacing);
 };
 
+// The cumulative share of the rain through each cell of a terrain nx × ny (cells row-major,
+// (nx − 1)·(ny − 1) of them), from the vertex weights: a cell weighs the mean of its corners. The
+// second value is the mean cell weight, the fraction of the terrain's rain that falls.
+std::pair<std::vector<float>, double> rain_cell_cdf(const std::vector<float>& weights, int nx,
+                                                    int ny);
+
 // Host side of cl/rain.cl: spawns the particles of each step on the device. The count per step
 // carries its fraction over (deterministic double arithmetic) and respects the particle budget;
 // particle k of the run draws from counter k, so a resumed run spawns what an uninterrupted one
 // would.
 class RainEmitter {
  public:
+  // `rain_weights`: the rain mask's fraction per vertex of a terrain `nx` wide (empty: none). With
+  // one, the rain of the whole terrain falls by it: the rate times the mean cell weight, each drop
+  // in a cell drawn in proportion to the cell's weight (the mean of its corners) and uniformly
+  // inside it.
   RainEmitter(ComputeContext& compute, const RainSettings& settings, std::uint64_t seed,
-              float rest_density);
+              float rest_density, const std::vector<float>& rain_weights = {}, int nx = 0);
   // Spawns this step's rain into the solver. Returns the number spawned.
   std::size_t emit(SphSolver& solver, double dt);
 
@@ -66,6 +78,8 @@ class RainEmitter {
   std::uint64_t seed_;
   float rest_density_;
   Kernel kernel_;
+  cl::Buffer cell_cdf_;  // the rain mask's cumulative share per cell (one 1 without a mask)
+  int cells_ = 1;
   std::uint64_t spawned_ = 0;
   double carry_ = 0.0;
 };

@@ -34,14 +34,18 @@ ThermalSettings ThermalSettings::from(const Parameters& p) {
 }
 
 ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,
-                                     const ThermalSettings& settings)
+                                     const ThermalSettings& settings, Ground* ground)
     : compute_(compute),
       terrain_(terrain),
       settings_(settings),
       outflow_(compute.context(), CL_MEM_READ_WRITE,
                static_cast<std::size_t>(terrain.nx()) * terrain.ny() * 4 * sizeof(cl_long)) {
-  cl::Program& program = compute.program({"cl/common.cl", "cl/thermal.cl"});
+  cl::Program& program =
+      compute.program({"cl/common.cl", "cl/thermal.cl"}, ground ? " -DGROUND=1" : "");
   outflow_kernel_ = Kernel(compute, program, "thermal_outflow");
+  placeholder_ = placeholder_buffer(compute);
+  outflow_kernel_.set("erodibility", ground ? ground->erodibility() : placeholder_)
+      .set("talus_field", ground ? ground->talus_threshold() : placeholder_);
   gather_kernel_ = Kernel(compute, program, "thermal_gather");
 }
 

@@ -3,6 +3,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/ground/ground.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
 namespace runnel {
@@ -21,15 +22,16 @@ struct ThermalSettings {
 // heights (two kernels: outflows, then gather), exact in volume. Refreshes the float view.
 class ThermalRelaxation {
  public:
+  // With a ground, each vertex's talus angle and rate are its exposed material's.
   ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,
-                    const ThermalSettings& settings);
+                    const ThermalSettings& settings, Ground* ground = nullptr);
   void relax();
 
  private:
   ComputeContext& compute_;
   DeviceTerrain& terrain_;
   ThermalSettings settings_;
-  cl::Buffer outflow_;
+  cl::Buffer outflow_, placeholder_;
   Kernel outflow_kernel_, gather_kernel_;
 };
 

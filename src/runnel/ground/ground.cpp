@@ -1,0 +1,225 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/ground/ground.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "runnel/compute/launch.hpp"
+#include "runnel/core/error.hpp"
+#include "runnel/ground/ground_settings.hpp"
+
+namespace runnel {
+namespace {
+
+template <class T>
+cl::Buffer device_copy(ComputeContext& compute, const std::vector<T>& values) {
+  // At least one element: OpenCL refuses empty buffers (a stack without strata has no contacts).
+  std::vector<T> data = values.empty() ? std::vector<T>(1, T{}) : values;
+  return cl::Buffer(compute.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                    data.size() * sizeof(T), data.data());
+}
+
+template <class T>
+std::vector<T> host_copy(ComputeContext& compute, cl::Buffer& buffer, std::size_t n) {
+  std::vector<T> out(n);
+  if (n > 0) compute.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, n * sizeof(T), out.data());
+  return out;
+}
+
+// Hardness × (0 where frozen): the ground's factor per vertex on every material's erodibility.
+std::vector<float> erodibility_mask(const GroundSettings& g, int nx, int ny) {
+  std::vector<float> mask(static_cast<std::size_t>(nx) * ny, 1.0f);
+  if (!g.hardness_mask.empty()) {
+    mask = read_vertex_raster(g.hardness_mask, nx, ny, "ground.hardness_mask");
+    for (float v : mask)
+      if (!(v >= 0) || !std::isfinite(v))
+        throw input_error(g.hardness_mask + ": ground.hardness_mask holds " + std::to_string(v) +
+                          "; a hardness factor must be finite and ≥ 0");
+  }
+  if (!g.frozen_mask.empty()) {
+    const auto frozen = read_vertex_raster(g.frozen_mask, nx, ny, "ground.frozen_mask");
+    for (std::size_t k = 0; k < mask.size(); ++k)
+      if (frozen[k] != 0.0f) mask[k] = 0.0f;
+  }
+  return mask;
+}
+
+}  // namespace
+
+Ground::Ground(ComputeContext& compute, const Parameters& params, DeviceTerrain& terrain,
+               const Heightmap& initial, const std::vector<std::int64_t>& initial_fixed)
+    : compute_(compute),
+      terrain_(terrain),
+      strata_(build_strata(params, initial, initial_fixed, terrain.quantum())) {
+  const std::size_t n = strata_.vertices();
+  const auto mask = erodibility_mask(GroundSettings::from(params), strata_.nx, strata_.ny);
+  std::vector<float> erodibility, talus;
+  for (const Material& m : strata_.materials) {
+    erodibility.push_back(static_cast<float>(m.erodibility));
+    talus.push_back(static_cast<float>(terrain.cell() * std::tan(m.talus_angle_deg * M_PI / 180.0) /
+                                       terrain.quantum()));
+  }
+  contacts_ = device_copy(
+      compute, std::vector<std::int64_t>(strata_.contacts.begin() + n, strata_.contacts.end()));
+  previous_ = device_copy(compute, initial_fixed);
+  sediment_ = device_copy(compute, std::vector<std::int64_t>(n, 0));
+  mask_ = device_copy(compute, mask);
+  material_erodibility_ = device_copy(compute, erodibility);
+  material_talus_ = device_copy(compute, talus);
+  erodibility_ = device_copy(compute, std::vector<float>(n, 1.0f));
+  talus_ = device_copy(compute, std::vector<float>(n, 0.0f));
+  exposed_ = device_copy(compute, std::vector<int>(n, 0));
+  update_kernel_ = Kernel(compute, compute.program({"cl/ground.cl"}), "ground_update");
+  update();
+}
+
+void Ground::update() {
+  const int n = static_cast<int>(strata_.vertices());
+  update_kernel_.set("height", terrain_.height_fixed())
+      .set("previous", previous_)
+      .set("sediment", sediment_)
+      .set("contacts", contacts_)
+      .set("strata", strata_.strata)
+      .set("n", n)
+      .set("mask", mask_)
+      .set("material_erodibility", material_erodibility_)
+      .set("material_talus", material_talus_)
+      .set("erodibility", erodibility_)
+      .set("talus", talus_)
+      .set("exposed", exposed_)
+      .launch(round_up_work(static_cast<std::size_t>(n)), "ground.update");
+}
+
+std::vector<std::int64_t> Ground::sediment() {
+  return host_copy<std::int64_t>(compute_, sediment_, strata_.vertices());
+}
+
+std::vector<int> Ground::exposed() {
+  return host_copy<int>(compute_, exposed_, strata_.vertices());
+}
+
+std::vector<StoredField> Ground::fields() {
+  StoredField sediment{kGroundSediment, 1, {}, this->sediment()};
+  // Contacts interleaved per vertex, (ny, nx, L + 1), as every stored field.
+  const std::size_t n = strata_.vertices();
+  const int c = strata_.strata + 1;
+  StoredField contacts{kGroundContacts, c, {}, std::vector<std::int64_t>(n * c)};
+  for (std::size_t k = 0; k < n; ++k)
+    for (int l = 0; l < c; ++l) contacts.i64[k * c + l] = strata_.contact(l, k);
+  StoredField thickness{kGroundThickness, std::max(strata_.strata, 1), {}, {}};
+  std::vector<std::int64_t> rock = terrain_.download_fixed();
+  for (std::size_t k = 0; k < n; ++k) rock[k] -= sediment.i64[k];
+  const auto left = remaining_thickness(strata_, rock);
+  thickness.i64.assign(n * thickness.components, 0);
+  for (std::size_t k = 0; k < n; ++k)
+    for (int l = 0; l < strata_.strata; ++l)
+      thickness.i64[k * thickness.components + l] = left[l * n + k];
+  return {sediment, contacts, thickness};
+}
+
+void Ground::restore(const std::vector<StoredField>& fields) {
+  const std::size_t n = strata_.vertices();
+  bool have_sediment = false, have_contacts = false;
+  for (const StoredField& f : fields) {
+    if (f.name == kGroundSediment && f.i64.size() == n) {
+      compute_.queue().enqueueWriteBuffer(sediment_, CL_TRUE, 0, n * 8, f.i64.data());
+      have_sediment = true;
+    } else if (f.name == kGroundContacts && f.components == strata_.strata + 1 &&
+               f.i64.size() == n * f.components) {
+      for (std::size_t k = 0; k < n; ++k)
+        for (int l = 0; l < f.components; ++l)
+          strata_.contacts[l * n + k] = f.i64[k * f.components + l];
+      if (strata_.strata > 0)
+        compute_.queue().enqueueWriteBuffer(contacts_, CL_TRUE, 0, strata_.strata * n * 8,
+                                            strata_.contacts.data() + n);
+      have_contacts = true;
+    }
+  }
+  if (!have_sediment || !have_contacts)
+    throw input_error("checkpoint: the run has layers or ground masks, but /fields/" +
+                      std::string(kGroundSediment) + " or /fields/" + kGroundContacts +
+                      " is missing or has another number of strata");
+  // At a step boundary the previous heights are the heights.
+  compute_.queue().enqueueCopyBuffer(terrain_.height_fixed(), previous_, 0, 0, n * 8);
+  update();
+}
+
+JsonObject Ground::report() {
+  const std::vector<std::int64_t> height_fixed = terrain_.download_fixed();
+  const std::size_t n = strata_.vertices();
+  const auto s = sediment();
+  const auto e = exposed();
+  std::vector<std::int64_t> rock(n);
+  for (std::size_t k = 0; k < n; ++k) rock[k] = height_fixed[k] - s[k];
+  const auto eroded = eroded_per_material(strata_, rock);
+  std::vector<std::size_t> exposed_count(strata_.materials.size(), 0);
+  for (int m : e) ++exposed_count[static_cast<std::size_t>(m)];
+  const double vq = terrain_.volume_quantum();
+  std::vector<JsonObject> materials;
+  std::int64_t eroded_total = 0;
+  for (std::size_t m = 0; m < strata_.materials.size(); ++m) {
+    const Material& mat = strata_.materials[m];
+    const std::int64_t q = m < eroded.size() ? eroded[m] : 0;
+    eroded_total += q;
+    JsonObject o;
+    o.add("name", mat.name)
+        .add("erodibility", mat.erodibility)
+        .add("talus_angle_deg", mat.talus_angle_deg)
+        .add("exposed_fraction", static_cast<double>(exposed_count[m]) / static_cast<double>(n));
+    if (static_cast<int>(m) != strata_.sediment()) {
+      o.add("eroded_m3", static_cast<double>(q) * vq)
+          .add("eroded_kg", static_cast<double>(q) * vq * mat.density)
+          .add("eroded_quanta", static_cast<long long>(q));
+    }
+    materials.push_back(o);
+  }
+  const std::int64_t sediment_total = std::accumulate(s.begin(), s.end(), std::int64_t{0});
+  std::int64_t change = 0;
+  for (std::size_t k = 0; k < n; ++k) change += height_fixed[k] - strata_.contact(0, k);
+  return JsonObject()
+      .add("materials", materials)
+      .add("sediment_m3", static_cast<double>(sediment_total) * vq)
+      .add("rock_eroded_m3", static_cast<double>(eroded_total) * vq)
+      // Σ(h − h0) = Σ sediment − Σ eroded rock, exactly: 0 unless the bookkeeping is broken.
+      .add("layer_balance_quanta",
+           static_cast<long long>(change - (sediment_total - eroded_total)));
+}
+
+std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& params,
+                                    DeviceTerrain& terrain, const Heightmap& initial,
+                                    const std::vector<std::int64_t>& initial_fixed) {
+  if (!has_ground(params)) return nullptr;
+  return std::make_unique<Ground>(compute, params, terrain, initial, initial_fixed);
+}
+
+cl::Buffer placeholder_buffer(ComputeContext& compute) {
+  return device_copy(compute, std::vector<float>(1, 1.0f));
+}
+
+std::vector<float> rain_weights(const Parameters& params, int nx, int ny) {
+  const std::string& path = params.text("ground.rain_mask");
+  if (path.empty()) return std::vector<float>(static_cast<std::size_t>(nx) * ny, 1.0f);
+  auto w = read_vertex_raster(path, nx, ny, "ground.rain_mask");
+  for (float v : w)
+    if (!(v >= 0.0f && v <= 1.0f))
+      throw input_error(
+          path + ": ground.rain_mask holds " + std::to_string(v) +
+          "; the rain mask is the fraction of the rain falling at each vertex, 0 to 1");
+  return w;
+}
+
+cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params, int nx, int ny) {
+  if (!has_rain_mask(params)) return placeholder_buffer(compute);
+  return device_copy(compute, rain_weights(params, nx, ny));
+}
+
+std::vector<StoredField> without_ground_fields(const std::vector<StoredField>& fields) {
+  std::vector<StoredField> out;
+  for (const StoredField& f : fields)
+    if (f.name != kGroundSediment && f.name != kGroundContacts && f.name != kGroundThickness)
+      out.push_back(f);
+  return out;
+}
+
+}  // namespace runnel

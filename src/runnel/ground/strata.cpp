@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/ground/strata.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include "runnel/core/error.hpp"
+#include "runnel/core/layers.hpp"
+#include "runnel/ground/ground_settings.hpp"
+#include "runnel/terrain/noise.hpp"
+#include "runnel/terrain/terrain_io.hpp"
+
+namespace runnel {
+namespace {
+
+double resolved_talus(double angle, const Parameters& params) {
+  return angle > 0 ? angle : params.real("thermal.talus_angle");
+}
+
+// fBm in about [−1, 1]: octaves of gradient noise, each half the wavelength and amplitude.
+double fbm_unit(double x, double z, double wavelength, int octaves, std::uint64_t seed) {
+  double sum = 0, norm = 0, amplitude = 1, frequency = 1 / wavelength;
+  for (int o = 0; o < octaves; ++o) {
+    sum += amplitude * gradient_noise(x * frequency, z * frequency, seed, o);
+    norm += amplitude;
+    amplitude *= 0.5;
+    frequency *= 2;
+  }
+  return std::clamp(sum / (0.7 * norm), -1.0, 1.0);  // gradient_noise lies in about ±0.7
+}
+
+}  // namespace
+
+std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
+                                      const std::string& what) {
+  const Heightmap r = read_terrain(path);
+  if (r.nx == nx && r.ny == ny) return r.h;
+  std::cerr << "warning: " << what << " " << path << ": " << r.nx << " x " << r.ny
+            << " vertices resampled bilinearly to the terrain's " << nx << " x " << ny << "\n";
+  std::vector<float> out(static_cast<std::size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      // The rasters cover the same extent: corner vertices map onto corner vertices.
+      const double x = nx > 1 ? i * double(r.nx - 1) / (nx - 1) : 0;
+      const double z = ny > 1 ? j * double(r.ny - 1) / (ny - 1) : 0;
+      const int i0 = std::min(static_cast<int>(x), std::max(r.nx - 2, 0));
+      const int j0 = std::min(static_cast<int>(z), std::max(r.ny - 2, 0));
+      const int i1 = std::min(i0 + 1, r.nx - 1), j1 = std::min(j0 + 1, r.ny - 1);
+      const double u = x - i0, v = z - j0;
+      out[static_cast<std::size_t>(j) * nx + i] =
+          static_cast<float>((1 - u) * (1 - v) * r.at(i0, j0) + u * (1 - v) * r.at(i1, j0) +
+                             (1 - u) * v * r.at(i0, j1) + u * v * r.at(i1, j1));
+    }
+  }
+  return out;
+}
+
+Strata build_strata(const Parameters& params, const Heightmap& initial,
+                    const std::vector<std::int64_t>& initial_fixed, double quantum) {
+  const GroundSettings g = GroundSettings::from(params);
+  Strata s;
+  s.nx = initial.nx;
+  s.ny = initial.ny;
+  s.strata = static_cast<int>(params.layers().size());
+  const std::size_t n = s.vertices();
+  s.contacts.assign((s.strata + 1) * n, 0);
+  std::copy(initial_fixed.begin(), initial_fixed.end(), s.contacts.begin());
+  const double width = (initial.nx - 1) * initial.cell, depth_z = (initial.ny - 1) * initial.cell;
+  const int ci = initial.nx / 2, cj = initial.ny / 2;
+  const double centre_height = initial.at(ci, cj);
+  for (int l = 0; l < s.strata; ++l) {
+    const LayerValues& layer = params.layers()[l];
+    const std::string name = layer_text(layer, "name");
+    s.materials.push_back({name, layer_real(layer, "erodibility"),
+                           resolved_talus(layer_real(layer, "talus_angle"), params),
+                           layer_real(layer, "density")});
+    const LayerShape shape = layer_shape(layer);
+    std::vector<float> raster;
+    if (shape == LayerShape::kRaster) {
+      const std::string file = layer_text(layer, "thickness_file");
+      raster = read_vertex_raster(file, s.nx, s.ny, "layer " + name + " thickness_file");
+      for (float t : raster)
+        if (!(t >= 0))
+          throw input_error(file + ": layer " + name + " thickness " + std::to_string(t) +
+                            " m; a thickness must be finite and ≥ 0");
+    }
+    const double thickness = layer_real(layer, "thickness");
+    const double amplitude = layer_real(layer, "noise_amplitude");
+    const double wavelength = layer_real(layer, "noise_wavelength") > 0
+                                  ? layer_real(layer, "noise_wavelength")
+                                  : 0.25 * std::max(width, depth_z);
+    const int octaves =
+        static_cast<int>(std::get<std::int64_t>(layer_value(layer, "noise_octaves")));
+    const auto seed =
+        static_cast<std::uint64_t>(std::get<std::int64_t>(layer_value(layer, "noise_seed")));
+    // A dipping contact: z = z_c − depth − tan(dip) · (distance along the dip direction from the
+    // centre). The dip direction is the strike + 90° (right-hand rule), azimuths clockwise from
+    // north (−z, the first raster row's side): azimuth θ points along (sin θ, −cos θ) in (x, z).
+    const double deg = M_PI / 180.0;
+    const double dip_azimuth = (layer_real(layer, "strike") + 90.0) * deg;
+    const double dx = std::sin(dip_azimuth), dz = -std::cos(dip_azimuth);
+    const double slope = std::tan(layer_real(layer, "dip") * deg);
+    const double contact_depth = layer_real(layer, "depth");
+    for (int j = 0; j < s.ny; ++j) {
+      for (int i = 0; i < s.nx; ++i) {
+        const std::size_t k = static_cast<std::size_t>(j) * s.nx + i;
+        const double x = i * initial.cell, z = j * initial.cell;
+        const std::int64_t top = s.contacts[l * n + k];
+        std::int64_t bottom = top;
+        switch (shape) {
+          case LayerShape::kConstant:
+            bottom = top - std::llround(thickness / quantum);
+            break;
+          case LayerShape::kNoise:
+            bottom =
+                top - std::llround(std::max(0.0, thickness + amplitude * fbm_unit(x, z, wavelength,
+                                                                                  octaves, seed)) /
+                                   quantum);
+            break;
+          case LayerShape::kRaster:
+            bottom = top - std::llround(raster[k] / quantum);
+            break;
+          case LayerShape::kDipping: {
+            const double along = (x - ci * initial.cell) * dx + (z - cj * initial.cell) * dz;
+            const double plane = centre_height - contact_depth - slope * along;
+            bottom = std::min(top, static_cast<std::int64_t>(std::llround(plane / quantum)));
+            break;
+          }
+        }
+        s.contacts[(l + 1) * n + k] = std::min(top, bottom);
+      }
+    }
+  }
+  s.materials.push_back({g.bedrock_name, g.bedrock_erodibility,
+                         resolved_talus(g.bedrock_talus_angle, params), g.bedrock_density});
+  s.materials.push_back({"sediment", g.sediment_erodibility,
+                         resolved_talus(g.sediment_talus_angle, params), g.sediment_density});
+  return s;
+}
+
+int exposed_material(const Strata& strata, std::size_t k, std::int64_t rock,
+                     std::int64_t sediment) {
+  if (sediment > 0) return strata.sediment();
+  int e = 0;
+  for (int l = 1; l <= strata.strata; ++l) e += rock <= strata.contact(l, k) ? 1 : 0;
+  return e;
+}
+
+std::vector<std::int64_t> eroded_per_material(const Strata& strata,
+                                              const std::vector<std::int64_t>& rock) {
+  std::vector<std::int64_t> eroded(strata.strata + 1, 0);
+  for (std::size_t k = 0; k < strata.vertices(); ++k) {
+    const std::int64_t surface = strata.contact(0, k);
+    for (int l = 0; l <= strata.strata; ++l) {
+      const std::int64_t top = std::min(surface, strata.contact(l, k));
+      const std::int64_t bottom =
+          l < strata.strata ? std::max(rock[k], strata.contact(l + 1, k)) : rock[k];
+      eroded[l] += std::max<std::int64_t>(0, top - bottom);
+    }
+  }
+  return eroded;
+}
+
+std::vector<std::int64_t> remaining_thickness(const Strata& strata,
+                                              const std::vector<std::int64_t>& rock) {
+  const std::size_t n = strata.vertices();
+  std::vector<std::int64_t> out(strata.strata * n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int l = 0; l < strata.strata; ++l) {
+      const std::int64_t top = std::min(rock[k], strata.contact(l, k));
+      out[l * n + k] = std::max<std::int64_t>(0, top - strata.contact(l + 1, k));
+    }
+  }
+  return out;
+}
+
+}  // namespace runnel
