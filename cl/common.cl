@@ -59,3 +59,19 @@ inline void mark_changed_tiles(__global uint* changed, int tiles_x, int i0, int 
 #endif
 #define ERODIBILITY(field, k) (GROUND ? (field)[k] : 1.0f)
 #define RAIN_WEIGHT(field, k) (RAIN_MASK ? (field)[k] : 1.0f)
+
+// What a bed of loose sediment (quanta) over rock gives for a detachment `demand` (quanta at
+// erodibility 1) in one step: the sediment first, at its erodibility, and once it is gone the rock,
+// at the rock's, for the rest of the step (docs/layers.md). Equal erodibilities give demand·e exactly.
+inline float bed_detachment(float demand, float sediment, float e_sediment, float e_rock) {
+  if (e_sediment == e_rock || sediment <= 0.0f) return demand * e_rock;
+  const float from_sediment = demand * e_sediment;
+  if (from_sediment <= sediment) return from_sediment;
+  return sediment + (demand - sediment / e_sediment) * e_rock;
+}
+#if GROUND
+#define BED_DETACHMENT(demand, k) \
+  bed_detachment((demand), (float)ground_sediment[k], sediment_erodibility[k], rock_erodibility[k])
+#else
+#define BED_DETACHMENT(demand, k) (demand)
+#endif

@@ -40,12 +40,14 @@
 
 #define EROSION_STREAM 0x65726f64UL  // "erod"
 
-// Adds sign·quanta over the footprint of (x, z) (spread_quanta) and marks the terrain tiles the
-// footprint reaches (its off-grid fallback vertex included), for terrain_apply.
+// Adds sign·quanta over the footprint of (x, z) (spread_quanta, weighted by `factor` where not null)
+// and marks the terrain tiles the footprint reaches (its off-grid fallback vertex included), for
+// terrain_apply.
 inline void land_quanta(volatile __global long* delta, __global uint* changed, int tiles_x, int nx, int ny,
-                        float cell, float x, float z, long quanta, long sign, float u) {
+                        float cell, float x, float z, long quanta, long sign, float u, const __global float* factor,
+                        float factor_mean) {
   if (quanta == 0) return;
-  spread_quanta(delta, nx, ny, cell, x, z, quanta, sign, u);
+  spread_quanta(delta, nx, ny, cell, x, z, quanta, sign, u, factor, factor_mean);
   const float last_i = (float)(nx - 1), last_j = (float)(ny - 1);
   const int i0 = (int)clamp(floor((x - FOOTPRINT_RADIUS) / cell), 0.0f, last_i);
   const int i1 = (int)clamp(ceil((x + FOOTPRINT_RADIUS) / cell), 0.0f, last_i);
@@ -85,7 +87,7 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   if (age[i] > lifespan[i]) {  // evaporation: deposit and leave
     const long kept = min(carried, (long)floor((float)carried * EROSION_DEPOSIT_FRACTION));
     land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, kept, 1,
-                exchange_random(seed, id[i], step_index, 1));
+                exchange_random(seed, id[i], step_index, 1), 0, 1.0f);
     atom_add(&counters[COUNTER_LOST_SEDIMENT], carried - kept);
     atom_inc(&counters[COUNTER_EVAPORATED]);
     sediment[i] = 0;
@@ -97,13 +99,15 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   const float water_depth = fmax(depth[i], 1e-6f);                            // D, m
   if (gap > water_depth) return;  // above the water on the bed (a falling drop)
 
-  // The exposed material's erodibility at the vertex under the particle (docs/layers.md): a factor on
-  // the detachment, never on the deposition.
+  // The exposed material's erodibility over the particle's footprint (docs/layers.md): its mean is a
+  // factor on the detachment (never on the deposition), and the quanta detached come from the
+  // footprint's vertices in proportion to their erodibility, none from a frozen one.
 #if GROUND
-  const int vi = clamp((int)(px / tcell + 0.5f), 0, tnx - 1), vj = clamp((int)(pz / tcell + 0.5f), 0, tny - 1);
-  const float bed_factor = erodibility[vj * tnx + vi];
+  const float bed_factor = footprint_mean_float(erodibility, tnx, tny, tcell, px, pz);
+  const __global float* bed_field = erodibility;
 #else
   const float bed_factor = 1.0f;
+  const __global float* bed_field = 0;
 #endif
 #if EROSION_MODEL == 0
   const float3 vel = (float3)(vx[i], vy[i], vz[i]);
@@ -123,7 +127,7 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
     const long q = stochastic_quanta(amount, exchange_random(seed, id[i], step_index, 0));
     if (q > 0 && carried + q < 0x7fffffffL) {
       land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, q, -1,
-                  exchange_random(seed, id[i], step_index, 1));
+                  exchange_random(seed, id[i], step_index, 1), bed_field, bed_factor);
       sediment[i] = (int)(carried + q);
     }
   } else {
@@ -132,7 +136,7 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
     const long q = min(carried, stochastic_quanta(amount, exchange_random(seed, id[i], step_index, 0)));
     if (q > 0) {
       land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, q, 1,
-                  exchange_random(seed, id[i], step_index, 1));
+                  exchange_random(seed, id[i], step_index, 1), 0, 1.0f);
       sediment[i] = (int)(carried - q);
     }
   }
@@ -142,7 +146,7 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
                                      exchange_random(seed, id[i], step_index, 0));
     if (q > 0 && carried + q < 0x7fffffffL) {
       land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, q, -1,
-                  exchange_random(seed, id[i], step_index, 1));
+                  exchange_random(seed, id[i], step_index, 1), bed_field, bed_factor);
       sediment[i] = (int)(carried + q);
       contacts[i] += 1;
     }

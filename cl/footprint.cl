@@ -37,8 +37,11 @@ inline Footprint footprint_of(float x, float z, int nx, int ny, float cell) {
 // quanta·w_k/Σw in expectation, and exactly `quanta` together: systematic sampling, vertex k gets
 // floor(quanta·C_k + u) − floor(quanta·C_(k−1) + u) with C the cumulative normalised weight and u in
 // [0, 1). Small amounts land on the vertices in proportion to their weights, not all on the nearest.
+// With a `factor` field (not null), vertex k's weight is w_k·factor[k] and factor_mean is
+// Σ w_k·factor[k] / Σ w_k (footprint_mean_float): erosion taken from a layered bed comes from its
+// vertices in proportion to their erodibility, and none from a frozen one.
 inline void spread_quanta(volatile __global long* target, int nx, int ny, float cell, float x, float z, long quanta,
-                          long sign, float u) {
+                          long sign, float u, const __global float* factor, float factor_mean) {
   if (quanta == 0) return;
   const Footprint f = footprint_of(x, z, nx, ny, cell);
   if (!(f.sum_x > 0.0f && f.sum_z > 0.0f)) {  // no vertex in reach (a particle off the grid's edge)
@@ -46,20 +49,49 @@ inline void spread_quanta(volatile __global long* target, int nx, int ny, float 
     atom_add(&target[k], sign * quanta);
     return;
   }
-  const float scale = (float)quanta / (f.sum_x * f.sum_z);
-  float cumulative = 0.0f;
+  const float scale = (float)quanta / (f.sum_x * f.sum_z * (factor ? factor_mean : 1.0f));
+  float cumulative = 0.0f, best_weight = 0.0f;
   long given = 0;
+  int best = -1;
   for (int j = f.j0; j <= f.j1; ++j) {
     const float wz = footprint_weight((float)j * cell - z);
     for (int i = f.i0; i <= f.i1; ++i) {
-      cumulative += wz * footprint_weight((float)i * cell - x);
-      const long upto = (i == f.i1 && j == f.j1) ? quanta : min(quanta, (long)floor(cumulative * scale + u));
+      const float w = wz * footprint_weight((float)i * cell - x) * (factor ? factor[j * nx + i] : 1.0f);
+      cumulative += w;
+      if (w > best_weight) {
+        best_weight = w;
+        best = j * nx + i;
+      }
+      // Round-off's remainder: the last vertex takes it, or, where a factor gives that one no
+      // weight, the heaviest (a factor of 1 everywhere changes nothing, bit for bit).
+      const long upto = (i == f.i1 && j == f.j1 && (!factor || w > 0.0f))
+                            ? quanta
+                            : min(quanta, (long)floor(cumulative * scale + u));
       if (upto > given) {
         atom_add(&target[j * nx + i], sign * (upto - given));
         given = upto;
       }
     }
   }
+  if (factor && given < quanta && best >= 0) atom_add(&target[best], sign * (quanta - given));
+}
+
+// The footprint-weighted mean of a float vertex field at (x, z); the nearest vertex's value off the
+// grid's edge. Both sums run in the same order, so a field of 1 everywhere has a mean of exactly 1.
+inline float footprint_mean_float(const __global float* field, int nx, int ny, float cell, float x, float z) {
+  const Footprint f = footprint_of(x, z, nx, ny, cell);
+  if (!(f.sum_x > 0.0f && f.sum_z > 0.0f))
+    return field[clamp((int)round(z / cell), 0, ny - 1) * nx + clamp((int)round(x / cell), 0, nx - 1)];
+  float sum = 0.0f, weights = 0.0f;
+  for (int j = f.j0; j <= f.j1; ++j) {
+    const float wz = footprint_weight((float)j * cell - z);
+    for (int i = f.i0; i <= f.i1; ++i) {
+      const float w = wz * footprint_weight((float)i * cell - x);
+      sum += w * field[j * nx + i];
+      weights += w;
+    }
+  }
+  return sum / weights;
 }
 
 // The footprint-weighted mean of a vertex field (integer counts × unit) at (x, z).

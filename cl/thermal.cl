@@ -8,19 +8,21 @@
 // amounts are integer counts of the height quantum, so volume is conserved exactly. The outflows are
 // stored one plane per direction (L R T B: outflow[d·n + k]), so that both passes read them contiguously.
 // With a layer stack (GROUND = 1, docs/layers.md) the threshold is the exposed material's (talus_field,
-// quanta) and c is scaled by its erodibility (at most 1; 0 where frozen).
+// quanta), and the amount shed is the bed's detachment of c·(d_max − T): its loose sediment first, then
+// its rock, each at its own erodibility (0 where frozen), never more than c = 1 would shed.
 // Height-aware variant (HEIGHT_AWARE = 1): the threshold grows with height,
 //   T(h) = T · (1 + hardness · (h − h_min)/(h_max − h_min)), which keeps peaks sharp.
 
 __kernel void thermal_outflow(const __global long* height, __global long* outflow, const int nx, const int ny,
                               const long talus, const float rate, const int height_aware, const float hardness,
-                              const long h_min, const long h_range, const __global float* erodibility,
-                              const __global float* talus_field) {
+                              const long h_min, const long h_range, const __global float* rock_erodibility,
+                              const __global float* sediment_erodibility, const __global long* ground_sediment,
+                              const __global long* talus_field) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
   const long h = height[k];
-  long threshold = GROUND ? (long)talus_field[k] : talus;
+  long threshold = GROUND ? talus_field[k] : talus;
   if (height_aware && h_range > 0) {
     threshold = (long)((float)threshold * (1.0f + hardness * (float)(h - h_min) / (float)h_range));
   }
@@ -33,8 +35,8 @@ __kernel void thermal_outflow(const __global long* height, __global long* outflo
   const long excess_sum = excess_l + excess_r + excess_t + excess_b;
   const long d_max = max(max(drop_l, drop_r), max(drop_t, drop_b));
   // Both amounts are ≥ 0, so truncation is the floor (and, unlike floor(), vectorises).
-  const float c = GROUND ? fmin(rate * erodibility[k], 1.0f) : rate;
-  const long total = excess_sum > 0 ? (long)(c * (float)(d_max - threshold)) : 0;
+  const float shed = fmin(BED_DETACHMENT(rate * (float)(d_max - threshold), k), (float)(d_max - threshold));
+  const long total = excess_sum > 0 ? (long)shed : 0;
   const float sum = (float)max(excess_sum, 1L);
   outflow[0 * n + k] = (long)((float)total * ((float)excess_l / sum));
   outflow[1 * n + k] = (long)((float)total * ((float)excess_r / sum));

@@ -18,7 +18,7 @@ __kernel void water_depth_scatter(const __global float* x, const __global float*
   const uint i = get_global_id(0);
   if (i >= n || (id[i] & DEAD_FLAG)) return;
   const long counts = (long)round(WATER_PARTICLE_VOLUME / (WATER_QUANTUM * tcell * tcell));
-  spread_quanta(water, tnx, tny, tcell, x[i], z[i], counts, 1, 0.5f);
+  spread_quanta(water, tnx, tny, tcell, x[i], z[i], counts, 1, 0.5f, 0, 1.0f);
 }
 
 __kernel void water_depth_gather(const __global float* x, const __global float* z, const __global uint* id,

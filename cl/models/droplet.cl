@@ -49,29 +49,36 @@ inline void deposit_bilinear(volatile __global long* delta, __global uint* chang
   if (quanta - given > 0) atom_add(&delta[k[largest]], quanta - given);
 }
 
-// Erodes `quanta` from the vertices within DROPLET_RADIUS cells, weighted by (radius − distance).
+// Erodes floor(amount·ē/quantum) quanta from the vertices within DROPLET_RADIUS cells, weighted by
+// (radius − distance)·e, with e the vertex's erodibility (1 without a layer stack) and ē its mean
+// under the brush: a layered bed gives in proportion to how easily it erodes, a frozen vertex
+// nothing (docs/layers.md). Returns the quanta taken.
 #define BRUSH_SIDE (2 * (int)DROPLET_RADIUS_CELLS + 2)
-inline void erode_brush(volatile __global long* delta, __global uint* changed, int tiles_x, int nx, int ny, float x,
-                        float z, long quanta) {
-  if (quanta <= 0) return;
+inline long erode_brush(volatile __global long* delta, __global uint* changed, int tiles_x, int nx, int ny, float x,
+                        float z, float amount, float quantum, const __global float* erodibility) {
   const int r = DROPLET_RADIUS_CELLS;
   const int ci = (int)x, cj = (int)z;
-  mark_changed_tiles(changed, tiles_x, max(ci - r, 0), min(ci + r + 1, nx - 1), max(cj - r, 0),
-                     min(cj + r + 1, ny - 1));
   // The weights once, kept for the second pass.
   float weight[BRUSH_SIDE * BRUSH_SIDE];
-  float total = 0.0f;
+  float total = 0.0f, plain_total = 0.0f;
   for (int dj = -r; dj <= r + 1; ++dj) {
     for (int di = -r; di <= r + 1; ++di) {
       const int a = ci + di, b = cj + dj;
-      float w = 0.0f;
+      float w = 0.0f, e = 1.0f;
       const float dx = (float)a - x, dz = (float)b - z;  // sqrt, not hypot: far faster on CPUs
-      if (a >= 0 && b >= 0 && a < nx && b < ny) w = fmax(0.0f, DROPLET_RADIUS - sqrt(dx * dx + dz * dz));
-      weight[(dj + r) * BRUSH_SIDE + (di + r)] = w;
-      total += w;
+      if (a >= 0 && b >= 0 && a < nx && b < ny) {
+        w = fmax(0.0f, DROPLET_RADIUS - sqrt(dx * dx + dz * dz));
+        e = ERODIBILITY(erodibility, b * nx + a);
+      }
+      weight[(dj + r) * BRUSH_SIDE + (di + r)] = w * e;
+      total += w * e;
+      plain_total += w;
     }
   }
-  if (total <= 0.0f) return;
+  const long quanta = plain_total > 0.0f ? (long)floor(amount * (total / plain_total) / quantum) : 0;
+  if (quanta <= 0 || total <= 0.0f) return 0;
+  mark_changed_tiles(changed, tiles_x, max(ci - r, 0), min(ci + r + 1, nx - 1), max(cj - r, 0),
+                     min(cj + r + 1, ny - 1));
   long taken = 0, best_part = -1;
   int best = -1;
   for (int dj = -r; dj <= r + 1; ++dj) {
@@ -89,6 +96,7 @@ inline void erode_brush(volatile __global long* delta, __global uint* changed, i
     }
   }
   if (quanta - taken > 0 && best >= 0) atom_add(&delta[best], -(quanta - taken));
+  return quanta;
 }
 
 // Droplet state between steps: (x, z, dir_x, dir_z, speed, water) in cell units; water < 0 marks
@@ -156,12 +164,8 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
     deposit_bilinear(delta, changed, tiles_x, nx, x, z, q);
     sediment -= q;
   } else {
-    // The exposed material's erodibility at the droplet's vertex scales what it takes (docs/layers.md).
-    const int here = (int)(z + 0.5f) * nx + (int)(x + 0.5f);
-    const float amount = fmin((capacity - carried) * DROPLET_ERODE * ERODIBILITY(erodibility, here), -dh);
-    const long q = (long)floor(amount / quantum);
-    erode_brush(delta, changed, tiles_x, nx, ny, x, z, q);
-    sediment += q;
+    const float amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
+    sediment += erode_brush(delta, changed, tiles_x, nx, ny, x, z, amount, quantum, erodibility);
   }
   speed = sqrt(fmax(0.0f, speed * speed - dh * DROPLET_GRAVITY));
   water *= 1.0f - DROPLET_EVAPORATE;

@@ -13,16 +13,18 @@
 // Compile-time constants (host -D): OLSEN_RAIN, OLSEN_SOLUBILITY, OLSEN_EVAPORATION, OLSEN_CAPACITY (m
 // or fractions, per iteration).
 
-// With a layer stack the dissolved amount is scaled by the exposed material's erodibility, and with
-// a rain mask the rain by the vertex's weight (docs/layers.md).
+// With a layer stack the dissolved amount is the bed's detachment (its loose sediment first, then its
+// rock, each at its own erodibility), and with a rain mask the rain is scaled by the vertex's weight
+// (docs/layers.md).
 __kernel void olsen_dissolve(__global long* height, __global float* water, __global long* sediment, const int n,
-                             const float quantum, const __global float* erodibility,
+                             const float quantum, const __global float* rock_erodibility,
+                             const __global float* sediment_erodibility, const __global long* ground_sediment,
                              const __global float* rain_weight) {
   const int k = get_global_id(0);
   if (k >= n) return;
   const float w = water[k] + OLSEN_RAIN * RAIN_WEIGHT(rain_weight, k);
   water[k] = w;
-  const long m = (long)floor(OLSEN_SOLUBILITY * w * ERODIBILITY(erodibility, k) / quantum);
+  const long m = (long)floor(BED_DETACHMENT(OLSEN_SOLUBILITY * w / quantum, k));
   height[k] -= m;
   sediment[k] += m;
 }

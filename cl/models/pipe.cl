@@ -125,7 +125,8 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
                          __global float* depth, const __global float* velocity, const int nx, const int ny,
                          const float quantum, const float cell, const float dissolved_fraction,
                          const float deposited_fraction, const float evaporation_factor, const ulong seed,
-                         const ulong step_index, const __global float* erodibility) {
+                         const ulong step_index, const __global float* rock_erodibility,
+                         const __global float* sediment_erodibility, const __global long* ground_sediment) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
@@ -148,9 +149,8 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   const float u = pipe_random(seed, PIPE_ERODE_STREAM, step_index, nx * ny, k);
   // Below capacity dissolve, above it deposit (never more than the load); both amounts are ≥ 0, so
   // truncation is the floor. Positive: from the bed into the water.
-  // The exposed material's erodibility scales the dissolution (docs/layers.md), never the deposition.
-  const long dissolved =
-      (long)(dissolved_fraction * fmax(capacity - s, 0.0f) * ERODIBILITY(erodibility, k) / quantum + u);
+  // With a layer stack the dissolution is the bed's detachment (docs/layers.md); never the deposition.
+  const long dissolved = (long)(BED_DETACHMENT(dissolved_fraction * fmax(capacity - s, 0.0f) / quantum, k) + u);
   const long deposited = min(load, (long)(deposited_fraction * fmax(s - capacity, 0.0f) / quantum + u));
   const long exchanged = capacity > s ? dissolved : -deposited;
   height[k] -= exchanged;

@@ -4,8 +4,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "cli/commands.hpp"
+#include "runnel/core/scenario.hpp"
+#include "runnel/ground/ground.hpp"
+#include "runnel/ground/strata.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/terrain/terrain_io.hpp"
@@ -13,8 +17,39 @@
 namespace runnel::cli {
 namespace {
 
+// The layer stack of a checkpoint that has one (docs/layers.md), and its loose sediment.
+std::optional<std::pair<Strata, std::vector<std::int64_t>>> ground_of(const CheckpointData& d) {
+  const StoredField *contacts = nullptr, *sediment = nullptr;
+  for (const StoredField& f : d.fields) {
+    if (f.name == kGroundContacts) contacts = &f;
+    if (f.name == kGroundSediment) sediment = &f;
+  }
+  if (!contacts || !sediment) return std::nullopt;
+  const Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
+  return std::make_pair(strata_from_fields(params, d.terrain.nx, d.terrain.ny, contacts->i64,
+                                           contacts->components, d.height_quantum),
+                        sediment->i64);
+}
+
+// The stack as a table: each material's erodibility, rock eroded and exposed share.
+void print_ground(const CheckpointData& d, const Strata& s,
+                  const std::vector<std::int64_t>& sediment) {
+  const MaterialTally t = tally_materials(s, d.height_fixed, sediment);
+  const double vq = d.height_quantum * d.terrain.cell * d.terrain.cell;
+  std::printf("  layer stack, top first (erodibility, rock eroded, exposed share of the map):\n");
+  for (std::size_t m = 0; m < s.materials.size(); ++m) {
+    const double share =
+        100.0 * static_cast<double>(t.exposed[m]) / static_cast<double>(s.vertices());
+    const bool loose = m >= t.eroded.size();
+    const double volume = static_cast<double>(loose ? t.sediment : t.eroded[m]) * vq;
+    std::printf("    %-16s x%-6g %12.6g m^3 %s %5.1f %%\n", s.materials[m].name.c_str(),
+                s.materials[m].erodibility, volume, loose ? "loose " : "eroded", share);
+  }
+}
+
 void print_checkpoint_info(const std::string& file, bool json) {
   const CheckpointData d = read_checkpoint(file);
+  const auto ground = ground_of(d);
   // Suspended sediment: on the particles (sph), or the grid field (pipe, olsen).
   double suspended = 0;
   for (auto s : d.particles.sediment) suspended += s;
@@ -53,6 +88,9 @@ void print_checkpoint_info(const std::string& file, bool json) {
                      .add("deposited_volume", deposited * q)
                      .add("suspended_volume", suspended)
                      .add("fields", fields)
+                     .add("ground",
+                          ground ? ground_summary(ground->first, d.height_fixed, ground->second, q)
+                                 : JsonObject())
                      .str()
               << "\n";
     return;
@@ -75,6 +113,7 @@ void print_checkpoint_info(const std::string& file, bool json) {
   }
   std::printf("  eroded %.6g m^3, deposited %.6g m^3, suspended %.6g m^3\n", eroded * q,
               deposited * q, suspended);
+  if (ground) print_ground(d, ground->first, ground->second);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/ground/ground_settings.hpp"
+#include "runnel/terrain/thermal.hpp"
 
 namespace runnel {
 namespace {
@@ -54,11 +55,11 @@ Ground::Ground(ComputeContext& compute, const Parameters& params, DeviceTerrain&
       strata_(build_strata(params, initial, initial_fixed, terrain.quantum())) {
   const std::size_t n = strata_.vertices();
   const auto mask = erodibility_mask(GroundSettings::from(params), strata_.nx, strata_.ny);
-  std::vector<float> erodibility, talus;
+  std::vector<float> erodibility;
+  std::vector<std::int64_t> talus;
   for (const Material& m : strata_.materials) {
     erodibility.push_back(static_cast<float>(m.erodibility));
-    talus.push_back(static_cast<float>(terrain.cell() * std::tan(m.talus_angle_deg * M_PI / 180.0) /
-                                       terrain.quantum()));
+    talus.push_back(talus_threshold_quanta(terrain.cell(), m.talus_angle_deg, terrain.quantum()));
   }
   contacts_ = device_copy(
       compute, std::vector<std::int64_t>(strata_.contacts.begin() + n, strata_.contacts.end()));
@@ -68,7 +69,9 @@ Ground::Ground(ComputeContext& compute, const Parameters& params, DeviceTerrain&
   material_erodibility_ = device_copy(compute, erodibility);
   material_talus_ = device_copy(compute, talus);
   erodibility_ = device_copy(compute, std::vector<float>(n, 1.0f));
-  talus_ = device_copy(compute, std::vector<float>(n, 0.0f));
+  rock_erodibility_ = device_copy(compute, std::vector<float>(n, 1.0f));
+  sediment_erodibility_ = device_copy(compute, std::vector<float>(n, 1.0f));
+  talus_ = device_copy(compute, std::vector<std::int64_t>(n, 0));
   exposed_ = device_copy(compute, std::vector<int>(n, 0));
   update_kernel_ = Kernel(compute, compute.program({"cl/ground.cl"}), "ground_update");
   update();
@@ -85,10 +88,29 @@ void Ground::update() {
       .set("mask", mask_)
       .set("material_erodibility", material_erodibility_)
       .set("material_talus", material_talus_)
+      .set("active_layer", static_cast<cl_long>(strata_.active_layer))
       .set("erodibility", erodibility_)
+      .set("rock_erodibility", rock_erodibility_)
+      .set("sediment_erodibility", sediment_erodibility_)
       .set("talus", talus_)
       .set("exposed", exposed_)
       .launch(round_up_work(static_cast<std::size_t>(n)), "ground.update");
+}
+
+void Ground::bind_detachment(Kernel& kernel) {
+  kernel.set("rock_erodibility", rock_erodibility_)
+      .set("sediment_erodibility", sediment_erodibility_)
+      .set("ground_sediment", sediment_);
+}
+
+void bind_detachment(Kernel& kernel, Ground* ground, cl::Buffer& placeholder) {
+  if (ground) {
+    ground->bind_detachment(kernel);
+  } else {
+    kernel.set("rock_erodibility", placeholder)
+        .set("sediment_erodibility", placeholder)
+        .set("ground_sediment", placeholder);
+  }
 }
 
 std::vector<std::int64_t> Ground::sediment() {
@@ -146,44 +168,7 @@ void Ground::restore(const std::vector<StoredField>& fields) {
 }
 
 JsonObject Ground::report() {
-  const std::vector<std::int64_t> height_fixed = terrain_.download_fixed();
-  const std::size_t n = strata_.vertices();
-  const auto s = sediment();
-  const auto e = exposed();
-  std::vector<std::int64_t> rock(n);
-  for (std::size_t k = 0; k < n; ++k) rock[k] = height_fixed[k] - s[k];
-  const auto eroded = eroded_per_material(strata_, rock);
-  std::vector<std::size_t> exposed_count(strata_.materials.size(), 0);
-  for (int m : e) ++exposed_count[static_cast<std::size_t>(m)];
-  const double vq = terrain_.volume_quantum();
-  std::vector<JsonObject> materials;
-  std::int64_t eroded_total = 0;
-  for (std::size_t m = 0; m < strata_.materials.size(); ++m) {
-    const Material& mat = strata_.materials[m];
-    const std::int64_t q = m < eroded.size() ? eroded[m] : 0;
-    eroded_total += q;
-    JsonObject o;
-    o.add("name", mat.name)
-        .add("erodibility", mat.erodibility)
-        .add("talus_angle_deg", mat.talus_angle_deg)
-        .add("exposed_fraction", static_cast<double>(exposed_count[m]) / static_cast<double>(n));
-    if (static_cast<int>(m) != strata_.sediment()) {
-      o.add("eroded_m3", static_cast<double>(q) * vq)
-          .add("eroded_kg", static_cast<double>(q) * vq * mat.density)
-          .add("eroded_quanta", static_cast<long long>(q));
-    }
-    materials.push_back(o);
-  }
-  const std::int64_t sediment_total = std::accumulate(s.begin(), s.end(), std::int64_t{0});
-  std::int64_t change = 0;
-  for (std::size_t k = 0; k < n; ++k) change += height_fixed[k] - strata_.contact(0, k);
-  return JsonObject()
-      .add("materials", materials)
-      .add("sediment_m3", static_cast<double>(sediment_total) * vq)
-      .add("rock_eroded_m3", static_cast<double>(eroded_total) * vq)
-      // Σ(h − h0) = Σ sediment − Σ eroded rock, exactly: 0 unless the bookkeeping is broken.
-      .add("layer_balance_quanta",
-           static_cast<long long>(change - (sediment_total - eroded_total)));
+  return ground_summary(strata_, terrain_.download_fixed(), sediment(), terrain_.volume_quantum());
 }
 
 std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& params,
@@ -194,7 +179,7 @@ std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& p
 }
 
 cl::Buffer placeholder_buffer(ComputeContext& compute) {
-  return device_copy(compute, std::vector<float>(1, 1.0f));
+  return device_copy(compute, std::vector<double>(1, 1.0));  // 8 bytes: room for any type
 }
 
 std::vector<float> rain_weights(const Parameters& params, int nx, int ny) {

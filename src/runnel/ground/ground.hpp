@@ -31,9 +31,13 @@ class Ground {
 
   // Books the step's net height change into the sediment and refreshes the factors.
   void update();
-  // Per vertex: the erodibility factor (float) and the talus threshold (quanta, float).
+  // Per vertex: the active layer's erodibility (float; the particle models read it) and the talus
+  // threshold (quanta, int64).
   cl::Buffer& erodibility() { return erodibility_; }
   cl::Buffer& talus_threshold() { return talus_; }
+  // The arguments of a grid kernel's bed detachment (BED_DETACHMENT in cl/common.cl):
+  // rock_erodibility, sediment_erodibility and ground_sediment.
+  void bind_detachment(Kernel& kernel);
 
   const Strata& strata() const { return strata_; }
   double quantum() const { return terrain_.quantum(); }
@@ -54,7 +58,7 @@ class Ground {
   DeviceTerrain& terrain_;
   Strata strata_;
   cl::Buffer contacts_, previous_, sediment_, mask_, material_erodibility_, material_talus_;
-  cl::Buffer erodibility_, talus_, exposed_;
+  cl::Buffer erodibility_, rock_erodibility_, sediment_erodibility_, talus_, exposed_;
   Kernel update_kernel_;
 };
 
@@ -64,9 +68,11 @@ std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& p
                                     const std::vector<std::int64_t>& initial_fixed);
 
 // The per-vertex buffers a model binds for the erodibility and rain-weight arguments of its
-// kernels: the ground's and the rain mask's, or one float when there is none (the kernels, compiled
+// kernels: the ground's and the rain mask's, or one value when there is none (the kernels, compiled
 // with GROUND = 0 or RAIN_MASK = 0, never read it).
 cl::Buffer placeholder_buffer(ComputeContext& compute);
+// BED_DETACHMENT's arguments from `ground`, or placeholders when it is null.
+void bind_detachment(Kernel& kernel, Ground* ground, cl::Buffer& placeholder);
 // The rain mask (fractions 0 to 1 per vertex) on the device, or a placeholder without one.
 cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params, int nx, int ny);
 // The rain mask on the host: the fractions per vertex, checked (finite, in [0, 1]); all 1 without

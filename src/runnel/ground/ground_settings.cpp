@@ -18,6 +18,7 @@ const SettingsTable<GroundSettings> kGroundTable = {
       {"ground.sediment_erodibility", "1", "1", 0, 1e6, {}, "factor on the erosion rate where loose sediment (what was eroded and deposited) lies on top", &G::sediment_erodibility},
       {"ground.sediment_talus_angle", "0", "deg", 0, 89, {}, "the loose sediment's talus angle; 0: thermal.talus_angle", &G::sediment_talus_angle},
       {"ground.sediment_density", "1600", "kg/m3", 1, 1e5, {}, "the loose sediment's bulk density (metrics.json)", &G::sediment_density},
+      {"ground.active_layer", "0.01", "m", 1e-9, 1e6, {}, "active layer (Hirano 1971): the bed erodes as a blend of its loose sediment and the rock below, by the share of this thickness the sediment fills; the maps show the sediment where it fills half of it", &G::active_layer},
       {"ground.hardness_mask", "\"\"", "", 0, 0, {}, "raster of a factor ≥ 0 on the erodibility per vertex (any terrain format), relative to the scenario; empty: none", &G::hardness_mask},
       {"ground.rain_mask", "\"\"", "", 0, 0, {}, "raster of the fraction (0 to 1) of the rain that falls at each vertex, for every model with rain; empty: rain everywhere", &G::rain_mask},
       {"ground.frozen_mask", "\"\"", "", 0, 0, {}, "raster; where it is not 0 the ground is frozen and nothing erodes; empty: none", &G::frozen_mask},

@@ -13,6 +13,7 @@ struct GroundSettings {
   std::string bedrock_name;
   double bedrock_erodibility, bedrock_talus_angle, bedrock_density;
   double sediment_erodibility, sediment_talus_angle, sediment_density;
+  double active_layer;  // m
   std::string hardness_mask, rain_mask, frozen_mask;
   static GroundSettings from(const Parameters& params);
 };

@@ -63,6 +63,7 @@ Strata build_strata(const Parameters& params, const Heightmap& initial,
   s.nx = initial.nx;
   s.ny = initial.ny;
   s.strata = static_cast<int>(params.layers().size());
+  s.active_layer = std::max<std::int64_t>(1, std::llround(g.active_layer / quantum));
   const std::size_t n = s.vertices();
   s.contacts.assign((s.strata + 1) * n, 0);
   std::copy(initial_fixed.begin(), initial_fixed.end(), s.contacts.begin());
@@ -72,9 +73,6 @@ Strata build_strata(const Parameters& params, const Heightmap& initial,
   for (int l = 0; l < s.strata; ++l) {
     const LayerValues& layer = params.layers()[l];
     const std::string name = layer_text(layer, "name");
-    s.materials.push_back({name, layer_real(layer, "erodibility"),
-                           resolved_talus(layer_real(layer, "talus_angle"), params),
-                           layer_real(layer, "density")});
     const LayerShape shape = layer_shape(layer);
     std::vector<float> raster;
     if (shape == LayerShape::kRaster) {
@@ -132,19 +130,111 @@ Strata build_strata(const Parameters& params, const Heightmap& initial,
       }
     }
   }
-  s.materials.push_back({g.bedrock_name, g.bedrock_erodibility,
-                         resolved_talus(g.bedrock_talus_angle, params), g.bedrock_density});
-  s.materials.push_back({"sediment", g.sediment_erodibility,
-                         resolved_talus(g.sediment_talus_angle, params), g.sediment_density});
+  s.materials = ground_materials(params);
   return s;
+}
+
+std::vector<Material> ground_materials(const Parameters& params) {
+  const GroundSettings g = GroundSettings::from(params);
+  std::vector<Material> materials;
+  for (const LayerValues& layer : params.layers()) {
+    materials.push_back({layer_text(layer, "name"), layer_real(layer, "erodibility"),
+                         resolved_talus(layer_real(layer, "talus_angle"), params),
+                         layer_real(layer, "density")});
+  }
+  materials.push_back({g.bedrock_name, g.bedrock_erodibility,
+                       resolved_talus(g.bedrock_talus_angle, params), g.bedrock_density});
+  materials.push_back({"sediment", g.sediment_erodibility,
+                       resolved_talus(g.sediment_talus_angle, params), g.sediment_density});
+  return materials;
+}
+
+MaterialTally tally_materials(const Strata& strata, const std::vector<std::int64_t>& height_fixed,
+                              const std::vector<std::int64_t>& sediment) {
+  const std::size_t n = strata.vertices();
+  MaterialTally t;
+  t.exposed.assign(strata.materials.size(), 0);
+  std::vector<std::int64_t> rock(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    rock[k] = height_fixed[k] - sediment[k];
+    ++t.exposed[static_cast<std::size_t>(exposed_material(strata, k, rock[k], sediment[k]))];
+    t.sediment += sediment[k];
+    t.change += height_fixed[k] - strata.contact(0, k);
+  }
+  t.eroded = eroded_per_material(strata, rock);
+  return t;
+}
+
+JsonObject ground_summary(const Strata& strata, const std::vector<std::int64_t>& height_fixed,
+                          const std::vector<std::int64_t>& sediment, double volume_quantum) {
+  const MaterialTally t = tally_materials(strata, height_fixed, sediment);
+  const double n = static_cast<double>(strata.vertices());
+  std::vector<JsonObject> materials;
+  std::int64_t eroded_total = 0;
+  for (std::size_t m = 0; m < strata.materials.size(); ++m) {
+    const Material& mat = strata.materials[m];
+    JsonObject o;
+    o.add("name", mat.name)
+        .add("erodibility", mat.erodibility)
+        .add("talus_angle_deg", mat.talus_angle_deg)
+        .add("exposed_fraction", static_cast<double>(t.exposed[m]) / n);
+    if (m < t.eroded.size()) {
+      eroded_total += t.eroded[m];
+      const double volume = static_cast<double>(t.eroded[m]) * volume_quantum;
+      o.add("eroded_m3", volume)
+          .add("eroded_kg", volume * mat.density)
+          .add("eroded_quanta", static_cast<long long>(t.eroded[m]));
+    } else {
+      o.add("volume_m3", static_cast<double>(t.sediment) * volume_quantum);
+    }
+    materials.push_back(o);
+  }
+  return JsonObject()
+      .add("materials", materials)
+      .add("sediment_m3", static_cast<double>(t.sediment) * volume_quantum)
+      .add("rock_eroded_m3", static_cast<double>(eroded_total) * volume_quantum)
+      // Σ(h − h0) = Σ sediment − Σ eroded rock, exactly: 0 unless the bookkeeping is broken.
+      .add("layer_balance_quanta", static_cast<long long>(t.change - (t.sediment - eroded_total)));
+}
+
+Strata strata_from_fields(const Parameters& params, int nx, int ny,
+                          const std::vector<std::int64_t>& contacts, int components,
+                          double quantum) {
+  Strata s;
+  s.nx = nx;
+  s.ny = ny;
+  s.strata = components - 1;
+  s.materials = ground_materials(params);
+  if (static_cast<int>(s.materials.size()) != s.strata + 2)
+    throw input_error("checkpoint: /fields/ground__contact_elevation has " +
+                      std::to_string(components) + " contacts, the parameters " +
+                      std::to_string(s.materials.size() - 1) + " strata and a bedrock");
+  s.active_layer =
+      std::max<std::int64_t>(1, std::llround(GroundSettings::from(params).active_layer / quantum));
+  const std::size_t n = s.vertices();
+  s.contacts.assign(static_cast<std::size_t>(components) * n, 0);
+  for (std::size_t k = 0; k < n; ++k)
+    for (int l = 0; l < components; ++l) s.contacts[l * n + k] = contacts[k * components + l];
+  return s;
+}
+
+int rock_material(const Strata& strata, std::size_t k, std::int64_t rock) {
+  int e = 0;
+  for (int l = 1; l <= strata.strata; ++l) e += rock <= strata.contact(l, k) ? 1 : 0;
+  return e;
 }
 
 int exposed_material(const Strata& strata, std::size_t k, std::int64_t rock,
                      std::int64_t sediment) {
-  if (sediment > 0) return strata.sediment();
-  int e = 0;
-  for (int l = 1; l <= strata.strata; ++l) e += rock <= strata.contact(l, k) ? 1 : 0;
-  return e;
+  return 2 * sediment >= strata.active_layer ? strata.sediment() : rock_material(strata, k, rock);
+}
+
+double bed_erodibility(const Strata& strata, std::size_t k, std::int64_t rock,
+                       std::int64_t sediment) {
+  const double cover =
+      std::min(1.0, static_cast<double>(sediment) / static_cast<double>(strata.active_layer));
+  return cover * strata.materials[strata.sediment()].erodibility +
+         (1 - cover) * strata.materials[rock_material(strata, k, rock)].erodibility;
 }
 
 std::vector<std::int64_t> eroded_per_material(const Strata& strata,

@@ -146,7 +146,7 @@ void check_invariants(const std::string& path, const CheckpointData& d) {
   }
   for (const auto& field : d.fields)
     for (std::int64_t v : field.i64)
-      if (v < 0 && field.name == kSedimentSuspended)
+      if (v < 0 && (field.name == kSedimentSuspended || field.name == "ground__sediment_thickness"))
         refuse("/fields/" + field.name + " is negative");
 }
 

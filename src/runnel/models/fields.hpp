@@ -16,7 +16,7 @@ struct FieldDescription {
   std::string name;
   FieldLocation location;
   FieldType type;
-  int components;  // values per vertex or particle
+  int components;  // values per vertex or particle; 0: one per stratum of the run's layer stack
   std::string unit;
   std::string doc;
 };

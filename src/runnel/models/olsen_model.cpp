@@ -60,7 +60,8 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
   dissolve_ = Kernel(compute, program, "olsen_dissolve");
   outflow_ = Kernel(compute, program, "olsen_outflow");
   gather_settle_ = Kernel(compute, program, "olsen_gather_settle");
-  dissolve_.set("erodibility", erodibility()).set("rain_weight", rain_weight());
+  bind_detachment(dissolve_, ground_.get(), placeholder_);
+  dissolve_.set("rain_weight", rain_weight());
 }
 
 double OlsenModel::take_step() {

@@ -29,6 +29,10 @@ std::vector<ParamSpec> thermal_parameters() {
   return settings_specs(kThermalTable);
 }
 
+std::int64_t talus_threshold_quanta(double cell, double angle_deg, double quantum) {
+  return std::llround(cell * std::tan(angle_deg * M_PI / 180.0) / quantum);
+}
+
 ThermalSettings ThermalSettings::from(const Parameters& p) {
   return read_settings(p, kThermalTable);
 }
@@ -44,15 +48,15 @@ ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& ter
       compute.program({"cl/common.cl", "cl/thermal.cl"}, ground ? " -DGROUND=1" : "");
   outflow_kernel_ = Kernel(compute, program, "thermal_outflow");
   placeholder_ = placeholder_buffer(compute);
-  outflow_kernel_.set("erodibility", ground ? ground->erodibility() : placeholder_)
-      .set("talus_field", ground ? ground->talus_threshold() : placeholder_);
+  bind_detachment(outflow_kernel_, ground, placeholder_);
+  outflow_kernel_.set("talus_field", ground ? ground->talus_threshold() : placeholder_);
   gather_kernel_ = Kernel(compute, program, "thermal_gather");
 }
 
 void ThermalRelaxation::relax() {
   const int nx = terrain_.nx(), ny = terrain_.ny();
-  const double threshold_m = terrain_.cell() * std::tan(settings_.talus_angle_deg * M_PI / 180.0);
-  const cl_long talus = static_cast<cl_long>(std::llround(threshold_m / terrain_.quantum()));
+  const cl_long talus =
+      talus_threshold_quanta(terrain_.cell(), settings_.talus_angle_deg, terrain_.quantum());
   cl_long h_min = 0, h_range = 0;
   if (settings_.height_aware) {
     const auto fixed = terrain_.download_fixed();

@@ -18,6 +18,9 @@ struct ThermalSettings {
   static ThermalSettings from(const Parameters& params);  // the thermal.* parameters
 };
 
+// The talus threshold cell·tan(angle) in counts of the height quantum, as the kernels compare it.
+std::int64_t talus_threshold_quanta(double cell, double angle_deg, double quantum);
+
 // Host side of cl/thermal.cl: one talus relaxation pass over the device terrain's fixed-point
 // heights (two kernels: outflows, then gather), exact in volume. Refreshes the float view.
 class ThermalRelaxation {
