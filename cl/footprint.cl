@@ -56,11 +56,18 @@ inline void spread_quanta(volatile __global long* target, int nx, int ny, float 
   for (int j = f.j0; j <= f.j1; ++j) {
     const float wz = footprint_weight((float)j * cell - z);
     for (int i = f.i0; i <= f.i1; ++i) {
-      const float w = wz * footprint_weight((float)i * cell - x) * (factor ? factor[j * nx + i] : 1.0f);
-      cumulative += w;
-      if (w > best_weight) {
-        best_weight = w;
-        best = j * nx + i;
+      // Without a factor, the sum exactly as it always was: one statement, which the compiler may
+      // contract into a fused multiply-add (splitting it changed every SPH run in the last bits).
+      float w = 1.0f;
+      if (factor) {
+        w = wz * footprint_weight((float)i * cell - x) * factor[j * nx + i];
+        cumulative += w;
+        if (w > best_weight) {
+          best_weight = w;
+          best = j * nx + i;
+        }
+      } else {
+        cumulative += wz * footprint_weight((float)i * cell - x);
       }
       // Round-off's remainder: the last vertex takes it, or, where a factor gives that one no
       // weight, the heaviest (a factor of 1 everywhere changes nothing, bit for bit).
