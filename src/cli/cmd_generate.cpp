@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: MIT
 // runnel generate: a seeded, deterministic terrain from one of the generators.
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/ground/ground_outputs.hpp"
+#include "runnel/ground/strata.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 
@@ -65,7 +69,11 @@ void add_generate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", opt->seed, "random seed")->check(at_least(0))->capture_default_str();
   cmd->add_option("--set", opt->sets, "generator parameter key=value (repeatable)");
-  cmd->add_option("-o,--output", opt->output, "output file (.asc, .png, .npy, .tif)")->required();
+  cmd->add_option("-o,--output", opt->output,
+                  "output file (.asc, .png, .npy, .tif); with a layered --scenario also one "
+                  "thickness raster per stratum (STEM.NAME.EXT), or .h5 for one HDF5 file with "
+                  "the terrain and its layer stack")
+      ->required();
   cmd->add_option("--range", opt->range,
                   "PNG only: heights MIN:MAX (m) mapped to 0..65535 (default: the terrain's)");
   cmd->add_option("--scenario", opt->scenario,
@@ -74,8 +82,9 @@ void add_generate_command(CLI::App& app) {
   cmd->footer(generator_help());
   cmd->callback([opt, cmd] {
     Heightmap terrain;
+    Parameters params;
     if (!opt->scenario.empty()) {
-      Parameters params = load_scenario(opt->scenario);
+      params = load_scenario(opt->scenario);
       if (!opt->name.empty()) params.set("terrain.generator", opt->name, "generate");
       if (cmd->count("--size")) params.set_text("terrain.size", opt->size, "--size");
       if (cmd->count("--cell")) params.set("terrain.cell", opt->cell, "--cell");
@@ -101,6 +110,20 @@ void add_generate_command(CLI::App& app) {
       }
       terrain = generate_terrain(opt->name, nx, ny, opt->cell, opt->seed, values);
     }
+    if (!params.layers().empty()) {
+      // The strata on the terrain as the run sees it: heights rounded to the quantum.
+      const double q = params.real("erosion.height_quantum");
+      std::vector<std::int64_t> fixed(terrain.size());
+      for (std::size_t k = 0; k < fixed.size(); ++k) fixed[k] = std::llround(terrain.h[k] / q);
+      for (const std::string& f :
+           write_layered_terrain(opt->output, terrain, build_strata(params, terrain, fixed, q), q))
+        std::fprintf(stderr, "runnel: wrote %s\n", f.c_str());
+      return;
+    }
+    if (std::filesystem::path(opt->output).extension() == ".h5")
+      throw input_error("-o " + opt->output +
+                        ": an .h5 output holds a layered terrain; give a "
+                        "--scenario with [[layers]]");
     WriteOptions write;
     if (!opt->range.empty() && terrain_format_from_path(opt->output) != TerrainFormat::kPng)
       throw input_error("--range: only a PNG output has a height range");

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "runnel/core/error.hpp"
+#include "runnel/ground/ground.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/models/sph_model.hpp"
@@ -135,6 +136,13 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
     r.balance = s.balance;
     r.terrain_values = s.terrain_values;
     r.final_terrain = model->terrain();
+    if (Ground* ground = model->ground()) {
+      r.strata = ground->strata();
+      const MaterialTally t = ground->tally();
+      r.exposed = ground->exposed();
+      const double vq = ground->quantum() * terrain.cell * terrain.cell;
+      for (std::int64_t q : t.eroded) r.eroded_per_material.push_back(static_cast<double>(q) * vq);
+    }
     initial = model->initial_terrain();  // the same for every model: the input rounded to q
     results.push_back(std::move(r));
   }
@@ -162,8 +170,12 @@ std::string metrics_csv(const std::vector<ModelResult>& results) {
       "model,class,clock,steps,time,wall_seconds,rain_volume_m3,eroded_volume_m3,"
       "deposited_volume_m3,outflow_volume_m3,suspended_volume_m3,lost_volume_m3,"
       "mass_balance_abs_m3,mass_balance_rel";
-  if (!results.empty())
+  if (!results.empty()) {
     for (auto& [name, value] : results.front().terrain_values) out.append(",").append(name);
+    if (results.front().strata)
+      for (std::size_t m = 0; m < results.front().eroded_per_material.size(); ++m)
+        out += ",eroded_" + results.front().strata->materials[m].name + "_m3";
+  }
   out += "\n";
   for (const ModelResult& r : results) {
     const MassBalance& m = r.balance;
@@ -173,6 +185,7 @@ std::string metrics_csv(const std::vector<ModelResult>& results) {
            number(m.suspended) + "," + number(m.lost) + "," + number(m.residual) + "," +
            number(m.relative);
     for (auto& [name, value] : r.terrain_values) out.append(",").append(number(value));
+    for (double v : r.eroded_per_material) out.append(",").append(number(v));
     out += "\n";
   }
   return out;

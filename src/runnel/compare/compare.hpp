@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -7,6 +8,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/ground/strata.hpp"
 #include "runnel/models/mass_balance.hpp"
 
 // runnel compare: several erosion models on one terrain with one rain budget (docs/models.md).
@@ -37,6 +39,11 @@ struct ModelResult {
   MassBalance balance;
   std::vector<std::pair<std::string, double>> terrain_values;
   Heightmap final_terrain;
+  // A layered run (docs/layers.md): its strata, the material exposed at each vertex at the end,
+  // and the rock eroded from each material (m³; the strata, then the bedrock).
+  std::optional<Strata> strata;
+  std::vector<int> exposed;
+  std::vector<double> eroded_per_material;
 };
 
 struct Options {

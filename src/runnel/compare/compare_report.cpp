@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "runnel/compare/compare.hpp"
+#include "runnel/ground/geology_picture.hpp"
 #include "runnel/io/images.hpp"
 
 namespace runnel::compare {
@@ -22,6 +23,24 @@ std::string format(const char* f, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
+}
+
+// Every `factor`-th vertex of a vertex map, as subsample() takes them from a terrain.
+std::vector<int> subsample_map(const std::vector<int>& map, int nx, int ny, int factor) {
+  std::vector<int> out;
+  for (int j = 0; j < ny; j += factor)
+    for (int i = 0; i < nx; i += factor) out.push_back(map[static_cast<std::size_t>(j) * nx + i]);
+  return out;
+}
+
+// The strata on the subsampled grid (their materials; the contacts are not needed for a picture).
+Strata picture_strata(const Strata& s, const Heightmap& grid) {
+  Strata p;
+  p.nx = grid.nx;
+  p.ny = grid.ny;
+  p.strata = s.strata;
+  p.materials = s.materials;
+  return p;
 }
 
 double metric(const ModelResult& r, const std::string& name) {
@@ -55,17 +74,41 @@ void write_compare_png(const std::string& path, const Heightmap& initial,
     bottom.push_back(with_title(erosion_picture(before, after[k], scale),
                                 name + ": dh +-" + format("%.2g", scale) + " m"));
   }
-  int tile_w = 0, top_h = 0, bottom_h = 0;
+  // A layered scenario (docs/layers.md): a third row, the geological maps, the initial one first.
+  std::vector<RgbImage> geology;
+  if (!results.empty() && results.front().strata) {
+    const Strata& strata = *results.front().strata;
+    const Strata small = picture_strata(strata, before);
+    std::vector<int> surface(strata.vertices());
+    for (std::size_t k = 0; k < surface.size(); ++k)
+      surface[k] = rock_material(strata, k, strata.contact(0, k));
+    geology.push_back(with_title(
+        geology_picture(small, subsample_map(surface, strata.nx, strata.ny, factor), before),
+        "initial geology"));
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      geology.push_back(with_title(
+          geology_picture(small, subsample_map(results[k].exposed, strata.nx, strata.ny, factor),
+                          after[k]),
+          lower(results[k].model) + ": exposed layer"));
+    }
+  }
+  int tile_w = 0, top_h = 0, bottom_h = 0, geology_h = 0;
   for (auto& t : top) tile_w = std::max(tile_w, t.width), top_h = std::max(top_h, t.height);
   for (auto& b : bottom)
     tile_w = std::max(tile_w, b.width), bottom_h = std::max(bottom_h, b.height);
+  for (auto& g : geology)
+    tile_w = std::max(tile_w, g.width), geology_h = std::max(geology_h, g.height);
   const int gap = 8, columns = static_cast<int>(top.size());
-  RgbImage grid(columns * (tile_w + gap) + gap, top_h + bottom_h + 3 * gap);
+  RgbImage grid(columns * (tile_w + gap) + gap,
+                top_h + bottom_h + 3 * gap + (geology.empty() ? 0 : geology_h + gap));
   for (int c = 0; c < columns; ++c) {
     grid.paste(top[static_cast<std::size_t>(c)], gap + c * (tile_w + gap), gap);
     if (c > 0)
       grid.paste(bottom[static_cast<std::size_t>(c - 1)], gap + c * (tile_w + gap),
                  top_h + 2 * gap);
+    if (!geology.empty())
+      grid.paste(geology[static_cast<std::size_t>(c)], gap + c * (tile_w + gap),
+                 top_h + bottom_h + 3 * gap);
   }
   // Under the initial terrain: what the colours mean.
   const int x = gap + 4, y = top_h + 2 * gap + 8;
@@ -114,6 +157,25 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
           format("%.3f", metric(r, "stream_power_correlation")) + " | " +
           format("%.0f", metric(r, "closed_depressions")) + " | " +
           format("%.3f", metric(r, "short_wavelength_dh_share")) + " |\n";
+  }
+  if (!results.empty() && results.front().strata) {
+    const Strata& strata = *results.front().strata;
+    md +=
+        "\nThe layered ground (docs/layers.md): the third row of compare.png shows the exposed "
+        "layer of each model at the end beside the initial geology. Rock eroded from each "
+        "material, m³ (erodibility in brackets):\n\n| model |";
+    std::string rule = "|---|";
+    for (std::size_t m = 0; m < results.front().eroded_per_material.size(); ++m) {
+      md += " " + strata.materials[m].name + " (×" +
+            format("%.3g", strata.materials[m].erodibility) + ") |";
+      rule += "---|";
+    }
+    md += "\n" + rule + "\n";
+    for (const ModelResult& r : results) {
+      md += "| " + r.model + " |";
+      for (double v : r.eroded_per_material) md += " " + format("%.4g", v) + " |";
+      md += "\n";
+    }
   }
   md += "\nHow each model received the budget (parameters set by runnel compare):\n\n";
   for (const ModelResult& r : results)

@@ -167,6 +167,10 @@ void Ground::restore(const std::vector<StoredField>& fields) {
   update();
 }
 
+MaterialTally Ground::tally() {
+  return tally_materials(strata_, terrain_.download_fixed(), sediment());
+}
+
 JsonObject Ground::report() {
   return ground_summary(strata_, terrain_.download_fixed(), sediment(), terrain_.volume_quantum());
 }

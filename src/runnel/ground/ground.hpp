@@ -52,6 +52,8 @@ class Ground {
   // metrics.json's "ground": per material the rock eroded (m³, kg), the exposed share of the map;
   // the sediment lying loose; and the identity Σ(h − h0) = Σ sediment − Σ eroded in quanta.
   JsonObject report();
+  // The same per material, as numbers (quanta and vertex counts).
+  MaterialTally tally();
 
  private:
   ComputeContext& compute_;

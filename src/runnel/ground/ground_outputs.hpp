@@ -15,3 +15,15 @@ JsonObject write_ground_outputs(const std::filesystem::path& out, Ground& ground
                                 const Heightmap& final_terrain);
 
 }  // namespace runnel
+
+namespace runnel {
+
+// `runnel generate` of a layered scenario: the strata on the generated terrain, as one raster of
+// thickness (m) per stratum beside `terrain_path` (STEM.NAME.EXT, in the terrain's format), or,
+// when `terrain_path` ends in .h5, one HDF5 file with the terrain and the stack (docs/layers.md).
+// Returns the files written.
+std::vector<std::string> write_layered_terrain(const std::string& terrain_path,
+                                               const Heightmap& terrain, const Strata& strata,
+                                               double quantum);
+
+}  // namespace runnel
