@@ -173,7 +173,7 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
     md += "\n" + rule + "\n";
     for (const ModelResult& r : results) {
       md += "| " + r.model + " |";
-      for (double v : r.eroded_per_material) md += " " + format("%.4g", v) + " |";
+      for (double v : r.eroded_per_material) md.append(" ").append(format("%.4g", v)).append(" |");
       md += "\n";
     }
   }
