@@ -64,14 +64,14 @@ Ground::Ground(ComputeContext& compute, const Parameters& params, DeviceTerrain&
   contacts_ = device_copy(
       compute, std::vector<std::int64_t>(strata_.contacts.begin() + n, strata_.contacts.end()));
   previous_ = device_copy(compute, initial_fixed);
-  sediment_ = device_copy(compute, std::vector<std::int64_t>(n, 0));
+  bed_.sediment = device_copy(compute, std::vector<std::int64_t>(n, 0));
   mask_ = device_copy(compute, mask);
   material_erodibility_ = device_copy(compute, erodibility);
   material_talus_ = device_copy(compute, talus);
-  erodibility_ = device_copy(compute, std::vector<float>(n, 1.0f));
-  rock_erodibility_ = device_copy(compute, std::vector<float>(n, 1.0f));
-  sediment_erodibility_ = device_copy(compute, std::vector<float>(n, 1.0f));
-  talus_ = device_copy(compute, std::vector<std::int64_t>(n, 0));
+  bed_.erodibility = device_copy(compute, std::vector<float>(n, 1.0f));
+  bed_.rock_erodibility = device_copy(compute, std::vector<float>(n, 1.0f));
+  bed_.sediment_erodibility = device_copy(compute, std::vector<float>(n, 1.0f));
+  bed_.talus = device_copy(compute, std::vector<std::int64_t>(n, 0));
   exposed_ = device_copy(compute, std::vector<int>(n, 0));
   update_kernel_ = Kernel(compute, compute.program({"cl/ground.cl"}), "ground_update");
   update();
@@ -81,7 +81,7 @@ void Ground::update() {
   const int n = static_cast<int>(strata_.vertices());
   update_kernel_.set("height", terrain_.height_fixed())
       .set("previous", previous_)
-      .set("sediment", sediment_)
+      .set("sediment", bed_.sediment)
       .set("contacts", contacts_)
       .set("strata", strata_.strata)
       .set("n", n)
@@ -89,32 +89,16 @@ void Ground::update() {
       .set("material_erodibility", material_erodibility_)
       .set("material_talus", material_talus_)
       .set("active_layer", static_cast<cl_long>(strata_.active_layer))
-      .set("erodibility", erodibility_)
-      .set("rock_erodibility", rock_erodibility_)
-      .set("sediment_erodibility", sediment_erodibility_)
-      .set("talus", talus_)
+      .set("erodibility", bed_.erodibility)
+      .set("rock_erodibility", bed_.rock_erodibility)
+      .set("sediment_erodibility", bed_.sediment_erodibility)
+      .set("talus", bed_.talus)
       .set("exposed", exposed_)
       .launch(round_up_work(static_cast<std::size_t>(n)), "ground.update");
 }
 
-void Ground::bind_detachment(Kernel& kernel) {
-  kernel.set("rock_erodibility", rock_erodibility_)
-      .set("sediment_erodibility", sediment_erodibility_)
-      .set("ground_sediment", sediment_);
-}
-
-void bind_detachment(Kernel& kernel, Ground* ground, cl::Buffer& placeholder) {
-  if (ground) {
-    ground->bind_detachment(kernel);
-  } else {
-    kernel.set("rock_erodibility", placeholder)
-        .set("sediment_erodibility", placeholder)
-        .set("ground_sediment", placeholder);
-  }
-}
-
 std::vector<std::int64_t> Ground::sediment() {
-  return host_copy<std::int64_t>(compute_, sediment_, strata_.vertices());
+  return host_copy<std::int64_t>(compute_, bed_.sediment, strata_.vertices());
 }
 
 std::vector<int> Ground::exposed() {
@@ -145,7 +129,7 @@ void Ground::restore(const std::vector<StoredField>& fields) {
   bool have_sediment = false, have_contacts = false;
   for (const StoredField& f : fields) {
     if (f.name == kGroundSediment && f.i64.size() == n) {
-      compute_.queue().enqueueWriteBuffer(sediment_, CL_TRUE, 0, n * 8, f.i64.data());
+      compute_.queue().enqueueWriteBuffer(bed_.sediment, CL_TRUE, 0, n * 8, f.i64.data());
       have_sediment = true;
     } else if (f.name == kGroundContacts && f.components == strata_.strata + 1 &&
                f.i64.size() == n * f.components) {
@@ -180,10 +164,6 @@ std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& p
                                     const std::vector<std::int64_t>& initial_fixed) {
   if (!has_ground(params)) return nullptr;
   return std::make_unique<Ground>(compute, params, terrain, initial, initial_fixed);
-}
-
-cl::Buffer placeholder_buffer(ComputeContext& compute) {
-  return device_copy(compute, std::vector<double>(1, 1.0));  // 8 bytes: room for any type
 }
 
 std::vector<float> rain_weights(const Parameters& params, int nx, int ny) {

@@ -7,9 +7,10 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/core/stored_field.hpp"
 #include "runnel/ground/strata.hpp"
 #include "runnel/io/json.hpp"
-#include "runnel/models/checkpoint.hpp"
+#include "runnel/terrain/bed_fields.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
 namespace runnel {
@@ -31,13 +32,8 @@ class Ground {
 
   // Books the step's net height change into the sediment and refreshes the factors.
   void update();
-  // Per vertex: the active layer's erodibility (float; the particle models read it) and the talus
-  // threshold (quanta, int64).
-  cl::Buffer& erodibility() { return erodibility_; }
-  cl::Buffer& talus_threshold() { return talus_; }
-  // The arguments of a grid kernel's bed detachment (BED_DETACHMENT in cl/common.cl):
-  // rock_erodibility, sediment_erodibility and ground_sediment.
-  void bind_detachment(Kernel& kernel);
+  // The per-vertex fields the models' kernels read, refreshed by update().
+  const BedFields& bed() const { return bed_; }
 
   const Strata& strata() const { return strata_; }
   double quantum() const { return terrain_.quantum(); }
@@ -59,8 +55,8 @@ class Ground {
   ComputeContext& compute_;
   DeviceTerrain& terrain_;
   Strata strata_;
-  cl::Buffer contacts_, previous_, sediment_, mask_, material_erodibility_, material_talus_;
-  cl::Buffer erodibility_, rock_erodibility_, sediment_erodibility_, talus_, exposed_;
+  cl::Buffer contacts_, previous_, mask_, material_erodibility_, material_talus_, exposed_;
+  BedFields bed_;
   Kernel update_kernel_;
 };
 
@@ -69,13 +65,8 @@ std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& p
                                     DeviceTerrain& terrain, const Heightmap& initial,
                                     const std::vector<std::int64_t>& initial_fixed);
 
-// The per-vertex buffers a model binds for the erodibility and rain-weight arguments of its
-// kernels: the ground's and the rain mask's, or one value when there is none (the kernels, compiled
-// with GROUND = 0 or RAIN_MASK = 0, never read it).
-cl::Buffer placeholder_buffer(ComputeContext& compute);
-// BED_DETACHMENT's arguments from `ground`, or placeholders when it is null.
-void bind_detachment(Kernel& kernel, Ground* ground, cl::Buffer& placeholder);
-// The rain mask (fractions 0 to 1 per vertex) on the device, or a placeholder without one.
+// The rain mask (fractions 0 to 1 per vertex) on the device, or a placeholder without one (the
+// kernels, compiled with RAIN_MASK = 0, never read it).
 cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params, int nx, int ny);
 // The rain mask on the host: the fractions per vertex, checked (finite, in [0, 1]); all 1 without
 // one.

@@ -6,6 +6,7 @@
 
 #include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/core/stored_field.hpp"
 #include "runnel/sph/particle_store.hpp"
 #include "runnel/sph/sph_solver.hpp"
 
@@ -16,15 +17,6 @@ namespace runnel {
 // radius above the terrain (the contacts field carries the contact state); versions 1 and 2 are
 // refused with that reason.
 inline constexpr std::int64_t kCheckpointSchemaVersion = 3;
-
-// One vertex field of a grid model, as stored under /fields (float32 or int64 values, ny × nx ×
-// components).
-struct StoredField {
-  std::string name;
-  int components = 1;
-  std::vector<float> f32;
-  std::vector<std::int64_t> i64;
-};
 
 // Everything an exact restart needs, and what Python users read.
 struct CheckpointData {

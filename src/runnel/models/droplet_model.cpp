@@ -95,7 +95,8 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
                     static_cast<std::size_t>(batch_size()) * sizeof(cl_long)) {
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
-  kernel_.set("erodibility", erodibility()).set("rain_weight", rain_weight());
+  kernel_.set("erodibility", bed() ? bed()->erodibility : placeholder_)
+      .set("rain_weight", rain_weight());
 }
 
 long long DropletModel::batch_size() const {

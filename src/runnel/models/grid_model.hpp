@@ -55,9 +55,9 @@ class GridModel : public Model {
   virtual double next_dt() const { return 1.0; }
   virtual void restore_next_dt(double) {}
 
-  // The erodibility and rain-weight fields the model's kernels read: the ground's and the rain
-  // mask's, or placeholders when the run has none (the kernels then never read them).
-  cl::Buffer& erodibility() { return ground_ ? ground_->erodibility() : placeholder_; }
+  // The ground's fields and the rain weights the model's kernels read (bed() is null, and the rain
+  // weights a placeholder, when the run has none: the kernels then never read them).
+  const BedFields* bed() const { return ground_ ? &ground_->bed() : nullptr; }
   cl::Buffer& rain_weight() { return rain_weight_; }
   // Σ rain weight over the vertices: the number of vertices rain falls on in full.
   double rained_vertices() const { return rained_vertices_; }

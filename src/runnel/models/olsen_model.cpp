@@ -60,7 +60,7 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
   dissolve_ = Kernel(compute, program, "olsen_dissolve");
   outflow_ = Kernel(compute, program, "olsen_outflow");
   gather_settle_ = Kernel(compute, program, "olsen_gather_settle");
-  bind_detachment(dissolve_, ground_.get(), placeholder_);
+  bind_detachment(dissolve_, bed(), placeholder_);
   dissolve_.set("rain_weight", rain_weight());
 }
 

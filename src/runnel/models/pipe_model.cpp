@@ -106,7 +106,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   stats_kernel_ = Kernel(compute, program, "pipe_stats");
   flux_kernel_.set("rain_weight", rain_weight());
   water_kernel_.set("rain_weight", rain_weight());
-  bind_detachment(erode_kernel_, ground_.get(), placeholder_);
+  bind_detachment(erode_kernel_, bed(), placeholder_);
 }
 
 double PipeModel::take_step() {

@@ -74,7 +74,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   ground_ = make_ground(compute, params, solver_->terrain(), initial_, initial_fixed_);
   erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_,
                                        static_cast<std::uint64_t>(params.integer("run.seed")),
-                                       ground_.get());
+                                       ground_ ? &ground_->bed() : nullptr);
   const ThermalSettings thermal = ThermalSettings::from(params);
   thermal_interval_ = thermal.interval;
   // The most device memory the run will hold: the particle store at its largest (the budget with
@@ -100,8 +100,8 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                       " has " + format_number(available / 1e6) + " MB");
   }
   if (thermal_interval_ > 0) {
-    thermal_ =
-        std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal, ground_.get());
+    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal,
+                                                   ground_ ? &ground_->bed() : nullptr);
   }
 }
 

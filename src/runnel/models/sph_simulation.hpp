@@ -7,6 +7,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/ground/ground.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/mass_balance.hpp"

@@ -20,7 +20,7 @@ ThermalModel::ThermalModel(ComputeContext& compute, const Parameters& params,
                            const Heightmap& terrain)
     : GridModel(compute, params, terrain),
       settings_(ThermalSettings::from(params)),
-      relaxation_(compute, state_.terrain(), settings_, ground_.get()) {}
+      relaxation_(compute, state_.terrain(), settings_, bed()) {}
 
 double ThermalModel::take_step() {
   relaxation_.relax();

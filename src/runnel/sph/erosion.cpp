@@ -77,19 +77,19 @@ JsonObject ErosionSettings::json() const {
 }
 
 Erosion::Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver,
-                 std::uint64_t seed, Ground* ground)
+                 std::uint64_t seed, const BedFields* bed)
     : compute_(compute), settings_(settings), seed_(seed) {
   const std::string options =
       settings.build_options(solver.settings(), settings.height_quantum * solver.terrain_cell() *
                                                     solver.terrain_cell()) +
-      (ground ? " -DGROUND=1" : "");
+      (bed ? " -DGROUND=1" : "");
   kernel_ = Kernel(compute,
                    compute.program({"cl/common.cl", "cl/counters.cl", "cl/grid.cl",
                                     "cl/terrain_sample.cl", "cl/footprint.cl", "cl/erode.cl"},
                                    options),
                    "erode_exchange");
   placeholder_ = placeholder_buffer(compute);
-  kernel_.set("erodibility", ground ? ground->erodibility() : placeholder_);
+  kernel_.set("erodibility", bed ? bed->erodibility : placeholder_);
 }
 
 void Erosion::exchange(SphSolver& solver, double dt) {

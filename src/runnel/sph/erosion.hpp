@@ -6,9 +6,9 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/ground/ground.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sph/sph_solver.hpp"
+#include "runnel/terrain/bed_fields.hpp"
 
 namespace runnel {
 
@@ -44,7 +44,7 @@ class Erosion {
  public:
   // With a ground, the detachment is scaled by the erodibility of the vertex under each particle.
   Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver,
-          std::uint64_t seed, Ground* ground = nullptr);
+          std::uint64_t seed, const BedFields* bed = nullptr);
   // The exchange over the step of length dt that the solver has just drifted.
   void exchange(SphSolver& solver, double dt);
   const ErosionSettings& settings() const { return settings_; }

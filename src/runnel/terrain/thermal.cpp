@@ -38,18 +38,18 @@ ThermalSettings ThermalSettings::from(const Parameters& p) {
 }
 
 ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,
-                                     const ThermalSettings& settings, Ground* ground)
+                                     const ThermalSettings& settings, const BedFields* bed)
     : compute_(compute),
       terrain_(terrain),
       settings_(settings),
       outflow_(compute.context(), CL_MEM_READ_WRITE,
                static_cast<std::size_t>(terrain.nx()) * terrain.ny() * 4 * sizeof(cl_long)) {
   cl::Program& program =
-      compute.program({"cl/common.cl", "cl/thermal.cl"}, ground ? " -DGROUND=1" : "");
+      compute.program({"cl/common.cl", "cl/thermal.cl"}, bed ? " -DGROUND=1" : "");
   outflow_kernel_ = Kernel(compute, program, "thermal_outflow");
   placeholder_ = placeholder_buffer(compute);
-  bind_detachment(outflow_kernel_, ground, placeholder_);
-  outflow_kernel_.set("talus_field", ground ? ground->talus_threshold() : placeholder_);
+  bind_detachment(outflow_kernel_, bed, placeholder_);
+  outflow_kernel_.set("talus_field", bed ? bed->talus : placeholder_);
   gather_kernel_ = Kernel(compute, program, "thermal_gather");
 }
 

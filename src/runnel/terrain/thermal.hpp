@@ -3,7 +3,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/ground/ground.hpp"
+#include "runnel/terrain/bed_fields.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
 namespace runnel {
@@ -27,7 +27,7 @@ class ThermalRelaxation {
  public:
   // With a ground, each vertex's talus angle and rate are its exposed material's.
   ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,
-                    const ThermalSettings& settings, Ground* ground = nullptr);
+                    const ThermalSettings& settings, const BedFields* bed = nullptr);
   void relax();
 
  private:
