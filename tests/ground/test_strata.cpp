@@ -210,5 +210,30 @@ TEST(Ground, DeviceUpdateBooksNetChangesAsTheOracleDoes) {
   EXPECT_EQ(test::json_number(report, "layer_balance_quanta"), 0.0);
 }
 
+TEST(Ground, HardnessAndFrozenMasksScaleEveryMaterialsErodibility) {
+  ComputeContext& compute = test::compute();
+  test::ScratchDir dir;
+  const Heightmap t = generate_terrain("fbm", 20, 16, 1.0, 2, {{"relief", 0.3}});
+  Heightmap hardness(10, 8, 2.0, 0.5f), frozen(20, 16, 1.0, 0.0f);  // half the size: resampled
+  for (int j = 0; j < 8; ++j) hardness.at(0, j) = 2.0f;
+  frozen.at(19, 15) = 1.0f;
+  write_terrain(dir.path("hard.npy"), hardness);
+  write_terrain(dir.path("frozen.npy"), frozen);
+  Parameters p = parse_scenario(
+      "[ground]\nbedrock_erodibility = 0.4\nhardness_mask = \"hard.npy\"\n"
+      "frozen_mask = \"frozen.npy\"\n",
+      dir.path("s.toml"), dir.root().string());
+  DeviceTerrain terrain(compute, t, 1e-4);
+  testing::internal::CaptureStderr();
+  Ground ground(compute, p, terrain, t, terrain.download_fixed());
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("ground.hardness_mask"), std::string::npos);
+  std::vector<float> rock(t.size());
+  compute.queue().enqueueReadBuffer(ground.bed().rock_erodibility, CL_TRUE, 0, rock.size() * 4,
+                                    rock.data());
+  EXPECT_FLOAT_EQ(rock[5 * 20 + 10], 0.4f * 0.5f);  // inside: hardness 0.5
+  EXPECT_FLOAT_EQ(rock[3 * 20 + 0], 0.4f * 2.0f);   // the first column: hardness 2
+  EXPECT_EQ(rock[15 * 20 + 19], 0.0f);              // frozen
+}
+
 }  // namespace
 }  // namespace runnel

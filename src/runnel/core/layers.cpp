@@ -75,9 +75,11 @@ LayerShape layer_shape(const LayerValues& layer) {
 void Parameters::add_layer(const LayerValues& given, const std::string& origin) {
   const std::string where = origin + " layers[" + std::to_string(layers_.size() + 1) + "]";
   LayerValues layer;
-  for (auto& [key, value] : given) {
+  for (const auto& entry : given) {
+    const std::string& key = entry.first;
+    const ParamValue& value = entry.second;
     const auto it = std::find_if(layer_table().begin(), layer_table().end(),
-                                 [&](const ParamSpec& s) { return s.key == key; });
+                                 [&key](const ParamSpec& s) { return s.key == key; });
     if (it == layer_table().end())
       throw input_error(where + "." + key + ": unknown layer key (see docs/layers.md)");
     layer[key] = validated_value(*it, value, where + "." + key);
