@@ -10,6 +10,7 @@ packages=(
   libnanoflann-dev libhdf5-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
   libtomlplusplus-dev libcli11-dev
   libgdal-dev gdal-bin  # GeoTIFF in and out; gdalinfo checks the georeferencing in the tests
+  libkissfft-dev  # spectral (inverse FFT) terrain synthesis: BSD-licensed, any grid size
   libopenmpi-dev openmpi-bin  # mpirun -np K runnel sweep (optional at build time)
   python3 python3-numpy python3-h5py
   python3-dev python3-venv pybind11-dev python3-pybind11 python3-pytest python3-matplotlib  # the Python package

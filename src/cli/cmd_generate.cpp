@@ -5,14 +5,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
 #include "runnel/ground/ground_outputs.hpp"
 #include "runnel/ground/strata.hpp"
+#include "runnel/io/images.hpp"
 #include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/terrain_graph.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 
 namespace runnel::cli {
@@ -27,6 +31,9 @@ struct GenerateOptions {
   std::string output;
   std::string range;
   std::string scenario;
+  std::string picture;
+  std::string graph;
+  std::string device;
 };
 
 std::string generator_help() {
@@ -76,6 +83,15 @@ void add_generate_command(CLI::App& app) {
       ->required();
   cmd->add_option("--range", opt->range,
                   "PNG only: heights MIN:MAX (m) mapped to 0..65535 (default: the terrain's)");
+  cmd->add_option(
+      "--picture", opt->picture,
+      "also write a hillshaded picture of the terrain (coloured by height) to this PNG");
+  cmd->add_option("--device", opt->device,
+                  "OpenCL device of the noise generators (see 'runnel devices'); the bytes are the "
+                  "same on every device and on the host");
+  cmd->add_option("--graph", opt->graph,
+                  "compose the terrain from a graph of generators, filters and input files "
+                  "(TOML; docs/generators.md)");
   cmd->add_option("--scenario", opt->scenario,
                   "take the terrain (generator, size, cell, seed, [terrain.set]) from "
                   "a scenario file; flags given on the command line override it");
@@ -83,7 +99,14 @@ void add_generate_command(CLI::App& app) {
   cmd->callback([opt, cmd] {
     Heightmap terrain;
     Parameters params;
-    if (!opt->scenario.empty()) {
+    if (!opt->graph.empty()) {
+      if (!opt->name.empty() || !opt->scenario.empty())
+        throw input_error(
+            "--graph: the graph is the whole terrain; give no generator name or --scenario");
+      // The noise generators on the device: the same bytes as on the host, faster.
+      ComputeContext compute(opt->device);
+      terrain = evaluate_terrain_graph(opt->graph, &compute);
+    } else if (!opt->scenario.empty()) {
       params = load_scenario(opt->scenario);
       if (!opt->name.empty()) params.set("terrain.generator", opt->name, "generate");
       if (cmd->count("--size")) params.set_text("terrain.size", opt->size, "--size");
@@ -108,7 +131,10 @@ void add_generate_command(CLI::App& app) {
         }
         values[s.substr(0, eq)] = v;
       }
-      terrain = generate_terrain(opt->name, nx, ny, opt->cell, opt->seed, values);
+      std::unique_ptr<ComputeContext> compute;
+      if (find_generator(opt->name).on_device)
+        compute = std::make_unique<ComputeContext>(opt->device);
+      terrain = generate_terrain(opt->name, nx, ny, opt->cell, opt->seed, values, compute.get());
     }
     if (!params.layers().empty()) {
       // The strata on the terrain as the run sees it: heights rounded to the quantum.
@@ -129,6 +155,9 @@ void add_generate_command(CLI::App& app) {
       throw input_error("--range: only a PNG output has a height range");
     if (!opt->range.empty()) write.png_range = parse_range(opt->range, "--range");
     write_terrain(opt->output, terrain, write);
+    if (!opt->picture.empty())
+      write_png_rgb(opt->picture,
+                    terrain_picture(terrain, terrain.min_height(), terrain.max_height()));
     std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, cell %g m, heights %.3f..%.3f m)\n",
                  opt->output.c_str(), terrain.nx, terrain.ny, terrain.cell, terrain.min_height(),
                  terrain.max_height());

@@ -8,6 +8,7 @@
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/ground/ground_settings.hpp"
+#include "runnel/terrain/terrain_io.hpp"
 #include "runnel/terrain/thermal.hpp"
 
 namespace runnel {

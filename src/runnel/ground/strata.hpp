@@ -85,9 +85,4 @@ std::vector<std::int64_t> eroded_per_material(const Strata& strata,
 std::vector<std::int64_t> remaining_thickness(const Strata& strata,
                                               const std::vector<std::int64_t>& rock);
 
-// A raster on the terrain's vertices, for the masks and thickness files: read in any terrain
-// format; one of another size is resampled bilinearly, with a warning on stderr naming `what`.
-std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
-                                      const std::string& what);
-
 }  // namespace runnel

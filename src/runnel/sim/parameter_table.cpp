@@ -4,7 +4,20 @@
 // once, beside the struct they fill (core/parameter_groups.hpp), and is listed here in order.
 #include "runnel/core/parameter_groups.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/models/registry.hpp"  // run.model's choices are the registry's names
+#include "runnel/models/registry.hpp"     // run.model's choices are the registry's names
+#include "runnel/terrain/generators.hpp"  // terrain.generator's, the generators'
+
+namespace runnel {
+namespace {
+
+std::vector<std::string> generator_names() {
+  std::vector<std::string> names;
+  for (const GeneratorSpec& g : generators()) names.push_back(g.name);
+  return names;
+}
+
+}  // namespace
+}  // namespace runnel
 
 namespace runnel {
 
@@ -16,7 +29,8 @@ std::vector<ParamSpec> assemble() {
       // clang-format off
       // terrain: where the heightmap comes from
       {"terrain.file", T::kString, "\"\"", "", 0, 0, {}, "terrain file (.asc, .png, .npy), relative to the scenario file; empty: use terrain.generator"},
-      {"terrain.generator", T::kString, "\"fbm\"", "", 0, 0, {"diamond-square", "fault", "fbm", "ridged", "crooked", "pyramid", "hemisphere", "plane", "cone", "v-valley"}, "generator used when terrain.file is empty; its own parameters go in [terrain.set]"},
+      {"terrain.generator", T::kString, "\"fbm\"", "", 0, 0, generator_names(), "generator used when terrain.file and terrain.graph are empty; its own parameters go in [terrain.set] (docs/generators.md)"},
+      {"terrain.graph", T::kString, "\"\"", "", 0, 0, {}, "a terrain graph (TOML: generators, filters, input files; docs/generators.md), relative to the scenario file; used when terrain.file is empty"},
       {"terrain.size", T::kInteger, "257", "vertices", 2, 32768, {}, "generated terrain: vertices per side"},
       {"terrain.cell", T::kReal, "1.0", "m", 1e-6, 1e6, {}, "cell size (vertex spacing); for files, overrides the file's own when terrain.cell_from_file is false"},
       {"terrain.cell_from_file", T::kBool, "true", "", 0, 0, {}, "take the cell size from the terrain file when it has one (ASC, runnel PNG)"},

@@ -10,23 +10,20 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/rng.hpp"
+#include "runnel/terrain/generator_util.hpp"
 #include "runnel/terrain/noise.hpp"
 
 namespace runnel {
-namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
-double extent(const GeneratorRequest& r) {
-  return (std::max(r.nx, r.ny) - 1) * r.cell;
-}
-
-// Rescales heights linearly to [0, relief·extent].
-void normalise(Heightmap& t, double relief_m) {
+void generator_util::normalise(Heightmap& t, double relief_m) {
   const double lo = t.min_height(), hi = t.max_height();
   const double scale = hi > lo ? relief_m / (hi - lo) : 0.0;
   for (float& v : t.h) v = static_cast<float>((v - lo) * scale);
 }
+
+namespace {
+
+using namespace generator_util;
 
 // Tilts a terrain so it falls towards the east (+x) at `degrees`: water then drains off that edge.
 void add_tilt(Heightmap& t, double degrees) {
@@ -35,16 +32,6 @@ void add_tilt(Heightmap& t, double degrees) {
   for (int j = 0; j < t.ny; ++j) {
     for (int i = 0; i < t.nx; ++i) t.at(i, j) += static_cast<float>(slope * (width - i * t.cell));
   }
-}
-
-// Fills every vertex from f(x, z) with x, z in metres.
-template <typename F>
-Heightmap from_function(const GeneratorRequest& r, F f) {
-  Heightmap t(r.nx, r.ny, r.cell);
-  for (int j = 0; j < r.ny; ++j) {
-    for (int i = 0; i < r.nx; ++i) t.at(i, j) = static_cast<float>(f(i * r.cell, j * r.cell));
-  }
-  return t;
 }
 
 Heightmap diamond_square(const GeneratorRequest& r) {
@@ -325,6 +312,113 @@ const std::vector<GeneratorSpec>& generators() {
        {{"side_slope", 20.0, "deg", "slope of the valley sides", 0.0, 80.0},
         {"axis_slope", 5.0, "deg", "slope along the valley axis", 0.0, 80.0}},
        v_valley},
+      // The seeds' synthesis (issue 19; docs/generators.md).
+      {"midpoint",
+       "midpoint displacement of squares (Fournier 1982), Münch 2011's three-point edge rule",
+       {kRelief,
+        {"roughness", 0.8, "1", "amplitude falls by 2^(-roughness) per level", 0.0, 3.0},
+        {"edge_points", 3, "1",
+         "edge midpoints from 2 points (the edge's ends) or 3 (and the centre beside it)", 2, 3}},
+       midpoint},
+      {"successive-additions",
+       "successive random additions (Voss 1985): refine, then displace every point",
+       {kRelief, {"roughness", 0.8, "1", "amplitude falls by 2^(-roughness) per level", 0.0, 3.0}},
+       successive_additions},
+      {"value-noise",
+       "octave value noise, linear or cosine interpolation (Münch 2011's \"Perlin noise\"; on the "
+       "device)",
+       {kRelief,
+        {"frequency", 4.0, "cycles per extent", "frequency of the first octave", 0.01, 1000.0},
+        {"octaves", 6, "1", "number of octaves", 1, 24},
+        {"persistence", 0.5, "1", "amplitude ratio between octaves", 0.0, 1.0},
+        kLacunarity,
+        {"interpolation", 1, "1", "0: linear, 1: cosine", 0, 1}},
+       value_noise_terrain,
+       true},
+      {"turbulence",
+       "Perlin turbulence: fBm of |gradient noise| (creased valleys; on the device)",
+       {kRelief, kHurst, kLacunarity, kOctaves, kFrequency},
+       turbulence,
+       true},
+      {"multifractal",
+       "Musgrave's multiplicative multifractal (on the device)",
+       {kRelief,
+        {"hurst", 0.7, "1", "Hurst exponent H", 0.0, 2.0},
+        kLacunarity,
+        {"octaves", 6, "1", "number of noise octaves", 1, 24},
+        kFrequency,
+        {"offset", 1.0, "1",
+         "added to the noise before multiplying (keeps the factors positive above 0.7)", 0.0, 4.0}},
+       multifractal,
+       true},
+      {"hybrid-multifractal",
+       "Musgrave's hybrid multifractal: smooth valleys, rough peaks (on the device)",
+       {kRelief,
+        {"hurst", 0.25, "1", "Hurst exponent H", 0.0, 2.0},
+        kLacunarity,
+        kOctaves,
+        kFrequency,
+        {"offset", 0.7, "1", "added to the noise of every octave", 0.0, 4.0}},
+       hybrid_multifractal,
+       true},
+      {"hetero-terrain",
+       "Musgrave's heterogeneous terrain: each octave scaled by the height so far (on the device)",
+       {kRelief,
+        {"hurst", 0.7, "1", "Hurst exponent H", 0.0, 2.0},
+        kLacunarity,
+        {"octaves", 6, "1", "number of noise octaves", 1, 24},
+        kFrequency,
+        {"offset", 0.8, "1", "added to the noise of every octave", 0.0, 4.0}},
+       hetero_terrain,
+       true},
+      {"varying-hurst",
+       "fBm whose Hurst exponent varies with position or height (Jourdan 2008; on the device)",
+       {kRelief,
+        {"hurst", 0.9, "1", "H at x = 0 (by position) or at the lowest ground (by height)", 0.0,
+         2.0},
+        {"hurst_end", 0.3, "1",
+         "H at the east edge (by position) or on the highest ground (by height)", 0.0, 2.0},
+        {"by_height", 0, "1",
+         "0: H varies from west to east; 1: with the height of the first two octaves", 0, 1},
+        kLacunarity,
+        kOctaves,
+        kFrequency},
+       varying_hurst,
+       true},
+      {"spectral",
+       "spectral synthesis by inverse FFT, power ∝ f^-(2H+2), tileable in height and slope",
+       {kRelief,
+        kHurst,
+        {"min_wavelength", 2.0, "cells",
+         "shortest wavelength kept (2: all up to the grid's Nyquist)", 2.0, 1e6}},
+       spectral},
+      {"circles",
+       "random hemisphere bumps added up (Münch 2011's circle algorithm)",
+       {kRelief,
+        {"count", 200, "1", "number of circles", 1, 1e6},
+        {"radius_min", 0.02, "fraction of extent", "smallest radius", 0.001, 1.0},
+        {"radius_max", 0.1, "fraction of extent", "largest radius", 0.001, 1.0}},
+       circles},
+      {"rmp-voronoi",
+       "repeated magnification and probing, Voronoi form: ridges on the Voronoi edges (Kamal & "
+       "Uddin; Fritz 2016)",
+       {kRelief,
+        {"cells", 4.0, "sites per extent", "Voronoi sites across the extent at the first level",
+         0.5, 256.0},
+        {"levels", 3, "1", "magnifications (each doubles the sites per extent)", 1, 8},
+        {"gain", 0.5, "1", "height ratio between levels", 0.0, 1.0},
+        {"width", 0.5, "site spacings", "half-width of a ridge at its foot", 0.01, 4.0}},
+       rmp_voronoi},
+      {"rmp-graph",
+       "repeated magnification and probing, graph form: a spanning tree of peaks, refined (Kamal & "
+       "Uddin; Fritz 2016)",
+       {kRelief,
+        {"peaks", 24, "1", "peaks joined by their minimum spanning tree", 2, 1000},
+        {"levels", 4, "1", "magnifications (each splits every ridge segment)", 0, 10},
+        {"wander", 0.25, "1", "sideways probe of a split, times the segment's length", 0.0, 1.0},
+        {"flank", 3.0, "m/m",
+         "slope of the flanks falling from the ridges (before the relief is scaled)", 0.01, 100.0}},
+       rmp_graph},
   };
   return specs;
 }
@@ -339,7 +433,8 @@ const GeneratorSpec& find_generator(const std::string& name) {
 }
 
 Heightmap generate_terrain(const std::string& name, int nx, int ny, double cell, std::uint64_t seed,
-                           const std::map<std::string, double>& overrides) {
+                           const std::map<std::string, double>& overrides,
+                           ComputeContext* compute) {
   const GeneratorSpec& spec = find_generator(name);
   if (nx < 2 || ny < 2 || nx > kMaxSide || ny > kMaxSide ||
       static_cast<long long>(nx) * ny > kMaxVertices) {
@@ -348,7 +443,7 @@ Heightmap generate_terrain(const std::string& name, int nx, int ny, double cell,
   }
   if (!(cell > 0.0) || !std::isfinite(cell))
     throw input_error("--cell: must be a positive number of metres");
-  GeneratorRequest request{nx, ny, cell, seed, {}};
+  GeneratorRequest request{nx, ny, cell, seed, {}, compute};
   for (auto& p : spec.params) request.values[p.key] = p.default_value;
   for (const auto& entry : overrides) {
     const std::string& key = entry.first;  // not a structured binding: lambdas capture it

@@ -182,4 +182,28 @@ long long fill_holes(Heightmap& terrain) {
   return filled;
 }
 
+std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
+                                      const std::string& what) {
+  const Heightmap r = read_terrain(path);
+  if (r.nx == nx && r.ny == ny) return r.h;
+  std::cerr << "warning: " << what << " " << path << ": " << r.nx << " x " << r.ny
+            << " vertices resampled bilinearly to the terrain's " << nx << " x " << ny << "\n";
+  std::vector<float> out(static_cast<std::size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      // The rasters cover the same extent: corner vertices map onto corner vertices.
+      const double x = nx > 1 ? i * double(r.nx - 1) / (nx - 1) : 0;
+      const double z = ny > 1 ? j * double(r.ny - 1) / (ny - 1) : 0;
+      const int i0 = std::min(static_cast<int>(x), std::max(r.nx - 2, 0));
+      const int j0 = std::min(static_cast<int>(z), std::max(r.ny - 2, 0));
+      const int i1 = std::min(i0 + 1, r.nx - 1), j1 = std::min(j0 + 1, r.ny - 1);
+      const double u = x - i0, v = z - j0;
+      out[static_cast<std::size_t>(j) * nx + i] =
+          static_cast<float>((1 - u) * (1 - v) * r.at(i0, j0) + u * (1 - v) * r.at(i1, j0) +
+                             (1 - u) * v * r.at(i0, j1) + u * v * r.at(i1, j1));
+    }
+  }
+  return out;
+}
+
 }  // namespace runnel

@@ -48,6 +48,12 @@ TerrainFormat terrain_format_from_path(const std::string& path);
 
 // Readers validate everything and throw runnel::Error (exit code 2) naming the file and the reason.
 Heightmap read_terrain(const std::string& path, const ReadOptions& options = {});
+// A raster on a terrain's vertices (masks, layer thicknesses, graph inputs): read in any terrain
+// format; one of another size is resampled bilinearly (corner vertices onto corner vertices), with
+// a warning on stderr naming `what`.
+std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
+                                      const std::string& what);
+
 // Writers write atomically (temporary file, then rename).
 void write_terrain(const std::string& path, const Heightmap& terrain,
                    const WriteOptions& options = {});

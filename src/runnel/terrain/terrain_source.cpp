@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/terrain/terrain_source.hpp"
 
+#include "runnel/terrain/terrain_graph.hpp"
+
 #include "runnel/core/error.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_io.hpp"
@@ -17,6 +19,8 @@ Heightmap load_terrain(const Parameters& params) {
     Heightmap terrain = read_terrain(file, options);
     return terrain;
   }
+  const std::string& graph = params.text("terrain.graph");
+  if (!graph.empty()) return evaluate_terrain_graph(graph);
   const int size = static_cast<int>(params.integer("terrain.size"));
   try {
     return generate_terrain(

@@ -6,7 +6,8 @@
 namespace runnel {
 
 // The terrain a scenario asks for: its file (terrain.file, read with terrain.nodata and
-// terrain.cell_from_file), or its generator (terrain.generator with terrain.set.*).
+// terrain.cell_from_file), its graph (terrain.graph), or its generator (terrain.generator with
+// terrain.set.*).
 Heightmap load_terrain(const Parameters& params);
 
 }  // namespace runnel
