@@ -3,6 +3,7 @@
 // magnification and probing (RMP, as Fritz 2016 uses it) in its Voronoi and its graph form.
 // docs/generators.md.
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "runnel/core/rng.hpp"
@@ -101,21 +102,28 @@ Heightmap rmp_voronoi(const GeneratorRequest& r) {
         const double x = i * r.cell, z = j * r.cell;
         const int ca = static_cast<int>(std::floor(x / spacing)),
                   cb = static_cast<int>(std::floor(z / spacing));
-        double f1 = std::numeric_limits<double>::max(), f2 = f1, p1 = 0, p2 = 0;
+        // The nearest site A, then the highest ridge between A and any other site B:
+        // probe_AB·max(0, w − (d_B − d_A)), probe_AB the mean of the two sites' probes. Taken from
+        // A's side and from B's the ridge meets at the edge, so the terrain is continuous and its
+        // crests are the edges.
+        const RidgeSite* nearest = nullptr;
+        double d_a = std::numeric_limits<double>::max();
+        std::vector<std::pair<const RidgeSite*, double>> around;
         for (int b = cb - 2; b <= cb + 2; ++b)
           for (int a = ca - 2; a <= ca + 2; ++a) {
             if (a < -1 || b < -1 || a > g.gx || b > g.gz) continue;
             const RidgeSite& s = sites[static_cast<std::size_t>(b + 1) * g.row() + (a + 1)];
             const double d = std::hypot(s.x - x, s.z - z);
-            if (d < f1) {
-              f2 = f1, p2 = p1;
-              f1 = d, p1 = s.probe;
-            } else if (d < f2) {
-              f2 = d, p2 = s.probe;
-            }
+            around.emplace_back(&s, d);
+            if (d < d_a) d_a = d, nearest = &s;
           }
-        const double tent = std::max(0.0, width * spacing - (f2 - f1));
-        h[static_cast<std::size_t>(j) * r.nx + i] += amplitude * 0.5 * (p1 + p2) * tent;
+        double ridge = 0;
+        for (const auto& [site, d_b] : around) {
+          if (site == nearest) continue;
+          ridge = std::max(ridge, 0.5 * (nearest->probe + site->probe) *
+                                      std::max(0.0, width * spacing - (d_b - d_a)));
+        }
+        h[static_cast<std::size_t>(j) * r.nx + i] += amplitude * ridge;
       }
   }
   Heightmap t(r.nx, r.ny, r.cell);
