@@ -22,11 +22,14 @@ void add_bench_command(CLI::App& app) {
       "bench",
       "Measure throughput and print JSON with per-kernel times from OpenCL "
       "profiling events. sph: a block of N particles settling in a tank; droplet: "
-      "batches of Beyer droplets on a size x size terrain (--steps batches)");
-  cmd->add_option("model", opt->which, "what to measure: sph, droplet, olsen, thermal or pipe")
+      "batches of Beyer droplets on a size x size terrain (--steps batches); generate: the "
+      "noise generators at size x size vertices (vertices per second)");
+  cmd->add_option("model", opt->which,
+                  "what to measure: sph, droplet, olsen, thermal, pipe or generate")
       ->required()
-      ->check(CLI::IsMember({"sph", "droplet", "olsen", "thermal", "pipe"}));
-  cmd->add_option("--size", opt->size, "droplet: terrain vertices per side")->capture_default_str();
+      ->check(CLI::IsMember({"sph", "droplet", "olsen", "thermal", "pipe", "generate"}));
+  cmd->add_option("--size", opt->size, "grid models and generate: terrain vertices per side")
+      ->capture_default_str();
   cmd->add_option("--particles", opt->particles, "number of particles")->capture_default_str();
   cmd->add_option("--steps", opt->steps, "timed steps (after 3 warm-up steps)")
       ->capture_default_str();
@@ -39,6 +42,11 @@ void add_bench_command(CLI::App& app) {
     Parameters params;
     apply_overrides(params, opt->sets);
     ComputeContext compute(opt->device);
+    if (opt->which == "generate") {
+      if (opt->size < 16 || opt->size > 16384) throw input_error("--size: must be in 16..16384");
+      std::cout << benchmark_generators(compute, opt->size, opt->steps).str() << "\n";
+      return;
+    }
     if (opt->which != "sph") {
       if (opt->size < 16 || opt->size > 16384) throw input_error("--size: must be in 16..16384");
       std::cout << benchmark_model(compute, opt->which, opt->size, opt->steps, params).str()

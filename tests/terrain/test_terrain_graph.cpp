@@ -9,6 +9,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/terrain/filters.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_graph.hpp"
 #include "runnel/terrain/terrain_io.hpp"
@@ -137,6 +138,36 @@ TEST(TerrainGraph, MalformedGraphsAreRefusedNamingTheNode) {
                      "-1\n[nodes.b]\ngenerator = \"fbm\"\n")
                 .find("nodes.a.exponent"),
             std::string::npos);
+}
+
+TEST(TerrainGraph, DocsDescribeEveryGeneratorAndFilter) {
+  const std::string docs = test::read_text(test::source_dir() + "/docs/generators.md");
+  for (const GeneratorSpec& g : generators())
+    EXPECT_NE(docs.find("| `" + g.name + "` |"), std::string::npos) << g.name;
+  for (const FilterSpec& f : filters())
+    EXPECT_NE(docs.find("`" + f.name + "`"), std::string::npos) << f.name;
+}
+
+TEST(TerrainGraph, TheCommandLineComposesAGraphAndRefusesACycle) {
+  test::ScratchDir dir;
+  const auto ok =
+      test::run_cli({"generate", "--graph", test::source_dir() + "/data/graphs/jourdan_valley.toml",
+                     "-o", dir.path("v.npy"), "--picture", dir.path("v.png")});
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(read_terrain(dir.path("v.npy")).nx, 257);
+  test::write_text(dir.path("cycle.toml"),
+                   std::string(kHeader) +
+                       "output = \"a\"\n[nodes.a]\nfilter = \"smooth\"\ninput = \"b\"\n"
+                       "[nodes.b]\nfilter = \"smooth\"\ninput = \"a\"\n");
+  const auto bad =
+      test::run_cli({"generate", "--graph", dir.path("cycle.toml"), "-o", dir.path("c.npy")});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("cycle: a → b → a"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  const auto bench = test::run_cli({"bench", "generate", "--size", "64", "--steps", "1"});
+  ASSERT_EQ(bench.exit_code, 0) << bench.err;
+  EXPECT_NE(bench.out.find("\"generator\": \"value-noise\""), std::string::npos);
+  EXPECT_GT(test::json_number(bench.out, "vertices_per_second"), 0.0);
 }
 
 }  // namespace

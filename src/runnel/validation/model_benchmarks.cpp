@@ -4,6 +4,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -68,6 +69,27 @@ JsonObject benchmark_model(ComputeContext& compute, const std::string& name, int
       .add(std::string(model->work_unit()) + "_per_second", work / t.seconds)
       .add("kernel_seconds", t.kernels);
   return o;
+}
+
+JsonObject benchmark_generators(ComputeContext& compute, int size, int steps) {
+  std::vector<JsonObject> results;
+  for (const GeneratorSpec& g : generators()) {
+    if (!g.on_device) continue;
+    const Timing t = time_steps(
+        compute, steps, [&] { generate_terrain(g.name, size, size, 1.0, 1, {}, &compute); });
+    const double vertices = static_cast<double>(size) * size * steps;
+    results.push_back(JsonObject()
+                          .add("generator", g.name)
+                          .add("seconds", t.seconds)
+                          .add("vertices_per_second", vertices / t.seconds)
+                          .add("kernel_seconds", t.kernels));
+  }
+  return JsonObject()
+      .add("benchmark", "generate")
+      .add("device", compute.info().name)
+      .add("size", size)
+      .add("steps", steps)
+      .add("generators", results);
 }
 
 }  // namespace runnel

@@ -19,4 +19,9 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
 JsonObject benchmark_model(ComputeContext& compute, const std::string& name, int size, int steps,
                            Parameters params);
 
+// `runnel bench generate`: every generator that runs on the device (the noise families) at
+// size × size vertices, `steps` times each after a warm-up: vertices per second of the whole call
+// (kernel and read-back) and of the kernel alone, per generator.
+JsonObject benchmark_generators(ComputeContext& compute, int size, int steps);
+
 }  // namespace runnel
