@@ -44,6 +44,12 @@ CliResult run_program(const std::string& program, const std::vector<std::string>
 
 std::string source_dir();
 
+// A name as a parameterized test's suffix: '-' becomes '_' ("stream-power" → "stream_power").
+inline std::string param_name(std::string name) {
+  for (char& c : name) c = c == '-' ? '_' : c;
+  return name;
+}
+
 // The number after "KEY": in a JSON text (the first occurrence); -1e300 if the key is absent.
 double json_number(const std::string& json, const std::string& key);
 

@@ -25,9 +25,10 @@ void add_bench_command(CLI::App& app) {
       "batches of Beyer droplets on a size x size terrain (--steps batches); generate: the "
       "noise generators at size x size vertices (vertices per second)");
   cmd->add_option("model", opt->which,
-                  "what to measure: sph, droplet, olsen, thermal, pipe or generate")
+                  "what to measure: sph, droplet, olsen, thermal, pipe, stream-power or generate")
       ->required()
-      ->check(CLI::IsMember({"sph", "droplet", "olsen", "thermal", "pipe", "generate"}));
+      ->check(CLI::IsMember(
+          {"sph", "droplet", "olsen", "thermal", "pipe", "stream-power", "generate"}));
   cmd->add_option("--size", opt->size, "grid models and generate: terrain vertices per side")
       ->capture_default_str();
   cmd->add_option("--particles", opt->particles, "number of particles")->capture_default_str();

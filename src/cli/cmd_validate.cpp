@@ -7,6 +7,7 @@
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/validation/stream_power_validation.hpp"
 #include "runnel/validation/validation.hpp"
 
 namespace runnel::cli {
@@ -25,10 +26,14 @@ void add_validate_command(CLI::App& app) {
                          "hydrostatic (pressure = rho0 g d), dambreak (Koshizuka & Oka 1996) or "
                          "droplet (bounce, slide and rest of a lone drop against their analytic "
                          "values) or erosion-convergence (the eroded volume against the time step, "
-                         "the particle size and the spawn height)");
-  cmd->add_option("case", opt->which, "hydrostatic, dambreak, droplet or erosion-convergence")
+                         "the particle size and the spawn height), or stream-power (the "
+                         "stream-power model against its analytic steady states: a 1-D channel, a "
+                         "2-D grid's slope-area relation, the diffusion hillslope)");
+  cmd->add_option("case", opt->which,
+                  "hydrostatic, dambreak, droplet, erosion-convergence or stream-power")
       ->required()
-      ->check(CLI::IsMember({"hydrostatic", "dambreak", "droplet", "erosion-convergence"}));
+      ->check(CLI::IsMember(
+          {"hydrostatic", "dambreak", "droplet", "erosion-convergence", "stream-power"}));
   cmd->add_option("--resolution", opt->resolution,
                   "particles across the length scale (hydrostatic: layers in the "
                   "column, default 16; dambreak: across L, default 20); erosion-convergence: "
@@ -59,6 +64,22 @@ void add_validate_command(CLI::App& app) {
       v.out_dir = opt->out;
     }
     v.progress = isatty(STDERR_FILENO);
+    if (opt->which == "stream-power") {  // host-side numerics: no device
+      std::vector<JsonObject> profiles;
+      for (double n : {1.0, 2.0, 4.0})
+        profiles.push_back(json(stream_power_profile(n)).add("n", n).add("target_theta", 0.5 / n));
+      std::vector<JsonObject> grids;
+      for (double n : {1.0, 2.0})
+        grids.push_back(json(stream_power_grid(41, n, 4)).add("n", n).add("target_theta", 0.5 / n));
+      std::cout << JsonObject()
+                       .add("case", "stream-power")
+                       .add("profile_1d", profiles)
+                       .add("grid_2d", grids)
+                       .add("hillslope_diffusion", json(hillslope_diffusion()))
+                       .str()
+                << "\n";
+      return;
+    }
     ComputeContext compute(opt->device);
     const ValidationResult r = opt->which == "hydrostatic" ? validate_hydrostatic(compute, v)
                                : opt->which == "dambreak"  ? validate_dambreak(compute, v)

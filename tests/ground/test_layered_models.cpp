@@ -34,6 +34,7 @@ Parameters base_parameters(const std::string& model) {
   p.set("droplet.batch", std::int64_t{64});
   p.set("rain.rate", 2000.0);
   p.set("erosion.morphological_factor", 1000.0);
+  p.set("stream_power.uplift", 0.0);
   return p;
 }
 
@@ -208,7 +209,7 @@ TEST_P(LayeredModel, ALayeredRunResumesExactly) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, LayeredModel, ::testing::ValuesIn(model_names()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) { return test::param_name(info.param); });
 
 }  // namespace
 }  // namespace runnel

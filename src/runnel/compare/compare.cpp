@@ -126,7 +126,7 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
     ModelResult r;
     r.model = name;
     r.class_name = model->info().class_name;
-    r.clock = model->info().clock == ModelClock::kSeconds ? "s" : "iterations";
+    r.clock = clock_name(model->info().clock);
     r.folder = name;
     r.setup = setup_text(scenario, params[k]);
     r.steps = s.steps;

@@ -143,7 +143,10 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
   md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ModelResult& r : results) {
     md += "| [" + r.model + "](" + r.folder + "/metrics.json) | " + r.class_name + " | " +
-          std::to_string(r.steps) + " | " + format("%.4g", r.time) + (r.clock == "s" ? " s" : "") +
+          std::to_string(r.steps) + " | " + format("%.4g", r.time) +
+          (r.clock == "s"    ? " s"
+           : r.clock == "yr" ? " yr"
+                             : "") +
           " | " + format("%.4g", r.rain_volume) + " | " + format("%.4g", r.balance.eroded) + " | " +
           format("%.4g", r.balance.deposited) + " | " + format("%.4g", r.balance.outflow) + " | " +
           format("%.1e", r.balance.relative) + " | " +

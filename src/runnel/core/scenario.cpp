@@ -98,7 +98,7 @@ Parameters parse_scenario(const std::string& text, const std::string& origin,
   flatten(table, "", params, origin);
   if (const toml::node* layers = table.get("layers")) read_layers(*layers, params, origin);
   for (const char* key : {"terrain.file", "terrain.graph", "ground.hardness_mask",
-                          "ground.rain_mask", "ground.frozen_mask"}) {
+                          "ground.rain_mask", "ground.frozen_mask", "stream_power.uplift_file"}) {
     if (params.was_set(key)) params.set(key, resolved(params.text(key), base_dir), origin);
   }
   for (std::size_t l = 0; l < params.layers().size(); ++l) {

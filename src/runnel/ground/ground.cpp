@@ -98,6 +98,22 @@ void Ground::update() {
       .launch(round_up_work(static_cast<std::size_t>(n)), "ground.update");
 }
 
+void Ground::raise(const std::vector<std::int64_t>& quanta) {
+  const std::size_t n = strata_.vertices();
+  for (int l = 0; l <= strata_.strata; ++l)
+    for (std::size_t k = 0; k < n; ++k) strata_.contacts[l * n + k] += quanta[k];
+  if (strata_.strata > 0)
+    compute_.queue().enqueueWriteBuffer(contacts_, CL_TRUE, 0, strata_.strata * n * 8,
+                                        strata_.contacts.data() + n);
+  auto previous = host_copy<std::int64_t>(compute_, previous_, n);
+  for (std::size_t k = 0; k < n; ++k) previous[k] += quanta[k];
+  compute_.queue().enqueueWriteBuffer(previous_, CL_TRUE, 0, n * 8, previous.data());
+}
+
+std::vector<float> Ground::rock_erodibility() {
+  return host_copy<float>(compute_, bed_.rock_erodibility, strata_.vertices());
+}
+
 std::vector<std::int64_t> Ground::sediment() {
   return host_copy<std::int64_t>(compute_, bed_.sediment, strata_.vertices());
 }

@@ -32,6 +32,11 @@ class Ground {
 
   // Books the step's net height change into the sediment and refreshes the factors.
   void update();
+  // Tectonic uplift (stream-power): the whole column rises by `quanta` per vertex, the strata with
+  // it, so the uplift is neither loose sediment nor erosion. Call after raising the heights.
+  void raise(const std::vector<std::int64_t>& quanta);
+  // The rock's erodibility per vertex (× the masks), as the last update() left it.
+  std::vector<float> rock_erodibility();
   // The per-vertex fields the models' kernels read, refreshed by update().
   const BedFields& bed() const { return bed_; }
 

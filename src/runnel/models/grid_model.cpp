@@ -52,7 +52,7 @@ double GridModel::water_volume() {
 MassBalance GridModel::mass_balance() {
   return mass_balance_of(state_.initial_fixed(), state_.terrain().download_fixed(),
                          suspended_quanta(), outflow_quanta(), lost_quanta(),
-                         state_.terrain().volume_quantum());
+                         state_.terrain().volume_quantum(), uplift_quanta());
 }
 
 std::string GridModel::status() {

@@ -41,6 +41,8 @@ class GridModel : public Model {
   virtual long long outflow_quanta() { return 0; }
   // Height quanta a documented non-conserving option destroyed (negative: created).
   virtual long long lost_quanta() { return 0; }
+  // Height quanta tectonic uplift added (stream-power).
+  virtual long long uplift_quanta() { return 0; }
   virtual long long suspended_quanta();
 
  protected:

@@ -11,6 +11,7 @@ JsonObject MassBalance::json() const {
       .add("suspended", suspended)
       .add("outflow", outflow)
       .add("lost", lost)
+      .add("uplift", uplift)
       .add("residual", residual)
       .add("residual_quanta", residual_quanta)
       .add("eroded", eroded)
@@ -20,7 +21,7 @@ JsonObject MassBalance::json() const {
 
 MassBalance mass_balance_of(const std::vector<std::int64_t>& initial,
                             const std::vector<std::int64_t>& current, long long suspended,
-                            long long outflow, long long lost, double q) {
+                            long long outflow, long long lost, double q, long long uplift) {
   long long change = 0, eroded = 0, deposited = 0;
   for (std::size_t k = 0; k < current.size(); ++k) {
     const long long d = current[k] - initial[k];
@@ -31,7 +32,8 @@ MassBalance mass_balance_of(const std::vector<std::int64_t>& initial,
       deposited += d;
   }
   MassBalance m;
-  m.residual_quanta = change + suspended + outflow + lost;
+  m.residual_quanta = change + suspended + outflow + lost - uplift;
+  m.uplift = uplift * q;
   m.terrain_change = change * q;
   m.suspended = suspended * q;
   m.outflow = outflow * q;

@@ -5,6 +5,14 @@
 
 namespace runnel {
 
+const char* clock_name(ModelClock clock) {
+  return clock == ModelClock::kSeconds ? "s" : clock == ModelClock::kYears ? "yr" : "iterations";
+}
+
+const char* clock_suffix(ModelClock clock) {
+  return clock == ModelClock::kSeconds ? " s" : clock == ModelClock::kYears ? " yr" : "";
+}
+
 void Model::advance(double dt) {
   if (!(dt > 0)) return;
   if (info().clock == ModelClock::kIterations) {

@@ -15,9 +15,13 @@ namespace runnel {
 
 class Ground;
 
-// How a model counts time: simulated seconds (sph, pipe) or iterations (olsen, thermal, and the
-// droplet model's batches), which have no physical duration.
-enum class ModelClock { kSeconds, kIterations };
+// How a model counts time: simulated seconds (sph, pipe), years (stream-power, geological time) or
+// iterations (olsen, thermal, and the droplet model's batches), which have no physical duration.
+enum class ModelClock { kSeconds, kIterations, kYears };
+// "s", "yr" or "iterations" (metrics.json's "clock").
+const char* clock_name(ModelClock clock);
+// What follows a time in a progress line: " s", " yr" or "".
+const char* clock_suffix(ModelClock clock);
 
 // What a model is, in the spirit of Landlab's component metadata: its registry key, the class
 // named after its paper, the citation, its parameter group and the fields it reads and writes.

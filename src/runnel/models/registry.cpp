@@ -7,6 +7,7 @@
 #include "runnel/models/olsen_model.hpp"
 #include "runnel/models/pipe_model.hpp"
 #include "runnel/models/sph_model.hpp"
+#include "runnel/models/stream_power_model.hpp"
 #include "runnel/models/thermal_model.hpp"
 
 namespace runnel {
@@ -22,9 +23,9 @@ ModelEntry entry() {
 }  // namespace
 
 const std::vector<ModelEntry>& model_registry() {
-  static const std::vector<ModelEntry> registry = {entry<SphModel>(), entry<DropletModel>(),
-                                                   entry<PipeModel>(), entry<OlsenModel>(),
-                                                   entry<ThermalModel>()};
+  static const std::vector<ModelEntry> registry = {
+      entry<SphModel>(),   entry<DropletModel>(), entry<PipeModel>(),
+      entry<OlsenModel>(), entry<ThermalModel>(), entry<StreamPowerModel>()};
   return registry;
 }
 

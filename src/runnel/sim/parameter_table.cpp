@@ -44,14 +44,15 @@ std::vector<ParamSpec> assemble() {
       {"run.model", T::kString, "\"sph\"", "", 0, 0, model_names(), "erosion model (docs/models.md): sph (runnel's own), droplet (Beyer 2015), pipe (Mei 2007), olsen (Olsen 2004), thermal (talus)"},
       {"run.seed", T::kInteger, "1", "1", 0, 9.2e18, {}, "seed of the simulation's random numbers (rain)"},
       {"run.steps", T::kInteger, "0", "steps", 0, 1e12, {}, "steps to run; 0: run for run.sim_time"},
-      {"run.sim_time", T::kReal, "10", "s", 0, 1e12, {}, "simulated time to run when run.steps is 0 (models with a clock in seconds: sph, pipe)"},
+      {"run.sim_time", T::kReal, "10", "s", 0, 1e12, {}, "simulated time to run when run.steps is 0 (models with a clock: sph and pipe in seconds, stream-power in years)"},
       {"run.iterations", T::kInteger, "100", "iterations", 0, 1e12, {}, "iterations to run when run.steps is 0 (models counting iterations: droplet batches, olsen, thermal)"},
       {"run.report_every", T::kInteger, "200", "steps", 1, 1e12, {}, "steps between mass-balance reports (progress lines when not on a terminal)"},
       // clang-format on
   };
   std::vector<ParamSpec> table = terrain;
-  for (auto group : {sph_parameters, rain_parameters, erosion_parameters, thermal_parameters,
-                     droplet_parameters, olsen_parameters, pipe_parameters, ground_parameters}) {
+  for (auto group :
+       {sph_parameters, rain_parameters, erosion_parameters, thermal_parameters, droplet_parameters,
+        olsen_parameters, pipe_parameters, stream_power_parameters, ground_parameters}) {
     for (ParamSpec& spec : group()) table.push_back(std::move(spec));
   }
   table.insert(table.end(), run.begin(), run.end());

@@ -26,11 +26,10 @@ namespace runnel {
 namespace {
 
 std::string status_line(Model& model, double steps_per_second) {
-  const bool seconds = model.info().clock == ModelClock::kSeconds;
   char buf[200];
   std::snprintf(buf, sizeof buf, "step %llu | %s | t = %.3g%s | %.0f steps/s",
                 static_cast<unsigned long long>(model.steps()), model.status().c_str(),
-                model.time(), seconds ? " s" : "", steps_per_second);
+                model.time(), clock_suffix(model.info().clock), steps_per_second);
   return buf;
 }
 
@@ -64,7 +63,7 @@ RunOptions run_options_from(const Parameters& params, ModelClock clock) {
 
 void require_run_length(const Parameters& params, ModelClock clock) {
   if (params.integer("run.steps") > 0) return;
-  if (clock == ModelClock::kSeconds && !(params.real("run.sim_time") > 0))
+  if (clock != ModelClock::kIterations && !(params.real("run.sim_time") > 0))
     throw input_error("run.sim_time: must be positive when run.steps is 0");
   if (clock == ModelClock::kIterations && params.integer("run.iterations") <= 0)
     throw input_error("run.iterations: must be positive when run.steps is 0");
@@ -232,7 +231,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       .add("device", compute.info().name)
       .add("model", model.info().name)
       .add("model_class", model.info().class_name)
-      .add("clock", model.info().clock == ModelClock::kSeconds ? "s" : "iterations")
+      .add("clock", clock_name(model.info().clock))
       .add("seed", static_cast<long long>(params.integer("run.seed")))
       .add("steps", static_cast<long long>(model.steps()))
       .add("sim_time", model.time())
@@ -265,9 +264,8 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   std::snprintf(
       buf, sizeof buf,
       "%llu steps, t = %.3g%s, eroded %.4g m3, deposited %.4g m3, mass balance %.2e m3 (rel %.1e)",
-      static_cast<unsigned long long>(s.steps), s.sim_time,
-      model.info().clock == ModelClock::kSeconds ? " s" : "", m.eroded, m.deposited, m.residual,
-      m.relative);
+      static_cast<unsigned long long>(s.steps), s.sim_time, clock_suffix(model.info().clock),
+      m.eroded, m.deposited, m.residual, m.relative);
   progress.finish(buf);
   return s;
 }

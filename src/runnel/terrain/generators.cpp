@@ -236,20 +236,22 @@ Heightmap v_valley(const GeneratorRequest& r) {
       r, [&](double x, double z) { return side * std::fabs(x - cx) + axis * (lz - z); });
 }
 
-const GeneratorParam kRelief{
-    "relief", 0.25, "fraction of extent", "height range as a fraction of the horizontal extent",
-    0.0,      10.0};
-const GeneratorParam kHurst{
-    "hurst", 0.8, "1", "Hurst exponent H: amplitude falls as lacunarity^(-H) per octave", 0.0, 2.0};
-const GeneratorParam kLacunarity{"lacunarity", 2.0, "1", "frequency ratio between octaves",
-                                 1.01,         8.0};
-const GeneratorParam kOctaves{"octaves", 8, "1", "number of noise octaves", 1, 24};
-const GeneratorParam kFrequency{
-    "frequency", 2.0, "cycles per extent", "frequency of the first octave", 0.01, 1000.0};
-
 }  // namespace
 
 const std::vector<GeneratorSpec>& generators() {
+  // The shared parameters here, not at namespace scope: generators() may run during another
+  // file's static initialisation (a test's parameter list), before namespace-scope objects exist.
+  const GeneratorParam kRelief{
+      "relief", 0.25, "fraction of extent", "height range as a fraction of the horizontal extent",
+      0.0,      10.0};
+  const GeneratorParam kHurst{
+      "hurst", 0.8, "1", "Hurst exponent H: amplitude falls as lacunarity^(-H) per octave",
+      0.0,     2.0};
+  const GeneratorParam kLacunarity{"lacunarity", 2.0, "1", "frequency ratio between octaves",
+                                   1.01,         8.0};
+  const GeneratorParam kOctaves{"octaves", 8, "1", "number of noise octaves", 1, 24};
+  const GeneratorParam kFrequency{
+      "frequency", 2.0, "cycles per extent", "frequency of the first octave", 0.01, 1000.0};
   static const std::vector<GeneratorSpec> specs = {
       {"diamond-square",
        "midpoint displacement fractal (Fournier 1982)",

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/landscape/stream_power.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace runnel {
+
+void erode_stream_power(std::vector<double>& h, const FlowRouting& r, const std::vector<double>& k,
+                        double m, double n, double dt) {
+  for (const std::int32_t node : r.stack) {
+    const std::int32_t rec = r.receiver[node];
+    if (rec == node) continue;
+    const double hr = h[rec], h0 = h[node];
+    if (h0 <= hr) continue;  // in a depression, or flat: no incision
+    const double f = k[node] * dt * std::pow(r.area[node], m) / std::pow(r.distance[node], n);
+    if (n == 1.0) {
+      h[node] = (h0 + f * hr) / (1.0 + f);
+      continue;
+    }
+    // g(x) = x − (h0 − hr) + f x^n, x = h' − hr in [0, h0 − hr]: increasing, one root.
+    double x = h0 - hr;
+    for (int it = 0; it < 100; ++it) {
+      const double g = x - (h0 - hr) + f * std::pow(x, n);
+      const double dg = 1.0 + f * n * std::pow(x, n - 1.0);
+      const double next = std::max(x - g / dg, 0.0);
+      const bool done = std::fabs(next - x) <= 1e-12 * std::max(1.0, std::fabs(h0));
+      x = next;
+      if (done) break;
+    }
+    h[node] = hr + x;
+  }
+}
+
+void diffuse(std::vector<double>& h, int nx, int ny, double cell, double d, double dt,
+             BaseLevel base) {
+  if (d <= 0 || dt <= 0) return;
+  const int substeps = static_cast<int>(std::ceil(dt * 4.1 * d / (cell * cell)));
+  const double tau = dt / substeps, c = d * tau / (cell * cell);
+  std::vector<double> next(h);
+  for (int s = 0; s < substeps; ++s) {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (is_base_level(i, j, nx, ny, base)) continue;
+        const std::size_t q = static_cast<std::size_t>(j) * nx + i;
+        // A closed edge mirrors its row: no flux across it.
+        const double north = j > 0 ? h[q - nx] : h[q], south = j < ny - 1 ? h[q + nx] : h[q];
+        next[q] = h[q] + c * (h[q - 1] + h[q + 1] + north + south - 4 * h[q]);
+      }
+    h.swap(next);
+  }
+}
+
+}  // namespace runnel

@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/models/stream_power_model.hpp"
+
+#include <cmath>
+
+#include "runnel/core/error.hpp"
+#include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/settings_table.hpp"
+#include "runnel/landscape/flow_routing.hpp"
+#include "runnel/landscape/stream_power.hpp"
+#include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/terrain/terrain_io.hpp"
+
+namespace runnel {
+namespace {
+
+using S = StreamPowerSettings;
+// clang-format off
+const SettingsTable<StreamPowerSettings> kStreamPowerTable = {
+      // stream_power: detachment-limited stream-power incision with uplift and hillslope diffusion (years)
+      {"stream_power.k", "1e-5", "m^(1-2m)/yr", 0, 1e3, {}, "erodibility K of E = K A^m S^n", &S::k},
+      {"stream_power.m", "0.5", "1", 0, 3, {}, "drainage-area exponent m", &S::m},
+      {"stream_power.n", "1", "1", 0.1, 10, {}, "slope exponent n (n = 1: exact implicit step; otherwise Newton)", &S::n},
+      {"stream_power.uplift", "1", "mm/yr", 0, 1e4, {}, "tectonic uplift rate U of every vertex but the edges (base level)", &S::uplift},
+      {"stream_power.uplift_file", "\"\"", "", 0, 0, {}, "raster of U (mm/yr) per vertex, any terrain format, relative to the scenario; empty: stream_power.uplift everywhere", &S::uplift_file},
+      {"stream_power.diffusivity", "0", "m^2/yr", 0, 1e6, {}, "linear hillslope diffusivity D; 0: none", &S::diffusivity},
+      {"stream_power.dt", "1000", "yr", 1e-6, 1e9, {}, "years per step (the implicit incision is stable at any step)", &S::dt},
+      {"stream_power.base_level", "\"all\"", "", 0, 0, {"all", "west-east"}, "edges at base level (fixed, open): all four, or west and east only (north and south closed)", &S::base_level},
+};
+// clang-format on
+
+}  // namespace
+
+std::vector<ParamSpec> stream_power_parameters() {
+  return settings_specs(kStreamPowerTable);
+}
+
+StreamPowerSettings StreamPowerSettings::from(const Parameters& p) {
+  return read_settings(p, kStreamPowerTable);
+}
+
+const ModelInfo& StreamPowerModel::model_info() {
+  static const ModelInfo info{
+      "stream-power",
+      "Erosion_BraunWillett2013",
+      "J. Braun, S. D. Willett: A very efficient O(n), implicit and parallel method to solve the "
+      "stream power equation governing fluvial incision and landscape evolution, Geomorphology "
+      "180-181, 2013",
+      "stream_power",
+      ModelClock::kYears,
+      false,
+      {{kTopographicElevation, FieldIntent::kInOut}}};
+  return info;
+}
+
+StreamPowerModel::StreamPowerModel(ComputeContext& compute, const Parameters& params,
+                                   const Heightmap& terrain)
+    : GridModel(compute, params, terrain),
+      settings_(StreamPowerSettings::from(params)),
+      base_(settings_.base_level == "all" ? BaseLevel::kAllEdges : BaseLevel::kWestEast) {
+  const int nx = terrain.nx, ny = terrain.ny;
+  if (nx < 3 || ny < 3)
+    throw input_error(
+        "terrain: the stream-power model needs 3 x 3 vertices or more (the edges are base level)");
+  const double q = state_.terrain().quantum();
+  std::vector<float> rate(static_cast<std::size_t>(nx) * ny, static_cast<float>(settings_.uplift));
+  if (!settings_.uplift_file.empty()) {
+    rate = read_vertex_raster(settings_.uplift_file, nx, ny, "stream_power.uplift_file");
+    for (float u : rate)
+      if (!std::isfinite(u) || u < 0)
+        throw input_error(settings_.uplift_file + ": stream_power.uplift_file holds " +
+                          std::to_string(u) + "; an uplift rate must be finite and ≥ 0 mm/yr");
+  }
+  uplift_per_step_.assign(rate.size(), 0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      if (!is_base_level(i, j, nx, ny, base_))
+        uplift_per_step_[static_cast<std::size_t>(j) * nx + i] =
+            std::llround(rate[static_cast<std::size_t>(j) * nx + i] * 1e-3 * settings_.dt / q);
+  k_.assign(rate.size(), settings_.k);
+}
+
+double StreamPowerModel::take_step() {
+  DeviceTerrain& terrain = state_.terrain();
+  const int nx = terrain.nx(), ny = terrain.ny();
+  const double q = terrain.quantum();
+  std::vector<std::int64_t> fixed = terrain.download_fixed();
+  std::vector<double> h(fixed.size());
+  for (std::size_t k = 0; k < fixed.size(); ++k) {
+    fixed[k] += uplift_per_step_[k];
+    uplift_ += uplift_per_step_[k];
+    h[k] = static_cast<double>(fixed[k]) * q;
+  }
+  if (ground_) {  // the strata rise with the rock; K × the exposed rock's erodibility
+    ground_->raise(uplift_per_step_);
+    const std::vector<float> e = ground_->rock_erodibility();
+    for (std::size_t k = 0; k < k_.size(); ++k) k_[k] = settings_.k * e[k];
+  }
+  const FlowRouting routing = route_d8(h, nx, ny, terrain.cell(), base_);
+  erode_stream_power(h, routing, k_, settings_.m, settings_.n, settings_.dt);
+  diffuse(h, nx, ny, terrain.cell(), settings_.diffusivity, settings_.dt, base_);
+  // Back to whole quanta; what the interior lost left the map over the base level.
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (is_base_level(i, j, nx, ny, base_)) continue;
+      const std::size_t k = static_cast<std::size_t>(j) * nx + i;
+      const std::int64_t now = std::llround(h[k] / q);
+      outflow_ += fixed[k] - now;
+      fixed[k] = now;
+    }
+  terrain.upload_fixed(fixed);
+  return settings_.dt;
+}
+
+std::vector<std::pair<std::string, std::int64_t>> StreamPowerModel::counters() {
+  return {{"outflow_quanta", outflow_}, {"uplift_quanta", uplift_}};
+}
+
+void StreamPowerModel::restore_counters(
+    const std::vector<std::pair<std::string, std::int64_t>>& c) {
+  outflow_ = counter_value(c, "outflow_quanta");
+  uplift_ = counter_value(c, "uplift_quanta");
+}
+
+JsonObject StreamPowerModel::diagnostics() {
+  return JsonObject()
+      .add("uplift_volume_m3", static_cast<double>(uplift_) * state_.terrain().volume_quantum())
+      .add("years", time());
+}
+
+}  // namespace runnel

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runnel/landscape/flow_routing.hpp"
+#include "runnel/models/grid_model.hpp"
+
+namespace runnel {
+
+struct StreamPowerSettings {
+  // The stream_power.* parameters (defaults, units, meaning: the table in stream_power_model.cpp).
+  double k;                 // erodibility K, m^(1−2m)/yr
+  double m, n;              // area and slope exponents
+  double uplift;            // U, mm/yr
+  std::string uplift_file;  // raster of U, mm/yr
+  double diffusivity;       // D, m²/yr
+  double dt;                // yr per step
+  std::string base_level;   // "all" edges, or "west-east"
+  static StreamPowerSettings from(const Parameters& params);
+};
+
+// Erosion_BraunWillett2013: detachment-limited stream-power incision E = K A^m S^n over years, with
+// tectonic uplift and linear hillslope diffusion (docs/models.md "stream-power"). One step of dt:
+// uplift the interior, route D8 over the depression-filled surface (priority-flood), the implicit
+// O(n) stream-power update in stack order (Braun & Willett 2013), diffusion; the edges are base
+// level. On the host: the stack order is sequential. Heights stay integer quanta: what a step
+// removes leaves the map (outflow) and the uplift is booked, so the balance is exact.
+class StreamPowerModel final : public GridModel {
+ public:
+  static const ModelInfo& model_info();
+  StreamPowerModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
+  const ModelInfo& info() const override { return model_info(); }
+
+  long long outflow_quanta() override { return outflow_; }
+  long long uplift_quanta() override { return uplift_; }
+  JsonObject diagnostics() override;
+  double next_dt() const override { return settings_.dt; }
+
+ protected:
+  double take_step() override;
+  std::vector<std::pair<std::string, std::int64_t>> counters() override;
+  void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
+
+ private:
+  StreamPowerSettings settings_;
+  std::vector<std::int64_t> uplift_per_step_;  // quanta per vertex and step (0 on the edges)
+  std::vector<double> k_;                      // K per vertex
+  BaseLevel base_;
+  long long outflow_ = 0, uplift_ = 0;
+};
+
+}  // namespace runnel
