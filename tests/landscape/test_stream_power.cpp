@@ -91,5 +91,42 @@ TEST(StreamPower, TheModelBooksUpliftAndOutflowExactly) {
   EXPECT_DOUBLE_EQ(model->time(), 20 * 1000.0);
 }
 
+TEST(StreamPower, TheErosionDepositionFormDepositsWhereTheDetachmentLimitedOneCannot) {
+  // Without uplift nothing can rise in the detachment-limited form; with G > 0 the flux from
+  // upstream settles in the valleys and lows rise. Both balance exactly.
+  for (double g : {0.0, 1.0}) {
+    Parameters p;
+    p.set("run.model", std::string("stream-power"));
+    p.set("stream_power.uplift", 0.0);
+    p.set("stream_power.k", 1e-4);
+    p.set("stream_power.deposition", g);
+    auto model =
+        make_model(test::compute(), p, generate_terrain("fbm", 33, 33, 20.0, 2, {{"relief", 0.1}}));
+    for (int s = 0; s < 10; ++s) model->step();
+    const MassBalance m = model->mass_balance();
+    EXPECT_EQ(m.residual_quanta, 0) << "G " << g;
+    EXPECT_GT(m.eroded, 0.0);
+    if (g == 0) {
+      EXPECT_EQ(m.deposited, 0.0);
+    } else {
+      EXPECT_GT(m.deposited, 0.0);
+    }
+  }
+}
+
+TEST(StreamPower, ItsMetricsReportTheConcavityOfItsChannels) {
+  // Run towards steady state under uplift: the fitted θ of the channels approaches m/n = 0.5.
+  Parameters p;
+  p.set("run.model", std::string("stream-power"));
+  p.set("stream_power.k", 2e-5);
+  p.set("stream_power.dt", 20000.0);
+  auto model =
+      make_model(test::compute(), p, generate_terrain("fbm", 33, 33, 100.0, 4, {{"relief", 0.01}}));
+  for (int s = 0; s < 300; ++s) model->step();
+  const std::string d = model->diagnostics().str();
+  EXPECT_NEAR(test::json_number(d, "concavity_theta"), 0.5, 0.02) << d;
+  EXPECT_GT(test::json_number(d, "steepness_ks"), 0.0);
+}
+
 }  // namespace
 }  // namespace runnel

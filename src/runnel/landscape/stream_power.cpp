@@ -32,6 +32,40 @@ void erode_stream_power(std::vector<double>& h, const FlowRouting& r, const std:
   }
 }
 
+void deposit_sediment_flux(std::vector<double>& h, const std::vector<double>& before,
+                           const FlowRouting& r, double g, double cell_area) {
+  // Volumes over the step (m³), not rates: Qs·dt. Donors before receivers: up the stack.
+  std::vector<double> load(h.size(), 0.0);
+  for (std::size_t s = r.stack.size(); s-- > 0;) {
+    const std::int32_t k = r.stack[s];
+    const double eroded = (before[k] - h[k]) * cell_area;
+    const double arriving = load[k];
+    const double deposited = std::min(arriving, g * arriving * cell_area / r.area[k]);
+    h[k] += deposited / cell_area;
+    const double leaving = arriving - deposited + eroded;
+    if (r.receiver[k] != k) load[r.receiver[k]] += leaving;
+  }
+}
+
+SlopeArea fit_slope_area(const std::vector<double>& h, const FlowRouting& r, double min_area) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  SlopeArea f;
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    const std::int32_t rec = r.receiver[k];
+    if (rec == static_cast<std::int32_t>(k) || r.area[k] < min_area) continue;
+    const double s = (h[k] - h[rec]) / r.distance[k];
+    if (!(s > 0)) continue;
+    const double x = std::log(r.area[k]), y = std::log(s);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+    ++f.nodes;
+  }
+  if (f.nodes < 2) return f;
+  const double n = f.nodes, slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  f.theta = -slope;
+  f.ks = std::exp((sy - slope * sx) / n);
+  return f;
+}
+
 void diffuse(std::vector<double>& h, int nx, int ny, double cell, double d, double dt,
              BaseLevel base) {
   if (d <= 0 || dt <= 0) return;

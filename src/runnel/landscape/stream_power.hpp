@@ -17,6 +17,22 @@ namespace runnel {
 void erode_stream_power(std::vector<double>& height, const FlowRouting& routing,
                         const std::vector<double>& k, double m, double n, double dt);
 
+// The erosion–deposition form (Davy & Lague 2009, ξ–q): the material the incision of this step
+// removed (`before` − `height`) travels down the stack as a sediment flux Qs (m³/yr), and each node
+// takes back G·Qs/A of it (m/yr, never more than what arrives), visited donors first. Explicit in
+// the flux: a deposition step of what the incision computed implicitly. `cell_area` m² per node.
+void deposit_sediment_flux(std::vector<double>& height, const std::vector<double>& before,
+                           const FlowRouting& routing, double g, double cell_area);
+
+// The channels' slope–area relation S = k_s·A^−θ, least squares in log–log over the nodes draining
+// at least `min_area` m² with a positive slope to their receiver.
+struct SlopeArea {
+  double theta = 0, ks = 0;
+  int nodes = 0;
+};
+SlopeArea fit_slope_area(const std::vector<double>& height, const FlowRouting& routing,
+                         double min_area);
+
 // Linear hillslope diffusion ∂h/∂t = D∇²h over dt, explicit in sub-steps of at most cell²/(4.1 D)
 // (stable), with the base-level edges held fixed (what diffuses into them leaves the map) and
 // closed edges without flux across them.

@@ -25,6 +25,7 @@ const SettingsTable<StreamPowerSettings> kStreamPowerTable = {
       {"stream_power.uplift_file", "\"\"", "", 0, 0, {}, "raster of U (mm/yr) per vertex, any terrain format, relative to the scenario; empty: stream_power.uplift everywhere", &S::uplift_file},
       {"stream_power.diffusivity", "0", "m^2/yr", 0, 1e6, {}, "linear hillslope diffusivity D; 0: none", &S::diffusivity},
       {"stream_power.dt", "1000", "yr", 1e-6, 1e9, {}, "years per step (the implicit incision is stable at any step)", &S::dt},
+      {"stream_power.deposition", "0", "1", 0, 1e3, {}, "G of Davy & Lague 2009's erosion-deposition form: deposition G·Qs/A of the sediment flux Qs from upstream; 0: detachment-limited (all eroded material leaves)", &S::deposition},
       {"stream_power.base_level", "\"all\"", "", 0, 0, {"all", "west-east"}, "edges at base level (fixed, open): all four, or west and east only (north and south closed)", &S::base_level},
 };
 // clang-format on
@@ -97,7 +98,11 @@ double StreamPowerModel::take_step() {
     for (std::size_t k = 0; k < k_.size(); ++k) k_[k] = settings_.k * e[k];
   }
   const FlowRouting routing = route_d8(h, nx, ny, terrain.cell(), base_);
+  const std::vector<double> before = h;
   erode_stream_power(h, routing, k_, settings_.m, settings_.n, settings_.dt);
+  if (settings_.deposition > 0)
+    deposit_sediment_flux(h, before, routing, settings_.deposition,
+                          terrain.cell() * terrain.cell());
   diffuse(h, nx, ny, terrain.cell(), settings_.diffusivity, settings_.dt, base_);
   // Back to whole quanta; what the interior lost left the map over the base level.
   for (int j = 0; j < ny; ++j)
@@ -123,9 +128,20 @@ void StreamPowerModel::restore_counters(
 }
 
 JsonObject StreamPowerModel::diagnostics() {
+  // The slope–area relation of the channels now (nodes draining 10 cells or more): S = k_s A^−θ.
+  DeviceTerrain& terrain = state_.terrain();
+  const std::vector<std::int64_t> fixed = terrain.download_fixed();
+  std::vector<double> h(fixed.size());
+  for (std::size_t k = 0; k < h.size(); ++k)
+    h[k] = static_cast<double>(fixed[k]) * terrain.quantum();
+  const FlowRouting r = route_d8(h, terrain.nx(), terrain.ny(), terrain.cell(), base_);
+  const SlopeArea fit = fit_slope_area(h, r, 10.0 * terrain.cell() * terrain.cell());
   return JsonObject()
-      .add("uplift_volume_m3", static_cast<double>(uplift_) * state_.terrain().volume_quantum())
-      .add("years", time());
+      .add("uplift_volume_m3", static_cast<double>(uplift_) * terrain.volume_quantum())
+      .add("years", time())
+      .add("concavity_theta", fit.theta)
+      .add("steepness_ks", fit.ks)
+      .add("channel_nodes", fit.nodes);
 }
 
 }  // namespace runnel

@@ -19,6 +19,7 @@ struct StreamPowerSettings {
   double diffusivity;       // D, m²/yr
   double dt;                // yr per step
   std::string base_level;   // "all" edges, or "west-east"
+  double deposition;        // G of the erosion-deposition (xi-q) form; 0: detachment-limited
   static StreamPowerSettings from(const Parameters& params);
 };
 
