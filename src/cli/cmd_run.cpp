@@ -37,9 +37,10 @@ void add_run_command(CLI::App& app) {
                                   "reads) instead of the scenario's");
   cmd->add_option("--generate", opt->generate, "generate the terrain with this generator instead")
       ->excludes(terrain);
-  cmd->add_option("--model", opt->model,
-                  "erosion model (run.model): sph, droplet, pipe, olsen or thermal; see "
-                  "docs/models.md")
+  cmd->add_option(
+         "--model", opt->model,
+         "erosion model (run.model): sph, droplet, pipe, olsen, thermal or stream-power; see "
+         "docs/models.md")
       ->check(CLI::IsMember(model_names()));
   auto* steps =
       cmd->add_option("--steps", opt->steps, "number of steps (run.steps)")->check(at_least(1));

@@ -41,7 +41,7 @@ std::vector<ParamSpec> assemble() {
   const std::vector<ParamSpec> run = {
       // clang-format off
       // run: the simulation as a whole
-      {"run.model", T::kString, "\"sph\"", "", 0, 0, model_names(), "erosion model (docs/models.md): sph (runnel's own), droplet (Beyer 2015), pipe (Mei 2007), olsen (Olsen 2004), thermal (talus)"},
+      {"run.model", T::kString, "\"sph\"", "", 0, 0, model_names(), "erosion model (docs/models.md): sph (runnel's own), droplet (Beyer 2015), pipe (Mei 2007), olsen (Olsen 2004), thermal (talus), stream-power (Braun & Willett 2013, years)"},
       {"run.seed", T::kInteger, "1", "1", 0, 9.2e18, {}, "seed of the simulation's random numbers (rain)"},
       {"run.steps", T::kInteger, "0", "steps", 0, 1e12, {}, "steps to run; 0: run for run.sim_time"},
       {"run.sim_time", T::kReal, "10", "s", 0, 1e12, {}, "simulated time to run when run.steps is 0 (models with a clock: sph and pipe in seconds, stream-power in years)"},
