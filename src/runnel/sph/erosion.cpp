@@ -78,7 +78,7 @@ JsonObject ErosionSettings::json() const {
 
 Erosion::Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver,
                  std::uint64_t seed, const BedFields* bed)
-    : compute_(compute), settings_(settings), seed_(seed) {
+    : settings_(settings), seed_(seed) {
   const std::string options =
       settings.build_options(solver.settings(), settings.height_quantum * solver.terrain_cell() *
                                                     solver.terrain_cell()) +

@@ -50,7 +50,6 @@ class Erosion {
   const ErosionSettings& settings() const { return settings_; }
 
  private:
-  ComputeContext& compute_;
   ErosionSettings settings_;
   std::uint64_t seed_;
   Kernel kernel_;

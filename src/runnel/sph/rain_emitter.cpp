@@ -116,8 +116,7 @@ JsonObject RainSettings::json() const {
 
 RainEmitter::RainEmitter(ComputeContext& compute, const RainSettings& settings, std::uint64_t seed,
                          float rest_density, const std::vector<float>& rain_weights, int nx)
-    : compute_(compute),
-      settings_(settings),
+    : settings_(settings),
       seed_(seed),
       rest_density_(rest_density),
       kernel_(compute,

@@ -73,7 +73,6 @@ class RainEmitter {
   }
 
  private:
-  ComputeContext& compute_;
   RainSettings settings_;
   std::uint64_t seed_;
   float rest_density_;

@@ -39,8 +39,7 @@ ThermalSettings ThermalSettings::from(const Parameters& p) {
 
 ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,
                                      const ThermalSettings& settings, const BedFields* bed)
-    : compute_(compute),
-      terrain_(terrain),
+    : terrain_(terrain),
       settings_(settings),
       outflow_(compute.context(), CL_MEM_READ_WRITE,
                static_cast<std::size_t>(terrain.nx()) * terrain.ny() * 4 * sizeof(cl_long)) {

@@ -31,7 +31,6 @@ class ThermalRelaxation {
   void relax();
 
  private:
-  ComputeContext& compute_;
   DeviceTerrain& terrain_;
   ThermalSettings settings_;
   cl::Buffer outflow_, placeholder_;
