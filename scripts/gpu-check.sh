@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # One prepared run on a machine with a GPU (issue 15): builds runnel, lists the OpenCL devices, runs
-# `runnel bench sph` at 1 M and 4 M particles and the grid benchmarks at 4096² on the GPU, the test
+# `runnel bench sph` at 1 M and 4 M particles, the grid benchmarks at 4096² and the noise generators at
+# 4097² on the GPU, the test
 # suite with its OpenCL tests on the GPU, and reports the viewer's frame rate where a display is
 # there; each step under its own time limit so the whole fits in 8 minutes. Writes
 # ${OUT:-gpu-check-out}/gpu-check.json (one object: each step's JSON, or why it did not run).
@@ -40,7 +41,8 @@ step() {
 }
 scaled() { awk -v n="$1" -v s="$scale" 'BEGIN { v = int(n * s); if (v < 1) v = 1; print v }'; }
 
-# 1. Build (no package installation: the machine may have no network; missing tools are reported).
+# 1. Build (no package installation: the machine may have no network; missing tools are reported; it
+# needs the packages of scripts/setup.sh, KissFFT among them).
 if ! command -v cmake >/dev/null; then
   echo '{"failed": "cmake is not installed on this machine"}' >"$summary"
   exit 1
@@ -63,6 +65,11 @@ size=$(scaled 4096)
 for model in pipe olsen thermal droplet; do
   step "${model}_${size}" 60 "$runnel" bench "$model" --size "$size" --steps 10 --device "$device"
 done
+
+# 4b. The noise generators at 4097² (issue 19): the same bytes as on the CPU, vertices per second.
+gsize=$(scaled 4097)
+[ "$gsize" -lt 64 ] && gsize=64
+step "generate_${gsize}" 60 "$runnel" bench generate --size "$gsize" --steps 2 --device "$device"
 
 # 5. The test suite, its OpenCL tests on the GPU (the CLI picks the first GPU by itself).
 step tests 180 bash -c "cd build-gpu && RUNNEL_TEST_DEVICE=$device ctest -j \"\$(nproc)\" -LE fuzz >&2 &&
