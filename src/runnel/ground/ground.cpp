@@ -195,9 +195,10 @@ std::vector<float> rain_weights(const Parameters& params, int nx, int ny) {
   return w;
 }
 
-cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params, int nx, int ny) {
+cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params,
+                              const std::vector<float>& weights) {
   if (!has_rain_mask(params)) return placeholder_buffer(compute);
-  return device_copy(compute, rain_weights(params, nx, ny));
+  return device_copy(compute, weights);
 }
 
 std::vector<StoredField> without_ground_fields(const std::vector<StoredField>& fields) {

@@ -70,9 +70,10 @@ std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& p
                                     DeviceTerrain& terrain, const Heightmap& initial,
                                     const std::vector<std::int64_t>& initial_fixed);
 
-// The rain mask (fractions 0 to 1 per vertex) on the device, or a placeholder without one (the
+// The rain mask's `weights` (rain_weights) on the device, or a placeholder without one (the
 // kernels, compiled with RAIN_MASK = 0, never read it).
-cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params, int nx, int ny);
+cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params,
+                              const std::vector<float>& weights);
 // The rain mask on the host: the fractions per vertex, checked (finite, in [0, 1]); all 1 without
 // one.
 std::vector<float> rain_weights(const Parameters& params, int nx, int ny);

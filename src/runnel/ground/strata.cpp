@@ -13,6 +13,12 @@
 namespace runnel {
 namespace {
 
+// ground.active_layer in quanta, at least one.
+std::int64_t active_layer_quanta(const Parameters& params, double quantum) {
+  return std::max<std::int64_t>(1,
+                                std::llround(GroundSettings::from(params).active_layer / quantum));
+}
+
 double resolved_talus(double angle, const Parameters& params) {
   return angle > 0 ? angle : params.real("thermal.talus_angle");
 }
@@ -33,12 +39,11 @@ double fbm_unit(double x, double z, double wavelength, int octaves, std::uint64_
 
 Strata build_strata(const Parameters& params, const Heightmap& initial,
                     const std::vector<std::int64_t>& initial_fixed, double quantum) {
-  const GroundSettings g = GroundSettings::from(params);
   Strata s;
   s.nx = initial.nx;
   s.ny = initial.ny;
   s.strata = static_cast<int>(params.layers().size());
-  s.active_layer = std::max<std::int64_t>(1, std::llround(g.active_layer / quantum));
+  s.active_layer = active_layer_quanta(params, quantum);
   const std::size_t n = s.vertices();
   s.contacts.assign((s.strata + 1) * n, 0);
   std::copy(initial_fixed.begin(), initial_fixed.end(), s.contacts.begin());
@@ -184,8 +189,7 @@ Strata strata_from_fields(const Parameters& params, int nx, int ny,
     throw input_error("checkpoint: /fields/ground__contact_elevation has " +
                       std::to_string(components) + " contacts, the parameters " +
                       std::to_string(s.materials.size() - 1) + " strata and a bedrock");
-  s.active_layer =
-      std::max<std::int64_t>(1, std::llround(GroundSettings::from(params).active_layer / quantum));
+  s.active_layer = active_layer_quanta(params, quantum);
   const std::size_t n = s.vertices();
   s.contacts.assign(static_cast<std::size_t>(components) * n, 0);
   for (std::size_t k = 0; k < n; ++k)

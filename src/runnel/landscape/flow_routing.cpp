@@ -20,15 +20,15 @@ void build_stack(FlowRouting& r, const std::vector<double>& cell_area) {
       donors[fill[r.receiver[k]]++] = static_cast<std::int32_t>(k);
   r.stack.clear();
   r.stack.reserve(n);
-  std::vector<std::int32_t> todo;
+  std::vector<std::int32_t> pending;  // the depth-first walk's own stack
   for (std::size_t b = 0; b < n; ++b) {
     if (r.receiver[b] != static_cast<std::int32_t>(b)) continue;
-    todo.push_back(static_cast<std::int32_t>(b));
-    while (!todo.empty()) {
-      const std::int32_t k = todo.back();
-      todo.pop_back();
+    pending.push_back(static_cast<std::int32_t>(b));
+    while (!pending.empty()) {
+      const std::int32_t k = pending.back();
+      pending.pop_back();
       r.stack.push_back(k);
-      for (std::int32_t d = first[k]; d < first[k + 1]; ++d) todo.push_back(donors[d]);
+      for (std::int32_t d = first[k]; d < first[k + 1]; ++d) pending.push_back(donors[d]);
     }
   }
   r.area = cell_area;
@@ -38,12 +38,8 @@ void build_stack(FlowRouting& r, const std::vector<double>& cell_area) {
   }
 }
 
-namespace {
-
-// Priority-flood (Barnes et al. 2014): from the base level inwards, lowest first; a node lower than
-// the one that reached it is raised to just above it (epsilon), so every node of a depression
-// drains out over its rim.
-void flood(std::vector<double>& filled, int nx, int ny, BaseLevel base, double epsilon) {
+void priority_flood(std::vector<double>& filled, int nx, int ny,
+                    const std::function<bool(int, int)>& is_outlet, double epsilon) {
   static const int di[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dj[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   const std::size_t n = filled.size();
   std::vector<bool> closed(n, false);
@@ -51,7 +47,7 @@ void flood(std::vector<double>& filled, int nx, int ny, BaseLevel base, double e
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
-      if (is_base_level(i, j, nx, ny, base)) {
+      if (is_outlet(i, j)) {
         const std::int32_t k = j * nx + i;
         closed[k] = true;
         open.push({filled[k], k});
@@ -72,8 +68,6 @@ void flood(std::vector<double>& filled, int nx, int ny, BaseLevel base, double e
   }
 }
 
-}  // namespace
-
 FlowRouting route_d8(const std::vector<double>& height, int nx, int ny, double cell,
                      BaseLevel base) {
   const std::size_t n = static_cast<std::size_t>(nx) * ny;
@@ -93,7 +87,9 @@ FlowRouting route_d8(const std::vector<double>& height, int nx, int ny, double c
       }
       pits = !lower;
     }
-  if (pits) flood(filled, nx, ny, base, kEpsilon);
+  if (pits)
+    priority_flood(
+        filled, nx, ny, [&](int i, int j) { return is_base_level(i, j, nx, ny, base); }, kEpsilon);
   FlowRouting r;
   r.receiver.resize(n);
   r.distance.assign(n, 0.0);

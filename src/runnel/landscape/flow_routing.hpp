@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace runnel {
@@ -24,6 +25,14 @@ enum class BaseLevel { kAllEdges, kWestEast };
 inline bool is_base_level(int i, int j, int nx, int ny, BaseLevel base) {
   return i == 0 || i == nx - 1 || (base == BaseLevel::kAllEdges && (j == 0 || j == ny - 1));
 }
+
+// Priority-flood depression filling (Barnes et al. 2014) of `height` (nx × ny) in place: from the
+// outlet vertices (`is_outlet(i, j)`) inwards, lowest first (ties by index); a vertex lower than
+// the one that reached it is raised to that one's height plus `epsilon`, so every depression drains
+// over its rim and flats drain towards their outlet. The one flood of the project: routing and the
+// terrain metrics use it.
+void priority_flood(std::vector<double>& height, int nx, int ny,
+                    const std::function<bool(int, int)>& is_outlet, double epsilon);
 
 // D8 routing of `height` (nx × ny, spacing `cell`) with the base-level edges fixed. Depressions
 // are routed through, not into: receivers are the steepest descent on the surface filled by

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/metrics/terrain_metrics.hpp"
 
+#include "runnel/landscape/flow_routing.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numeric>
-#include <queue>
 
 namespace runnel::metrics {
 namespace {
@@ -128,37 +128,12 @@ double erosion_score(const Heightmap& t) {
 }
 
 std::vector<double> fill_depressions(const Heightmap& t) {
-  // Priority flood with ε: border cells seed the queue; each cell popped raises its unvisited
-  // neighbours to at least its own height plus a tiny ε, so flats drain.
-  const std::size_t n = t.size();
+  // ε relative to the relief, so flats drain whatever the heights' scale.
   std::vector<double> h(t.h.begin(), t.h.end());
-  std::vector<char> done(n, 0);
-  using Item = std::pair<double, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
-  for (int j = 0; j < t.ny; ++j) {
-    for (int i = 0; i < t.nx; ++i) {
-      if (i == 0 || j == 0 || i == t.nx - 1 || j == t.ny - 1) {
-        const std::size_t k = static_cast<std::size_t>(j) * t.nx + i;
-        open.emplace(h[k], k);
-        done[k] = 1;
-      }
-    }
-  }
   const double eps = 1e-7 * std::max(1.0, double(t.max_height()) - t.min_height());
-  while (!open.empty()) {
-    const auto [height, k] = open.top();
-    open.pop();
-    const int i = static_cast<int>(k % t.nx), j = static_cast<int>(k / t.nx);
-    for (int d = 0; d < 8; ++d) {
-      const int a = i + kDi[d], b = j + kDj[d];
-      if (a < 0 || b < 0 || a >= t.nx || b >= t.ny) continue;
-      const std::size_t m = static_cast<std::size_t>(b) * t.nx + a;
-      if (done[m]) continue;
-      done[m] = 1;
-      h[m] = std::max(h[m], height + eps);
-      open.emplace(h[m], m);
-    }
-  }
+  priority_flood(
+      h, t.nx, t.ny,
+      [&](int i, int j) { return i == 0 || j == 0 || i == t.nx - 1 || j == t.ny - 1; }, eps);
   return h;
 }
 

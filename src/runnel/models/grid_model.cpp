@@ -15,9 +15,10 @@ GridModel::GridModel(ComputeContext& compute, const Parameters& params, const He
       state_(compute, terrain, params.real("erosion.height_quantum")),
       ground_(make_ground(compute, params, state_.terrain(), state_.initial_terrain(),
                           state_.initial_fixed())),
-      placeholder_(placeholder_buffer(compute)),
-      rain_weight_(rain_weight_buffer(compute, params, terrain.nx, terrain.ny)) {
-  for (float w : rain_weights(params, terrain.nx, terrain.ny)) rained_vertices_ += w;
+      placeholder_(placeholder_buffer(compute)) {
+  const std::vector<float> weights = rain_weights(params, terrain.nx, terrain.ny);  // read once
+  rain_weight_ = rain_weight_buffer(compute, params, weights);
+  for (float w : weights) rained_vertices_ += w;
 }
 
 double GridModel::step() {

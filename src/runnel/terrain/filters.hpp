@@ -5,17 +5,13 @@
 #include <vector>
 
 #include "runnel/core/heightmap.hpp"
+#include "runnel/terrain/generators.hpp"
 
 namespace runnel {
 
-// One parameter of a terrain filter, as a graph node sets it (docs/generators.md).
-struct FilterParam {
-  std::string key;
-  double default_value;
-  std::string unit;
-  std::string help;
-  double min_value, max_value;
-};
+// One parameter of a terrain filter, as a graph node sets it (docs/generators.md): described as a
+// generator's parameter is.
+using FilterParam = GeneratorParam;
 
 // A filter of the terrain graph: a function of its inputs (all on one grid) and its parameters.
 struct FilterSpec {

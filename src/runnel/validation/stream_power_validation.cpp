@@ -25,14 +25,6 @@ void add_error(SteadyStateCheck& c, double numerical, double analytic) {
   ++c.nodes;
 }
 
-double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double m = static_cast<double>(x.size());
-  for (std::size_t k = 0; k < x.size(); ++k)
-    sx += x[k], sy += y[k], sxx += x[k] * x[k], sxy += x[k] * y[k];
-  return (m * sxy - sx * sy) / (m * sxx - sx * sx);
-}
-
 }  // namespace
 
 SteadyStateCheck stream_power_profile(double n) {
@@ -60,15 +52,12 @@ SteadyStateCheck stream_power_profile(double n) {
     erode_stream_power(h, r, kk, m, n, dt);
     change = l2_change(h, before);
   }
-  std::vector<double> log_a, log_s;
   for (int i = 1; i < nodes; ++i) {
     const double s = (h[i] - h[i - 1]) / spacing;
     add_error(c, s, std::pow(u / k, 1 / n) * std::pow(r.area[i], -m / n));
-    log_a.push_back(std::log(r.area[i]));
-    log_s.push_back(std::log(s));
   }
   c.mean_relative /= c.nodes;
-  c.fitted_theta = -fitted_slope(log_a, log_s);
+  c.fitted_theta = fit_slope_area(h, r, 0.0).theta;
   return c;
 }
 
@@ -91,17 +80,14 @@ SteadyStateCheck stream_power_grid(int nx, double n, int min_cells) {
     erode_stream_power(h, r, kk, m, n, dt);
     change = l2_change(h, before);
   }
-  std::vector<double> log_a, log_s;
+  const double min_area = min_cells * cell * cell;
   for (std::size_t q = 0; q < size; ++q) {
-    if (r.receiver[q] == static_cast<std::int32_t>(q) || r.area[q] < min_cells * cell * cell)
-      continue;
+    if (r.receiver[q] == static_cast<std::int32_t>(q) || r.area[q] < min_area) continue;
     const double s = (h[q] - h[r.receiver[q]]) / r.distance[q];
     add_error(c, s, std::pow(u / k, 1 / n) * std::pow(r.area[q], -m / n));
-    log_a.push_back(std::log(r.area[q]));
-    log_s.push_back(std::log(s));
   }
   c.mean_relative /= std::max(1, c.nodes);
-  c.fitted_theta = -fitted_slope(log_a, log_s);
+  c.fitted_theta = fit_slope_area(h, r, min_area).theta;
   return c;
 }
 
