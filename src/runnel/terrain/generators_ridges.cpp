@@ -97,6 +97,7 @@ Heightmap rmp_voronoi(const GeneratorRequest& r) {
     const std::vector<RidgeSite> sites = rmp_voronoi_sites(r, level);
     const SiteGrid g = site_grid(r, level);
     const double spacing = g.spacing;
+    std::vector<std::pair<const RidgeSite*, double>> around;  // the 5 × 5 cells' sites, reused
     for (int j = 0; j < r.ny; ++j)
       for (int i = 0; i < r.nx; ++i) {
         const double x = i * r.cell, z = j * r.cell;
@@ -108,7 +109,7 @@ Heightmap rmp_voronoi(const GeneratorRequest& r) {
         // crests are the edges.
         const RidgeSite* nearest = nullptr;
         double d_a = std::numeric_limits<double>::max();
-        std::vector<std::pair<const RidgeSite*, double>> around;
+        around.clear();
         for (int b = cb - 2; b <= cb + 2; ++b)
           for (int a = ca - 2; a <= ca + 2; ++a) {
             if (a < -1 || b < -1 || a > g.gx || b > g.gz) continue;
