@@ -9,6 +9,8 @@ packages=(
   libglm-dev libglfw3-dev libepoxy-dev libimgui-dev
   libnanoflann-dev libhdf5-dev libgtest-dev libgmock-dev libbenchmark-dev libpng-dev
   libtomlplusplus-dev libcli11-dev
+  nlohmann-json3-dev  # runnel-viewer session logs (strokes.json) are read back: the standard C++ JSON parser
+  ffmpeg  # runnel-viewer --record out.mp4 (H.264), and ffprobe counts its frames in the tests
   libgdal-dev gdal-bin  # GeoTIFF in and out; gdalinfo checks the georeferencing in the tests
   libkissfft-dev  # spectral (inverse FFT) terrain synthesis: BSD-licensed, any grid size
   libopenmpi-dev openmpi-bin  # mpirun -np K runnel sweep (optional at build time)

@@ -1,22 +1,27 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include <memory>
 #include <string>
-
-#include "runnel/compute/context.hpp"
-#include "runnel/models/sph_simulation.hpp"
 
 namespace runnel::viewer {
 
 struct ViewerOptions {
   std::string input;  // scenario (.toml) or checkpoint (.h5); empty: built-in defaults
+  std::string model;  // start with this model instead of the scenario's run.model
   std::string device;
   int width = 1280, height = 800;
-  long long frames = 0;       // 0: until the window closes
-  std::string screenshot;     // PNG of the last frame
+  long long frames = 0;       // 0: until the window closes (or the replay ends)
+  std::string screenshot;     // PNG of the scene at exit
+  int screenshot_scale = 1;   // screenshots at this multiple of the window size
   long long stats_every = 0;  // JSON line on stdout every K frames
-  bool rain = true;           // global rain at start
+  bool rain = true;           // the scenario's rain at start
   int overlay = 0;  // terrain overlay at start: 0 none, 1 erosion, 2 water depth, 3 flow speed
+  bool particles = false;      // SPH particles as dots over the water surface
+  std::string log;             // session log written at exit (strokes.json)
+  std::string replay;          // session log to replay
+  std::string save_at_exit;    // checkpoint written at exit
+  std::string record;          // video (.mp4) or PNG folder, recording from the start
+  double record_interval = 0;  // model clock per recorded frame; 0: 0.1 s or 1 iteration
+  double record_fps = 25;
 };
 
 // Runs the viewer; returns the process exit code.

@@ -4,31 +4,54 @@
 #include <iostream>
 
 #include "app.hpp"
-#include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
 
 int main(int argc, char** argv) {
   runnel::viewer::ViewerOptions o;
   std::string size = "1280x800";
   CLI::App app{
-      "runnel-viewer: the SPH rain-erosion simulation live in a window; paint rain with the left "
-      "mouse "
-      "button. Right drag orbits, middle drag pans, the wheel zooms (ctrl/shift + wheel: brush "
-      "radius); "
-      "space pause, N step, R reset, S save checkpoint, P screenshot, H help, Esc quit."};
+      "runnel-viewer: any runnel erosion model live in a window (docs/viewer.md). Paint rain with "
+      "the left mouse button (brush radius in m, intensity in mm/h in the panel); the water is "
+      "drawn as a surface tinted by its sediment load. Right drag orbits, middle drag pans, the "
+      "wheel zooms (ctrl/shift + wheel: brush radius); F places a water source, C clears them, "
+      "G switches the scenario's rain, ctrl+Z undoes the last stroke, space pauses, N steps, R "
+      "resets, S saves a checkpoint, P takes a screenshot, V records, H helps, Esc quits."};
   app.add_option("input", o.input,
-                 "scenario (.toml) or checkpoint (.h5); default: built-in defaults");
+                 "scenario (.toml) or checkpoint (.h5) of any model; default: built-in defaults "
+                 "(with --replay: the log's)");
+  app.add_option("--model", o.model, "start with this model instead of the scenario's run.model");
   app.add_option("--frames", o.frames, "run this many frames, then exit")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--screenshot", o.screenshot, "save the last frame as PNG");
+  app.add_option("--screenshot", o.screenshot, "save the scene at exit as PNG");
+  app.add_option("--screenshot-scale", o.screenshot_scale,
+                 "screenshots (P, --screenshot) at N times the window size, for print")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
   app.add_option("--stats-every", o.stats_every, "print a JSON line of statistics every K frames")
       ->check(CLI::NonNegativeNumber);
   bool no_rain = false;
-  app.add_flag("--no-rain", no_rain, "start with global rain off (paint it)");
+  app.add_flag("--no-rain", no_rain, "start with the scenario's rain off (paint it)");
+  app.add_flag("--particles", o.particles, "draw the SPH particles as dots over the water");
   app.add_option("--size", size, "window size WxH")->capture_default_str();
   std::string overlay = "none";
   app.add_option("--overlay", overlay, "terrain overlay at start: none, erosion, water or speed")
       ->check(CLI::IsMember({"none", "erosion", "water", "speed"}))
+      ->capture_default_str();
+  app.add_option("--log", o.log,
+                 "write the session log (strokes, undo, model switches, with their steps) here "
+                 "at exit, for --replay");
+  app.add_option("--replay", o.replay,
+                 "replay a session log exactly, then exit (painting is off while it plays)");
+  app.add_option("--save-at-exit", o.save_at_exit, "write a checkpoint of the final state here");
+  app.add_option("--record", o.record,
+                 "record from the start: x.mp4 through ffmpeg, or a folder of PNG frames (also "
+                 "when ffmpeg is missing); V starts and stops a recording");
+  app.add_option("--record-interval", o.record_interval,
+                 "model time between recorded frames (s, yr or iterations); default 0.1 s or 1 "
+                 "iteration")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--record-fps", o.record_fps, "frame rate of the recorded video")
+      ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();
   app.add_option("--device", o.device, "OpenCL device (see 'runnel devices')");
   try {

@@ -106,14 +106,22 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
                            const float quantum, const ulong seed, const ulong first_droplet, const uint count,
                            const int step_index, __global float* state, __global long* load,
                            volatile __global long* counters, const __global float* erodibility,
-                           const __global float* rain_weight) {
+                           const __global float* rain_weight, const float spawn_x, const float spawn_z,
+                           const float spawn_radius) {
   const uint d = get_global_id(0);
   if (d >= count) return;
   __global float* s = state + 6 * d;
   if (step_index == 0) {
     const ulong id = first_droplet + d;
-    s[0] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1), (float)(nx - 1) - 1e-3f);
-    s[1] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1), (float)(ny - 1) - 1e-3f);
+    if (spawn_radius > 0.0f) {  // painted rain (runnel-viewer): uniform on the disc, in cells
+      const float r = spawn_radius * sqrt(rng_uniform(seed, DROPLET_STREAM, 2 * id));
+      const float a = 6.2831853f * rng_uniform(seed, DROPLET_STREAM, 2 * id + 1);
+      s[0] = clamp(spawn_x + r * cos(a), 0.0f, (float)(nx - 1) - 1e-3f);
+      s[1] = clamp(spawn_z + r * sin(a), 0.0f, (float)(ny - 1) - 1e-3f);
+    } else {
+      s[0] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1), (float)(nx - 1) - 1e-3f);
+      s[1] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1), (float)(ny - 1) - 1e-3f);
+    }
     s[2] = 0.0f;
     s[3] = 0.0f;
     s[4] = DROPLET_INITIAL_SPEED;

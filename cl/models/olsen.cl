@@ -19,10 +19,10 @@
 __kernel void olsen_dissolve(__global long* height, __global float* water, __global long* sediment, const int n,
                              const float quantum, const __global float* rock_erodibility,
                              const __global float* sediment_erodibility, const __global long* ground_sediment,
-                             const __global float* rain_weight) {
+                             const __global float* rain_weight, const float rain_on) {
   const int k = get_global_id(0);
   if (k >= n) return;
-  const float w = water[k] + OLSEN_RAIN * RAIN_WEIGHT(rain_weight, k);
+  const float w = water[k] + OLSEN_RAIN * rain_on * RAIN_WEIGHT(rain_weight, k);
   water[k] = w;
   const long m = (long)floor(BED_DETACHMENT(OLSEN_SOLUBILITY * w / quantum, k));
   height[k] -= m;

@@ -28,8 +28,8 @@
 
 // Water level of a neighbour inside the map, d + Δt·r + b (what pipe_flux compares levels with).
 inline float pipe_level(const __global long* height, const __global float* depth, const __global float* rain_weight,
-                        int m, float quantum, float dt) {
-  return (float)height[m] * quantum + depth[m] + dt * (PIPE_RAIN * RAIN_WEIGHT(rain_weight, m));
+                        int m, float quantum, float dt, float rain_on) {
+  return (float)height[m] * quantum + depth[m] + dt * (PIPE_RAIN * rain_on * RAIN_WEIGHT(rain_weight, m));
 }
 
 // x^(4/3) for x > 0 (Manning's depth term) without cbrt(), which is a library call that stops the
@@ -62,19 +62,19 @@ inline float pipe_face_flux(float old_flux, float level, float other_level, int 
 
 __kernel void pipe_flux(const __global long* height, const __global float* depth, __global float* flux, const int nx,
                         const int ny, const float quantum, const float cell, const float dt,
-                        const __global float* rain_weight) {
+                        const __global float* rain_weight, const float rain_on) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
   const int has_l = i > 0, has_r = i < nx - 1, has_t = j > 0, has_b = j < ny - 1;
-  const float d1 = depth[k] + dt * (PIPE_RAIN * RAIN_WEIGHT(rain_weight, k));
+  const float d1 = depth[k] + dt * (PIPE_RAIN * rain_on * RAIN_WEIGHT(rain_weight, k));
   const float level = (float)height[k] * quantum + d1;
   const float depth_4_3 = PIPE_FRICTION_ON ? pipe_pow_4_3(fmax(d1, 1e-3f)) : 1.0f;
   // A neighbour outside the map reads this cell (the select in pipe_face_flux discards it).
-  const float level_l = pipe_level(height, depth, rain_weight, has_l ? k - 1 : k, quantum, dt);
-  const float level_r = pipe_level(height, depth, rain_weight, has_r ? k + 1 : k, quantum, dt);
-  const float level_t = pipe_level(height, depth, rain_weight, has_t ? k - nx : k, quantum, dt);
-  const float level_b = pipe_level(height, depth, rain_weight, has_b ? k + nx : k, quantum, dt);
+  const float level_l = pipe_level(height, depth, rain_weight, has_l ? k - 1 : k, quantum, dt, rain_on);
+  const float level_r = pipe_level(height, depth, rain_weight, has_r ? k + 1 : k, quantum, dt, rain_on);
+  const float level_t = pipe_level(height, depth, rain_weight, has_t ? k - nx : k, quantum, dt, rain_on);
+  const float level_b = pipe_level(height, depth, rain_weight, has_b ? k + nx : k, quantum, dt, rain_on);
   const float f_l = pipe_face_flux(flux[0 * n + k], level, level_l, has_l, depth_4_3, d1, cell, dt);
   const float f_r = pipe_face_flux(flux[1 * n + k], level, level_r, has_r, depth_4_3, d1, cell, dt);
   const float f_t = pipe_face_flux(flux[2 * n + k], level, level_t, has_t, depth_4_3, d1, cell, dt);
@@ -89,7 +89,7 @@ __kernel void pipe_flux(const __global long* height, const __global float* depth
 
 __kernel void pipe_water(__global float* depth, const __global float* flux, __global float* velocity,
                          __global float* previous_depth, const int nx, const int ny, const float cell, const float dt,
-                         const __global float* rain_weight) {
+                         const __global float* rain_weight, const float rain_on) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
@@ -98,7 +98,7 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
   const float in_t = j > 0 ? flux[3 * n + k - nx] : 0.0f, in_b = j < ny - 1 ? flux[2 * n + k + nx] : 0.0f;
   const float out_l = flux[0 * n + k], out_r = flux[1 * n + k], out_t = flux[2 * n + k], out_b = flux[3 * n + k];
   const float out_total = out_l + out_r + out_t + out_b, in_total = in_l + in_r + in_t + in_b;
-  const float d1 = depth[k] + dt * (PIPE_RAIN * RAIN_WEIGHT(rain_weight, k));  // the same d1 the flux pass used
+  const float d1 = depth[k] + dt * (PIPE_RAIN * rain_on * RAIN_WEIGHT(rain_weight, k));  // the same d1 the flux pass used
   const float d2 = fmax(0.0f, d1 + dt * (in_total - out_total) / (cell * cell));
   previous_depth[k] = d1;
   depth[k] = d2;

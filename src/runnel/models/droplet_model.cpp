@@ -113,8 +113,29 @@ double DropletModel::droplet_volume() const {
 }
 
 double DropletModel::take_step() {
+  if (rain_on() > 0) run_batch(static_cast<cl_uint>(batch_size()), 0, 0, 0);
+  return 1.0;
+}
+
+// Painted rain: droplets of droplet_volume() each on every disc, as many as its water makes over
+// the step (the fraction carried to the next), in batches of at most batch_size().
+void DropletModel::paint(double dt) {
+  const double cell = state_.initial_terrain().cell;
+  for (const RainDisc& disc : painted()) {
+    paint_carry_ += disc.rate * dt * M_PI * disc.radius * disc.radius / droplet_volume();
+    auto count = static_cast<long long>(std::floor(paint_carry_));
+    paint_carry_ -= static_cast<double>(count);
+    for (; count > 0; count -= batch_size()) {
+      run_batch(static_cast<cl_uint>(std::min(count, batch_size())),
+                static_cast<float>(disc.x / cell), static_cast<float>(disc.z / cell),
+                static_cast<float>(std::max(disc.radius / cell, 1e-3)));
+    }
+  }
+}
+
+// One batch of `count` droplets; spawn_radius > 0 (cells) rains them on a disc instead of the map.
+void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float spawn_radius) {
   DeviceTerrain& terrain = state_.terrain();
-  const cl_uint count = static_cast<cl_uint>(batch_size());
   // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl).
   for (int step = 0; step < settings_.lifetime; ++step) {
     terrain.bind_changes(kernel_);
@@ -129,11 +150,13 @@ double DropletModel::take_step() {
         .set("state", droplet_state_)
         .set("load", droplet_load_)
         .set("counters", counters_)
+        .set("spawn_x", spawn_x)
+        .set("spawn_z", spawn_z)
+        .set("spawn_radius", spawn_radius)
         .launch(round_up_work(count));
     terrain.apply_changed();
   }
   droplets_ += count;
-  return 1.0;
 }
 
 std::array<cl_long, 3> DropletModel::read_counters() {

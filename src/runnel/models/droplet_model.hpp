@@ -54,14 +54,17 @@ class DropletModel final : public GridModel {
     return static_cast<double>(batch_size()) * static_cast<double>(settings_.lifetime);
   }
   const char* work_unit() const override { return "droplet_steps"; }
+  bool paints_rain() const override { return true; }
 
  protected:
   double take_step() override;
+  void paint(double dt) override;
   std::vector<std::pair<std::string, std::int64_t>> counters() override;
   void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
 
  private:
   std::array<cl_long, 3> read_counters();
+  void run_batch(cl_uint count, float spawn_x, float spawn_z, float spawn_radius);
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;

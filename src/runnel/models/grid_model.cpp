@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/grid_model.hpp"
 
+#include <bit>
+#include <cmath>
 #include <numeric>
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
 #include "runnel/core/version.hpp"
+#include "runnel/models/fields.hpp"
 
 namespace runnel {
 
@@ -23,10 +26,67 @@ GridModel::GridModel(ComputeContext& compute, const Parameters& params, const He
 
 double GridModel::step() {
   const double dt = take_step();
+  if (!painted_.empty()) paint(dt);
   if (ground_) ground_->update();
   time_ += dt;
+  if (global_rain_) rain_time_ += dt;
   ++steps_;
   return dt;
+}
+
+bool GridModel::paints_rain() const {
+  return state_.has(kSurfaceWaterDepth);
+}
+
+bool GridModel::set_global_rain(bool on) {
+  if (!info().has_rain) return false;
+  global_rain_ = on;
+  return true;
+}
+
+// The painted depth goes straight into the water field, row band by row band: the host reads and
+// writes only the rows a disc covers.
+void GridModel::paint(double dt) {
+  if (!paints_rain()) return;
+  const int handle = state_.field(kSurfaceWaterDepth);
+  const int nx = state_.terrain().nx(), ny = state_.terrain().ny();
+  const double cell = state_.terrain().cell();
+  for (const RainDisc& disc : painted_) {
+    const std::vector<int> inside = vertices_in_disc(nx, ny, cell, disc);
+    if (inside.empty() || disc.rate <= 0) continue;
+    const float depth = static_cast<float>(disc.rate * dt);
+    const std::size_t first = static_cast<std::size_t>(inside.front() / nx) * nx,
+                      last = static_cast<std::size_t>(inside.back() / nx + 1) * nx;
+    std::vector<float> rows(last - first);
+    cl::CommandQueue& queue = compute_.queue();
+    queue.enqueueReadBuffer(state_.buffer(handle), CL_TRUE, first * sizeof(float),
+                            rows.size() * sizeof(float), rows.data());
+    for (int k : inside) rows[static_cast<std::size_t>(k) - first] += depth;
+    queue.enqueueWriteBuffer(state_.buffer(handle), CL_TRUE, first * sizeof(float),
+                             rows.size() * sizeof(float), rows.data());
+    painted_volume_ +=
+        static_cast<double>(depth) * cell * cell * static_cast<double>(inside.size());
+  }
+}
+
+WaterView GridModel::water_view() {
+  WaterView view;
+  if (!state_.has(kSurfaceWaterDepth)) return view;
+  view.depth = state_.download_float(kSurfaceWaterDepth);
+  view.load.assign(view.depth.size(), 0.0f);
+  view.speed.assign(view.depth.size(), 0.0f);
+  if (state_.has(kSedimentSuspended)) {
+    const auto s = state_.download_int64(kSedimentSuspended);
+    const double q = state_.terrain().quantum();
+    for (std::size_t k = 0; k < s.size(); ++k)
+      if (view.depth[k] > 1e-6f) view.load[k] = static_cast<float>(s[k] * q / view.depth[k]);
+  }
+  if (state_.has(kSurfaceWaterVelocity)) {
+    const auto v = state_.download_float(kSurfaceWaterVelocity);  // interleaved (x, z)
+    for (std::size_t k = 0; k < view.speed.size(); ++k)
+      view.speed[k] = std::hypot(v[2 * k], v[2 * k + 1]);
+  }
+  return view;
 }
 
 Heightmap GridModel::terrain() {
@@ -78,6 +138,13 @@ CheckpointData GridModel::checkpoint() {
   if (ground_)
     for (StoredField& f : ground_->fields()) d.fields.push_back(std::move(f));
   d.model_counters = counters();
+  // What painting (runnel-viewer) adds to the state; absent from every run without it.
+  if (painted_volume_ != 0 || paint_carry_ != 0 || rain_time_ != time_) {
+    d.model_counters.emplace_back("painted_water_bits",
+                                  std::bit_cast<std::int64_t>(painted_volume_));
+    d.model_counters.emplace_back("paint_carry_bits", std::bit_cast<std::int64_t>(paint_carry_));
+    d.model_counters.emplace_back("rain_time_bits", std::bit_cast<std::int64_t>(rain_time_));
+  }
   return d;
 }
 
@@ -94,6 +161,13 @@ void GridModel::restore(const CheckpointData& d) {
   time_ = d.time;
   steps_ = d.steps;
   restore_next_dt(d.dt);
+  painted_volume_ = paint_carry_ = 0;
+  rain_time_ = time_;
+  for (auto& [key, value] : d.model_counters) {
+    if (key == "painted_water_bits") painted_volume_ = std::bit_cast<double>(value);
+    if (key == "paint_carry_bits") paint_carry_ = std::bit_cast<double>(value);
+    if (key == "rain_time_bits") rain_time_ = std::bit_cast<double>(value);
+  }
 }
 
 std::int64_t counter_value(const std::vector<std::pair<std::string, std::int64_t>>& counters,

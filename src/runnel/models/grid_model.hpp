@@ -27,7 +27,7 @@ class GridModel : public Model {
   Heightmap terrain() final;
   const Heightmap& initial_terrain() const final { return state_.initial_terrain(); }
   MassBalance mass_balance() final;
-  double rain_volume() override { return 0.0; }
+  double rain_volume() override { return painted_volume_; }
   CheckpointData checkpoint() final;
   void restore(const CheckpointData& data) final;
   std::string status() override;
@@ -45,6 +45,13 @@ class GridModel : public Model {
   virtual long long uplift_quanta() { return 0; }
   virtual long long suspended_quanta();
 
+  // Painting (interaction.hpp): models with a water depth field take painted rain as depth added
+  // to the vertices of each disc after every step; the droplet model rains droplets in them.
+  bool paints_rain() const override;
+  void set_painted_rain(const std::vector<RainDisc>& discs) override { painted_ = discs; }
+  bool set_global_rain(bool on) override;
+  WaterView water_view() override;
+
  protected:
   // One step of the numerics; returns its length in clock units.
   virtual double take_step() = 0;
@@ -56,6 +63,15 @@ class GridModel : public Model {
   // The length of the next step where the model chooses it (pipe), saved for an exact restart.
   virtual double next_dt() const { return 1.0; }
   virtual void restore_next_dt(double) {}
+
+  // Painted rain for a step of `dt` clock units (models with a water depth field).
+  virtual void paint(double dt);
+  const std::vector<RainDisc>& painted() const { return painted_; }
+  // The scenario rain's switch as the kernels read it (1 or 0), and how long it has been on.
+  float rain_on() const { return global_rain_ ? 1.0f : 0.0f; }
+  double rain_time() const { return rain_time_; }
+  // m³ of painted water so far, and the fraction of a droplet or particle painting carries over.
+  double painted_volume_ = 0, paint_carry_ = 0;
 
   // The ground's fields and the rain weights the model's kernels read (bed() is null, and the rain
   // weights a placeholder, when the run has none: the kernels then never read them).
@@ -72,8 +88,10 @@ class GridModel : public Model {
   double rained_vertices_ = 0;
 
  private:
-  double time_ = 0;
+  double time_ = 0, rain_time_ = 0;
   std::uint64_t steps_ = 0;
+  std::vector<RainDisc> painted_;
+  bool global_rain_ = true;
 };
 
 // The value of counter `name` in a restored list; throws an input error if it is missing.

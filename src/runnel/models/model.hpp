@@ -9,6 +9,7 @@
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/fields.hpp"
+#include "runnel/models/interaction.hpp"
 #include "runnel/models/mass_balance.hpp"
 
 namespace runnel {
@@ -78,6 +79,21 @@ class Model {
   virtual double device_bytes() const = 0;
   // The run's layer stack (docs/layers.md), or nullptr when the terrain is one material.
   virtual Ground* ground() { return nullptr; }
+
+  // Interaction (runnel-viewer, interaction.hpp). A model without water keeps these defaults: it
+  // takes no painted rain and shows no water.
+  // Whether set_painted_rain() does anything.
+  virtual bool paints_rain() const { return false; }
+  // The discs of painted rain from the next step on (empty: none). Their water counts in
+  // rain_volume() and, like every state, in the checkpoint.
+  virtual void set_painted_rain(const std::vector<RainDisc>& discs) { (void)discs; }
+  // Turns the model's own (scenario) rain off or back on from the next step; false when the model
+  // has none.
+  virtual bool set_global_rain(bool on) {
+    (void)on;
+    return false;
+  }
+  virtual WaterView water_view() { return {}; }
 };
 
 }  // namespace runnel

@@ -76,7 +76,7 @@ double OlsenModel::take_step() {
         .set("sediment", sediment)
         .set("quantum", q);
   }
-  dissolve_.set("n", n);
+  dissolve_.set("n", n).set("rain_on", rain_on());
   for (Kernel* k : {&outflow_, &gather_settle_}) {
     k->set("out_water", out_water_).set("out_sediment", out_sediment_).set("nx", nx).set("ny", ny);
   }
@@ -87,7 +87,7 @@ double OlsenModel::take_step() {
 
 double OlsenModel::rain_volume() {
   const double cell = state_.terrain().cell();
-  return settings_.rain * rained_vertices() * cell * cell * static_cast<double>(steps());
+  return settings_.rain * rained_vertices() * cell * cell * rain_time() + painted_volume_;
 }
 
 JsonObject OlsenModel::diagnostics() {

@@ -124,6 +124,8 @@ double PipeModel::take_step() {
     if (k->has("quantum")) k->set("quantum", q);
   }
   flux_kernel_.set("height", terrain.height_fixed()).set("depth", depth).set("flux", flux);
+  flux_kernel_.set("rain_on", rain_on());
+  water_kernel_.set("rain_on", rain_on());
   water_kernel_.set("depth", depth).set("flux", flux).set("velocity", velocity);
   water_kernel_.set("previous_depth", previous_depth_);
   erode_kernel_.set("height", terrain.height_fixed()).set("height_view", terrain.height());
@@ -237,7 +239,7 @@ void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::i
 
 double PipeModel::rain_volume() {
   const double cell = state_.terrain().cell();
-  return settings_.rain * rained_vertices() * cell * cell * time();
+  return settings_.rain * rained_vertices() * cell * cell * rain_time() + painted_volume_;
 }
 
 JsonObject PipeModel::diagnostics() {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/sph_model.hpp"
 
+#include "runnel/models/water_binning.hpp"
+
 namespace runnel {
 
 const ModelInfo& SphModel::model_info() {
@@ -25,9 +27,43 @@ const ModelInfo& SphModel::model_info() {
 }
 
 SphModel::SphModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
-    : sim_(std::make_unique<Simulation>(compute, params, terrain)) {}
+    : SphModel(std::make_unique<Simulation>(compute, params, terrain)) {}
 
-SphModel::SphModel(std::unique_ptr<Simulation> simulation) : sim_(std::move(simulation)) {}
+SphModel::SphModel(std::unique_ptr<Simulation> simulation)
+    : sim_(std::move(simulation)), scenario_rain_(sim_->rain().settings()) {}
+
+void SphModel::restore(const CheckpointData& data) {
+  sim_->restore(data);
+  if (!painted_.empty() || !global_rain_) apply_rain();  // the front end's rain outlives a restore
+}
+
+void SphModel::set_painted_rain(const std::vector<RainDisc>& discs) {
+  painted_ = discs;
+  apply_rain();
+}
+
+bool SphModel::set_global_rain(bool on) {
+  global_rain_ = on;
+  apply_rain();
+  return true;
+}
+
+void SphModel::apply_rain() {
+  RainSettings rain = scenario_rain_;
+  if (!painted_.empty()) {
+    const RainDisc& d = painted_.front();
+    rain.rain_on_disc(d.x, d.z, d.radius, d.rate * 1000.0 * 3600.0, particle_spacing());
+  } else {
+    rain.enabled = rain.enabled && global_rain_;
+  }
+  sim_->rain().settings() = rain;
+}
+
+WaterView SphModel::water_view() {
+  const HostParticles p = particles();
+  const Heightmap& t = sim_->initial_terrain();
+  return bin_particles(p, t.nx, t.ny, t.cell, particle_spacing(), volume_quantum());
+}
 
 double SphModel::step() {
   const double before = sim_->time();

@@ -25,13 +25,19 @@ class SphModel final : public Model {
   MassBalance mass_balance() override { return sim_->mass_balance(); }
   double rain_volume() override;
   CheckpointData checkpoint() override { return sim_->checkpoint(); }
-  void restore(const CheckpointData& data) override { sim_->restore(data); }
+  void restore(const CheckpointData& data) override;
   JsonObject diagnostics() override;
   std::string status() override;
   double step_work() override { return static_cast<double>(sim_->particles()); }
   const char* work_unit() const override { return "particle_steps"; }
   double device_bytes() const override { return sim_->device_bytes(); }
   Ground* ground() override { return sim_->ground(); }
+  // Painting: the emitter has one region, so the first disc rains (in place of the scenario's
+  // rain) while there is one; water_view() bins the particles onto the vertices.
+  bool paints_rain() const override { return true; }
+  void set_painted_rain(const std::vector<RainDisc>& discs) override;
+  bool set_global_rain(bool on) override;
+  WaterView water_view() override;
 
   Simulation& simulation() { return *sim_; }
 
@@ -45,10 +51,14 @@ class SphModel final : public Model {
   // The terrain's vertex normals as the device has them (3 floats a vertex): no host recompute.
   std::vector<float> terrain_normals() { return sim_->solver().terrain().download_normals(); }
   const RainSettings& rain() { return sim_->rain().settings(); }
-  void set_rain(const RainSettings& rain) { sim_->rain().settings() = rain; }
 
  private:
+  // The emitter's settings from the scenario's rain, the painted disc and the switch.
+  void apply_rain();
   std::unique_ptr<Simulation> sim_;
+  RainSettings scenario_rain_;
+  std::vector<RainDisc> painted_;
+  bool global_rain_ = true;
 };
 
 }  // namespace runnel

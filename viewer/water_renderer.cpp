@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+#include "water_renderer.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace runnel::viewer {
+namespace {
+
+const char* kWaterVertex = R"(#version 330 core
+layout(location = 0) in vec2 grid;     // x, z
+layout(location = 1) in vec3 dynamic;  // ground height, water depth, sediment load
+uniform mat4 view_projection;
+out vec3 world;
+out float depth;
+out float load;
+void main() {
+  depth = dynamic.y;
+  load = dynamic.z;
+  world = vec3(grid.x, dynamic.x + dynamic.y, grid.y);
+  gl_Position = view_projection * vec4(world, 1.0);
+})";
+
+const char* kWaterFragment = R"(#version 330 core
+in vec3 world;
+in float depth;
+in float load;
+uniform vec3 eye;
+uniform float min_depth;
+out vec4 colour;
+void main() {
+  if (depth < min_depth) discard;
+  // The facet normal from the screen-space derivatives of the surface position.
+  vec3 n = normalize(cross(dFdx(world), dFdy(world)));
+  if (n.y < 0.0) n = -n;
+  vec3 v = normalize(eye - world);
+  float cos_view = max(dot(n, v), 0.0);
+  float fresnel = 0.02 + 0.98 * pow(1.0 - cos_view, 5.0);  // Schlick, water's F0
+  vec3 clear = vec3(0.08, 0.30, 0.62), muddy = vec3(0.50, 0.36, 0.18);
+  vec3 body = mix(clear, muddy, clamp(load * 8.0, 0.0, 1.0));  // 12 % load: full mud
+  float absorbed = 1.0 - exp(-depth / 0.25);  // Beer–Lambert over a 25 cm absorption length
+  vec3 sky = vec3(0.72, 0.82, 0.93);
+  vec3 sun = normalize(vec3(-0.5, 0.8, -0.3));
+  float highlight = pow(max(dot(n, normalize(sun + v)), 0.0), 90.0);
+  vec3 c = mix(body * (0.55 + 0.45 * max(dot(n, sun), 0.0)), sky, fresnel) + 0.5 * highlight;
+  float shore = smoothstep(min_depth, 3.0 * min_depth, depth);  // thin edges fade out
+  colour = vec4(c, shore * clamp(0.45 + 0.5 * absorbed + fresnel, 0.0, 0.95));
+})";
+
+}  // namespace
+
+WaterRenderer::WaterRenderer(const Heightmap& t) : program_(kWaterVertex, kWaterFragment) {
+  std::vector<float> grid;
+  grid.reserve(t.size() * 2);
+  for (int j = 0; j < t.ny; ++j) {
+    for (int i = 0; i < t.nx; ++i) {
+      grid.push_back(static_cast<float>(i * t.cell));
+      grid.push_back(static_cast<float>(j * t.cell));
+    }
+  }
+  std::vector<GLuint> index;
+  for (int j = 0; j + 1 < t.ny; ++j) {
+    for (int i = 0; i + 1 < t.nx; ++i) {  // the terrain's diagonal, so the shores match it
+      const GLuint a = j * t.nx + i, b = a + 1, c = a + t.nx + 1, d = a + t.nx;
+      index.insert(index.end(), {a, c, b, a, d, c});
+    }
+  }
+  indices_ = static_cast<GLsizei>(index.size());
+  glGenVertexArrays(1, &vao_);
+  glBindVertexArray(vao_);
+  glGenBuffers(1, &grid_vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, grid_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, grid.size() * sizeof(float), grid.data(), GL_STATIC_DRAW);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(0);
+  glGenBuffers(1, &dynamic_vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, dynamic_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, t.size() * 3 * sizeof(float),
+               std::vector<float>(t.size() * 3, 0.0f).data(), GL_DYNAMIC_DRAW);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(1);
+  glGenBuffers(1, &ibo_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
+               GL_STATIC_DRAW);
+  glBindVertexArray(0);
+}
+
+WaterRenderer::~WaterRenderer() {
+  glDeleteBuffers(1, &grid_vbo_);
+  glDeleteBuffers(1, &dynamic_vbo_);
+  glDeleteBuffers(1, &ibo_);
+  glDeleteVertexArrays(1, &vao_);
+}
+
+void WaterRenderer::update(const std::vector<float>& ground, const std::vector<float>& depth,
+                           const std::vector<float>& load) {
+  interleaved_.assign(ground.size() * 3, 0.0f);
+  for (std::size_t k = 0; k < ground.size(); ++k) {
+    interleaved_[3 * k] = ground[k];
+    interleaved_[3 * k + 1] = k < depth.size() ? depth[k] : 0.0f;
+    interleaved_[3 * k + 2] = k < load.size() ? load[k] : 0.0f;
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, dynamic_vbo_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, interleaved_.size() * sizeof(float), interleaved_.data());
+}
+
+void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_depth) const {
+  program_.use();
+  glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+  glUniform3f(program_.uniform("eye"), eye.x, eye.y, eye.z);
+  glUniform1f(program_.uniform("min_depth"), min_depth);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);  // the terrain under the water stays in the depth buffer
+  glBindVertexArray(vao_);
+  glDrawElements(GL_TRIANGLES, indices_, GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+}
+
+}  // namespace runnel::viewer
