@@ -40,9 +40,12 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Key presses since the viewer last took them (the GLFW key callback, which ImGui chains to).
+// A press with ctrl held is the key plus kCtrl: the modifiers come with the event, since ctrl may
+// be up again by the time the frame looks.
+constexpr int kCtrl = 1 << 20;
 std::vector<int> g_key_presses;
-void on_key(GLFWwindow*, int key, int, int action, int) {
-  if (action == GLFW_PRESS) g_key_presses.push_back(key);
+void on_key(GLFWwindow*, int key, int, int action, int mods) {
+  if (action == GLFW_PRESS) g_key_presses.push_back(key | ((mods & GLFW_MOD_CONTROL) ? kCtrl : 0));
 }
 
 class Viewer {
@@ -265,8 +268,7 @@ void Viewer::handle_input() {
   if (!down && session_->painting() && !session_->replaying()) session_->end_stroke();
   mouse_down_ = down && (mouse_down_ || brush_.over_terrain);
   if (io.WantCaptureKeyboard) return;
-  const bool ctrl = io.KeyCtrl;
-  if (pressed(GLFW_KEY_Z) && ctrl && !session_->replaying()) {
+  if (pressed(GLFW_KEY_Z | kCtrl) && !session_->replaying()) {
     message_ = session_->undo() ? "undone: back to the stroke's start"
                                 : "nothing to undo (the last " +
                                       std::to_string(Session::kUndoDepth) + " strokes are kept)";

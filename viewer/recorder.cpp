@@ -96,7 +96,8 @@ FrameRecorder::FrameRecorder(const std::string& path, double fps) : path_(path),
 }
 
 FrameRecorder::~FrameRecorder() {
-  if (pipe_) pclose(pipe_);
+  if (pipe_ && pclose(pipe_) != 0)
+    std::fprintf(stderr, "runnel-viewer: ffmpeg failed to write %s\n", path_.c_str());
 }
 
 void FrameRecorder::add(const RgbImage& frame) {
@@ -114,7 +115,7 @@ void FrameRecorder::add(const RgbImage& frame) {
     const std::string cmd = "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgb24 -s " +
                             std::to_string(width_) + "x" + std::to_string(height_) + " -r " +
                             std::to_string(fps_) +
-                            " -i - -vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt "
+                            " -i - -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt "
                             "yuv420p -crf 18 " +
                             shell_quoted(path_);
     pipe_ = popen(cmd.c_str(), "w");

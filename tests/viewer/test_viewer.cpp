@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "runnel/models/checkpoint.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -132,32 +133,279 @@ TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
       << "shading varies across the picture";
 }
 
-// The viewer's stats lines so far ({"frame": ..., "particles": ..., "painting": ...}).
+// One stats line of the viewer ({"frame": ..., "particles": ..., "painting": ...}), by key.
 struct StatsLine {
-  long long frame = -1, particles = -1;
-  bool painting = false;
+  std::string text;
+  double number(const std::string& key) const { return test::json_number(text, key); }
+  bool flag(const std::string& key) const {
+    return text.find("\"" + key + "\": true") != std::string::npos;
+  }
 };
 std::vector<StatsLine> read_stats(const std::string& path) {
   std::vector<StatsLine> out;
   std::istringstream lines(test::read_text(path));
   for (std::string line; std::getline(lines, line);) {
-    const auto f = line.find("\"frame\": "), at = line.find("\"particles\": ");
-    if (f == std::string::npos || at == std::string::npos || line.back() != '}') continue;
-    out.push_back({std::stoll(line.substr(f + 9)), std::stoll(line.substr(at + 13)),
-                   line.find("\"painting\": true") != std::string::npos});
+    if (line.rfind("{\"frame\": ", 0) == 0 && line.back() == '}') out.push_back({line});
   }
   return out;
 }
 
-// Polls the stats file until `done` holds for the lines read so far, at most `seconds`.
-template <typename Done>
-bool wait_for_stats(const std::string& path, Done done, double seconds) {
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < until) {
-    if (done(read_stats(path))) return true;
+// runnel-viewer running in the background on our X server, steered by xdotool; every wait is for
+// something the viewer reports (a stats line, its exit), never for a fixed time.
+class ViewerProcess {
+ public:
+  ViewerProcess(const XServer& x, const test::ScratchDir& dir, const std::string& args)
+      : x_(x), dir_(dir), stats_(dir.path("stats.txt")) {
+    const std::string cmd = "cd " + dir.root().string() + " && " + x.env() + " " +
+                            RUNNEL_VIEWER_BINARY + " " + args + " --stats-every 5 > " + stats_ +
+                            " 2>&1 & echo $! > " + dir.path("pid.txt");
+    started_ = std::system(cmd.c_str()) == 0;
+    pid_ = std::stoi(test::read_text(dir.path("pid.txt")));
+  }
+  ~ViewerProcess() {
+    if (running()) kill(pid_, SIGKILL);
+  }
+  bool running() const {
+    // A zombie (exited, not yet reaped by the shell that started it) counts as gone.
+    return kill(pid_, 0) == 0 &&
+           std::system(("ps -o stat= -p " + std::to_string(pid_) + " | grep -qv Z").c_str()) == 0;
+  }
+  // The window's id, once it is mapped.
+  std::string window() {
+    if (!window_.empty()) return window_;
+    const std::string find =
+        x_.env() + " xdotool search --sync --name runnel-viewer > " + dir_.path("wid.txt");
+    if (std::system(("timeout 120 sh -c '" + find + "'").c_str()) != 0) return "";
+    const std::string text = test::read_text(dir_.path("wid.txt"));
+    window_ = text.substr(0, text.find('\n'));
+    return window_;
+  }
+  std::string log() const { return test::read_text(stats_); }
+  std::vector<StatsLine> stats() const { return read_stats(stats_); }
+  // Polls the stats until `done` holds for the latest line, at most `seconds`.
+  template <typename Done>
+  bool wait_for(Done done, double seconds = 180) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < until) {
+      const auto lines = stats();
+      if (!lines.empty() && done(lines.back())) return true;
+      if (!running()) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return false;
+  }
+  bool wait_exit(double seconds = 180) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (running() && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    return !running();
+  }
+  bool xdotool(const std::string& args) {
+    return std::system((x_.env() + " xdotool " + args).c_str()) == 0;
+  }
+  // Left button down at (x, y) of the window and a small drag: the brush paints.
+  bool press_and_drag(int x, int y) {
+    const std::string w = window();
+    return xdotool("mousemove --window " + w + " " + std::to_string(x) + " " + std::to_string(y) +
+                   " mousedown 1 mousemove --window " + w + " " + std::to_string(x + 15) + " " +
+                   std::to_string(y + 8));
+  }
+  bool key(const std::string& keys) {
+    return xdotool("windowfocus " + window()) && xdotool("key " + keys);
+  }
+  bool ok() const { return started_; }
+
+ private:
+  const XServer& x_;
+  const test::ScratchDir& dir_;
+  std::string stats_, window_;
+  bool started_ = false;
+  int pid_ = -1;
+};
+
+// Paints with the brush at (x, y) until the viewer reports `volume` m³ of water added, then lets
+// go and waits for the stroke to end.
+void paint(ViewerProcess& v, int x, int y, double volume) {
+  ASSERT_FALSE(v.window().empty()) << "no viewer window\n" << v.log();
+  ASSERT_TRUE(v.wait_for([](const StatsLine&) { return true; })) << v.log();
+  ASSERT_TRUE(v.press_and_drag(x, y));
+  const bool painted = v.wait_for(
+      [&](const StatsLine& s) { return s.flag("painting") && s.number("rain_volume") >= volume; });
+  v.xdotool("mouseup 1");
+  ASSERT_TRUE(painted) << "the drag painted " << volume << " m3\n" << v.log();
+  ASSERT_TRUE(v.wait_for([](const StatsLine& s) { return !s.flag("painting"); })) << v.log();
+}
+
+// Pixels that turned blue (blue above red and green by a margin) from `before` to `after`, within
+// `radius` of (x, y) and beyond `far` of it.
+struct WaterPixels {
+  long near = 0, far = 0;
+};
+WaterPixels new_water(const Picture& before, const Picture& after, int x, int y, int radius,
+                      int far) {
+  WaterPixels w;
+  for (int j = 0; j < after.height; ++j) {
+    for (int i = 0; i < after.width; ++i) {
+      const std::size_t k = 3 * (static_cast<std::size_t>(j) * after.width + i);
+      const int r = after.rgb[k], g = after.rgb[k + 1], b = after.rgb[k + 2];
+      const int changed = std::abs(r - before.rgb[k]) + std::abs(g - before.rgb[k + 1]) +
+                          std::abs(b - before.rgb[k + 2]);
+      if (changed < 40 || b < r + 25 || b < g) continue;
+      const double d = std::hypot(i - x, j - y);
+      w.near += d <= radius;
+      w.far += d > far;
+    }
+  }
+  return w;
+}
+
+// The water surface appears where the brush rained, and not elsewhere: for SPH particles and for
+// the pipe model's water depth. The same camera frames both screenshots.
+class ViewerPaints : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ViewerPaints, WaterAppearsWhereTheBrushRained) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  const std::string common = test::source_dir() + "/data/scenarios/default.toml --model " +
+                             GetParam() + " --no-rain --size 800x600 ";
+  {
+    ViewerProcess v(x, dir, common + "--frames 10 --screenshot before.png");
+    ASSERT_TRUE(v.wait_exit()) << v.log();
+  }
+  {
+    ViewerProcess v(x, dir, common + "--frames 1000000 --screenshot after.png");
+    paint(v, 480, 330, GetParam() == "sph" ? 400.0 : 2000.0);
+    ASSERT_TRUE(v.key("Escape"));
+    ASSERT_TRUE(v.wait_exit()) << v.log();
+  }
+  const Picture before = read_rgb_png(dir.path("before.png")),
+                after = read_rgb_png(dir.path("after.png"));
+  ASSERT_EQ(after.width, 800);
+  ASSERT_EQ(before.width, 800);
+  const WaterPixels none = new_water(before, before, 480, 330, 100, 250);
+  EXPECT_EQ(none.near + none.far, 0);
+  const WaterPixels w = new_water(before, after, 480, 330, 100, 250);
+  EXPECT_GT(w.near, 1500) << "water-coloured pixels under the brush";
+  EXPECT_LT(w.far, w.near / 10) << "little water far from where it rained";
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, ViewerPaints, ::testing::Values("sph", "pipe"));
+
+// The checkpoint the S key writes (runnel-viewer-sph-step*.h5 in the working folder), read and
+// removed once it is there.
+CheckpointData take_saved_checkpoint(ViewerProcess& v, const test::ScratchDir& dir) {
+  EXPECT_TRUE(v.key("s"));
+  for (int k = 0; k < 1200; ++k) {
+    for (const auto& e : std::filesystem::directory_iterator(dir.root())) {
+      if (e.path().filename().string().rfind("runnel-viewer-sph-step", 0) != 0) continue;
+      CheckpointData data = read_checkpoint(e.path().string());  // written atomically
+      std::filesystem::remove(e.path());
+      return data;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  return false;
+  ADD_FAILURE() << "S saved no checkpoint\n" << v.log();
+  return {};
+}
+
+// A stroke and its undo (ctrl+Z) bring back the terrain bytes, the particles and the step the
+// stroke began on. The stroke begins while the simulation is paused (space), so the state it
+// began on is the one saved (S) just before. The session log of the same session replays to the
+// state at exit of the live one, bit for bit.
+TEST(Viewer, UndoRestoresTheTerrainAndTheLogReplaysExactly) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  const std::string scenario = test::source_dir() + "/data/scenarios/default.toml";
+  {
+    ViewerProcess v(x, dir,
+                    scenario +
+                        " --no-rain --frames 1000000 --size 800x600 --log strokes.json "
+                        "--save-at-exit live.h5");
+    paint(v, 480, 330, 100.0);  // a first stroke, kept: the undone one begins on eroded ground
+    ASSERT_TRUE(v.key("space"));
+    ASSERT_TRUE(v.wait_for([](const StatsLine& s) { return s.number("steps_per_second") == 0; }));
+    const CheckpointData before = take_saved_checkpoint(v, dir);
+    ASSERT_TRUE(v.press_and_drag(420, 300));  // the stroke begins, paused
+    ASSERT_TRUE(v.wait_for([](const StatsLine& s) { return s.flag("painting"); })) << v.log();
+    ASSERT_TRUE(v.key("space"));
+    const double rained = v.stats().back().number("rain_volume");
+    const bool painted = v.wait_for([&](const StatsLine& s) {
+      return s.number("rain_volume") > rained + 200 && s.number("eroded_volume") > 0;
+    });
+    v.xdotool("mouseup 1");
+    ASSERT_TRUE(painted) << v.log();
+    ASSERT_TRUE(v.key("space"));
+    ASSERT_TRUE(v.wait_for([](const StatsLine& s) {
+      return !s.flag("painting") && s.number("steps_per_second") == 0;
+    })) << v.log();
+    ASSERT_TRUE(v.key("ctrl+z"));
+    ASSERT_TRUE(v.wait_for([](const StatsLine& s) { return s.number("undo_depth") == 1; }))
+        << v.log();
+    const CheckpointData undone = take_saved_checkpoint(v, dir);
+    EXPECT_EQ(undone.steps, before.steps);
+    EXPECT_EQ(undone.height_fixed, before.height_fixed) << "the terrain bytes, restored";
+    EXPECT_EQ(undone.particles.id, before.particles.id) << "the stroke's water is undone too";
+    EXPECT_NE(undone.height_fixed, undone.initial_fixed) << "the kept stroke eroded";
+    ASSERT_TRUE(v.key("space"));
+    ASSERT_TRUE(v.wait_for([&](const StatsLine& s) {
+      return s.number("steps") > static_cast<double>(before.steps) + 200;
+    }));
+    ASSERT_TRUE(v.key("Escape"));
+    ASSERT_TRUE(v.wait_exit()) << v.log();
+  }
+  const CheckpointData live = read_checkpoint(dir.path("live.h5"));
+  {
+    ViewerProcess v(x, dir, "--replay strokes.json --size 800x600 --save-at-exit replay.h5");
+    ASSERT_TRUE(v.wait_exit(600)) << v.log();
+  }
+  const CheckpointData replay = read_checkpoint(dir.path("replay.h5"));
+  EXPECT_EQ(replay.steps, live.steps);
+  EXPECT_EQ(replay.height_fixed, live.height_fixed) << "the replayed terrain, bit for bit";
+  EXPECT_EQ(replay.particles.id, live.particles.id);
+  EXPECT_NE(test::read_text(dir.path("strokes.json")).find("\"event\": \"undo\""),
+            std::string::npos);
+}
+
+// --record of N frames gives N frames (PNG folder; with ffmpeg also an H.264 file of N frames), and
+// --screenshot-scale 2 a screenshot of twice the window.
+TEST(Viewer, RecordingHasOneFramePerFrameAndScreenshotsScale) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  const std::string scenario = test::source_dir() + "/data/scenarios/default.toml";
+  {
+    ViewerProcess v(x, dir,
+                    scenario +
+                        " --model pipe --frames 12 --size 320x240 --record frames "
+                        "--screenshot big.png --screenshot-scale 2");
+    ASSERT_TRUE(v.wait_exit()) << v.log();
+  }
+  int pngs = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path("frames")))
+    pngs += e.path().extension() == ".png";
+  EXPECT_EQ(pngs, 12);
+  const Picture frame = read_rgb_png(dir.path("frames/frame_000011.png"));
+  EXPECT_EQ(frame.width, 320);
+  EXPECT_EQ(frame.height, 240);
+  const Picture big = read_rgb_png(dir.path("big.png"));
+  EXPECT_EQ(big.width, 640);
+  EXPECT_EQ(big.height, 480);
+  if (!have("ffprobe")) GTEST_SKIP() << "ffmpeg is not installed: the PNG recording was checked";
+  {
+    ViewerProcess v(x, dir, scenario + " --model pipe --frames 9 --size 320x240 --record out.mp4");
+    ASSERT_TRUE(v.wait_exit()) << v.log();
+  }
+  const std::string probe =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=nb_read_frames -of csv=p=0 " +
+      dir.path("out.mp4") + " > " + dir.path("count.txt");
+  ASSERT_EQ(std::system(probe.c_str()), 0);
+  EXPECT_EQ(std::stoi(test::read_text(dir.path("count.txt"))), 9);
 }
 
 TEST(Viewer, MouseDragOnTheTerrainPaintsRain) {
@@ -165,49 +413,15 @@ TEST(Viewer, MouseDragOnTheTerrainPaintsRain) {
   XServer x;
   ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
   test::ScratchDir dir;
-  const std::string stats = dir.path("stats.txt");
-  // Global rain off: every particle must come from the brush. The viewer runs until stopped; the
-  // test acts on what it reports, never on how long things take.
-  const std::string viewer = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
-                             "/data/scenarios/default.toml --no-rain --frames 100000 "
-                             "--stats-every 5 --size 800x600 > " +
-                             stats + " 2>&1 & echo $! > " + dir.path("pid.txt");
-  ASSERT_EQ(std::system(viewer.c_str()), 0);
-  struct Stop {
-    std::string pid_file;
-    ~Stop() { std::system(("kill $(cat " + pid_file + ") 2>/dev/null").c_str()); }
-  } stop{dir.path("pid.txt")};
-  const std::string find =
-      x.env() + " xdotool search --sync --name runnel-viewer > " + dir.path("wid.txt");
-  ASSERT_EQ(std::system(("timeout 60 sh -c '" + find + "'").c_str()), 0) << "no viewer window";
-  // The first stats line: the viewer draws and simulates, and nothing has rained yet.
-  ASSERT_TRUE(wait_for_stats(
-      stats, [](const auto& l) { return !l.empty(); }, 120))
-      << test::read_text(stats);
-  EXPECT_EQ(read_stats(stats).front().particles, 0) << "no rain before the drag";
-
-  // Press on the middle of the window (the terrain), drag a little, and hold until the viewer
-  // reports painting and rain on the terrain; then release.
-  const std::string wid = test::read_text(dir.path("wid.txt"))
-                              .substr(0, test::read_text(dir.path("wid.txt")).find('\n'));
-  const std::string press = x.env() + " xdotool mousemove --window " + wid +
-                            " 560 380 mousedown 1 mousemove --window " + wid + " 600 400";
-  ASSERT_EQ(std::system(press.c_str()), 0);
-  const bool rained = wait_for_stats(
-      stats,
-      [](const auto& l) {
-        bool painted = false;
-        for (const StatsLine& s : l) painted = painted || s.painting;
-        return painted && l.back().particles > 50;
-      },
-      120);
-  std::system((x.env() + " xdotool mouseup 1").c_str());
-  const auto lines = read_stats(stats);
-  bool painted = false;
-  for (const StatsLine& s : lines) painted = painted || s.painting;
-  EXPECT_TRUE(painted) << "the drag was seen as painting on the terrain";
-  EXPECT_TRUE(rained) << test::read_text(stats);
-  EXPECT_GT(lines.back().particles, 50) << test::read_text(stats);
+  // Scenario rain off: every particle must come from the brush.
+  ViewerProcess v(x, dir,
+                  test::source_dir() +
+                      "/data/scenarios/default.toml --no-rain --frames 1000000 --size 800x600");
+  ASSERT_FALSE(v.window().empty()) << "no viewer window\n" << v.log();
+  ASSERT_TRUE(v.wait_for([](const StatsLine&) { return true; })) << v.log();
+  EXPECT_EQ(v.stats().front().number("particles"), 0) << "no rain before the drag";
+  paint(v, 560, 380, 50.0);
+  EXPECT_GT(v.stats().back().number("particles"), 0) << v.log();
 }
 
 }  // namespace
