@@ -14,7 +14,7 @@
 // The terrain and the tank walls add their terms (sph_boundary.cl), the partners of their
 // momentum terms, scaled by the same fluid fullness θ.
 // Units: kg/m³/s. Compile-time constants (host -D): SPH_H, SPH_MASS, SPH_RHO0, SPH_C0, SPH_DELTA,
-// SPH_GRAVITY, SPH_WALLS.
+// SPH_GRAVITY, SPH_WALLS, SPH_RHO_FLOOR (sph.density_min · ρ0).
 
 // One candidate's (or wall ghost's) terms at the midpoint separation x_ij = (dx, dy, dz) with the
 // drift velocity difference v_ij·x_ij = vdotx: advection to drho, and for neighbours (ghost 0) the
@@ -137,5 +137,8 @@ __kernel void sph_continuity(
   const float theta = fluid_fullness(shepard, d, rhoi);
   drho_i += theta * (drho_ghosts - 2.0f * rhoi * dot(vi, floor.normal) * wall_integral(d));
   drho[i] = drho_i;
-  rho_new[i] = rhoi + dt * drho_i;
+  // The floor: a particle of a thinning film or of spray only ever expands under continuity (the
+  // pressure is clamped at zero below ρ0, so nothing pulls it back); held here, it does not drift
+  // without bound in a long run (docs/sph.md "Failure handling").
+  rho_new[i] = fmax(rhoi + dt * drho_i, SPH_RHO_FLOOR);
 }

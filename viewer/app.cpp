@@ -69,7 +69,9 @@ class Viewer {
   void advance();
   void advance_unguarded();
   void upload();
-  void render_scene(int width, int height);
+  // The terrain, the water and (when shown) the particles; the brush ring only on the screen, not
+  // in screenshots and recordings.
+  void render_scene(int width, int height, bool with_brush = false);
   void draw_panel();
   void print_stats(long long frame, double fps);
   void finish();
@@ -132,6 +134,7 @@ void Viewer::load() {
   model_names_ = model_names();
   overlay_ = static_cast<TerrainOverlay>(options_.overlay);
   show_particles_ = options_.particles;
+  playing_ = !options_.paused;
   on_new_model();
   brush_ = default_brush(session_->model().initial_terrain());
   frame_camera();
@@ -310,6 +313,8 @@ void Viewer::advance() {
     message_ = std::string(e.what()) + " (paused: undo or reset)";
     playing_ = false;
     failed_ = true;
+    // Nobody is there to undo in a replay or a run of --frames: end it.
+    if (session_->replaying() || options_.frames > 0) glfwSetWindowShouldClose(window_, 1);
   }
 }
 
@@ -358,7 +363,7 @@ void Viewer::upload() {
   particles_->update(points);
 }
 
-void Viewer::render_scene(int w, int h) {
+void Viewer::render_scene(int w, int h, bool with_brush) {
   glViewport(0, 0, w, h);
   glClearColor(0.55f, 0.68f, 0.82f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -366,7 +371,7 @@ void Viewer::render_scene(int w, int h) {
   const glm::mat4 vp = camera_.projection(static_cast<float>(w) / std::max(h, 1)) * camera_.view();
   const float scale = static_cast<float>(std::max(1e-3, 0.02 * (max_height_ - min_height_)));
   terrain_->draw(vp, min_height_, max_height_, overlay_, scale,
-                 glm::vec3(brush_.x, brush_.z, brush_.radius), brush_.over_terrain);
+                 glm::vec3(brush_.x, brush_.z, brush_.radius), with_brush && brush_.over_terrain);
   const Heightmap& t = session_->model().initial_terrain();
   // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.
   water_->draw(vp, camera_.eye(), static_cast<float>(0.01 * t.cell));
@@ -536,11 +541,12 @@ int Viewer::loop() {
 
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
-    render_scene(w, h);
     if (recorder_) {
+      render_scene(w, h);
       glReadBuffer(GL_BACK);
-      recorder_->add(read_framebuffer(w, h));  // the scene, before the panel is drawn over it
+      recorder_->add(read_framebuffer(w, h));  // the scene, before the brush and the panel
     }
+    render_scene(w, h, true);
     draw_panel();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

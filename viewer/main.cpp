@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   bool no_rain = false;
   app.add_flag("--no-rain", no_rain, "start with the scenario's rain off (paint it)");
   app.add_flag("--particles", o.particles, "draw the SPH particles as dots over the water");
+  app.add_flag("--paused", o.paused, "start paused (space plays)");
   app.add_option("--size", size, "window size WxH")->capture_default_str();
   std::string overlay = "none";
   app.add_option("--overlay", overlay, "terrain overlay at start: none, erosion, water or speed")

@@ -257,6 +257,28 @@ TEST(SphSolver, CollapsingTimeStepAndInsaneDensityStopTheRun) {
   EXPECT_THROW(dense.step(), Error);
 }
 
+// Two drops flying apart in the air: continuity thins them every step (nothing pulls them back, the
+// pressure being clamped at zero), and the density stops at the floor, sph.density_min · ρ0,
+// instead of drifting down until the run stops.
+TEST(SphSolver, SeparatingDropsThinToTheDensityFloorAndNoFurther) {
+  Parameters p;
+  p.set("sph.density_min", 0.5);
+  const SphSettings s = SphSettings::from(p, 0.1, 2.0);
+  SphSolver solver(compute(), s, flat_floor(1, 1, 4.0), 4.0);
+  HostParticles pair;
+  const float gap = static_cast<float>(0.8 * s.h);
+  pair.push(2.0f - 0.5f * gap, 3.0f, 2.0f, -0.4f, 0.0f, 0.0f, 560.0f, 1e30f);
+  pair.push(2.0f + 0.5f * gap, 3.0f, 2.0f, 0.4f, 0.0f, 0.0f, 560.0f, 1e30f);
+  solver.add(pair);
+  float lowest = 560.0f;
+  for (int k = 0; k < 400; ++k) {
+    ASSERT_NO_THROW(solver.step()) << "step " << k;
+    const HostParticles now = solver.particles().download();
+    for (float rho : now.f[kRho]) lowest = std::min(lowest, rho);
+  }
+  EXPECT_EQ(lowest, 500.0f) << "thinned to the floor, and held there";
+}
+
 TEST(SphSolver, CapacityGrowsAndKeepsEveryParticle) {
   ParticleStore store(compute(), 64);
   HostParticles all;

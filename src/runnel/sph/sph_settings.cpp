@@ -33,7 +33,7 @@ const SettingsTable<SphSettings> kSphTable = {
       {"sph.manning_n", "0.03", "s/m^(1/3)", 0, 1, {}, "Manning's roughness n of the terrain: bed shear stress ρ g n² |u|²/D^(1/3) on particles touching it (D the local flow depth); 0: frictionless", &SphSettings::manning_n},
       {"sph.contact_radius", "0.5", "dx", 0, 2, {}, "particle radius for the terrain contact: a resting particle's centre sits this far above the terrain along the normal (0.5: the particle of volume dx³ rests on its lowest point)", &SphSettings::contact_radius, "SPH_CONTACT_RADIUS"},
       {"sph.surface_eps", "0.01", "dx", 0, 0.5, {}, "ε, how far above the contact surface a particle is put after a hit", &SphSettings::surface_eps, "SPH_SURFACE_EPS"},
-      {"sph.density_min", "0.1", "1", 0.001, 1, {}, "smallest sane density as a fraction of ρ0: below it the run stops (rain drops that leave the ground expand; with clamped pressure that is harmless)", &SphSettings::density_min},
+      {"sph.density_min", "0.1", "1", 0.001, 1, {}, "density floor as a fraction of ρ0: the continuity equation lets a particle of a thinning film or of spray expand without bound (pressure is clamped at zero below ρ0, so nothing pulls it back); its density is held here. A particle added below it stops the run", &SphSettings::density_min},
       {"sph.density_max", "1.5", "1", 1, 100, {}, "largest sane density as a fraction of ρ0: above it the run stops", &SphSettings::density_max},
 };
 // clang-format on
@@ -74,6 +74,7 @@ std::string SphSettings::build_options() const {
   o += float_define("SPH_MASS", mass());
   o += float_define("SPH_B", tait_b());
   o += float_define("SPH_MANNING_G_N2", gravity * manning_n * manning_n);
+  o += float_define("SPH_RHO_FLOOR", density_min * rho0);
   return o;
 }
 

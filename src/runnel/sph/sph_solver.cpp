@@ -235,6 +235,8 @@ void SphSolver::choose_next_dt() {
     msg << where << "density " << (rmin < s.density_min * s.rho0 ? rmin : rmax)
         << " kg/m^3 is outside the sane range [" << s.density_min * s.rho0 << ", "
         << s.density_max * s.rho0 << "] (sph.density_min/max): the run is unstable";
+    // (Continuity holds the density at the floor, so only a particle added below it, or the
+    // compressive side, reach here.)
     throw runtime_error(msg.str());
   }
   double dt = s.h / (s.c0 + health_.v_max);
