@@ -35,13 +35,13 @@ void main() {
   vec3 v = normalize(eye - world);
   float cos_view = max(dot(n, v), 0.0);
   float fresnel = 0.02 + 0.98 * pow(1.0 - cos_view, 5.0);  // Schlick, water's F0
-  vec3 clear = vec3(0.08, 0.30, 0.62), muddy = vec3(0.50, 0.36, 0.18);
+  vec3 clear = vec3(0.08, 0.30, 0.62), muddy = vec3(0.42, 0.28, 0.12);
   vec3 body = mix(clear, muddy, clamp(load * 8.0, 0.0, 1.0));  // 12 % load: full mud
   float absorbed = 1.0 - exp(-depth / 0.25);  // Beer–Lambert over a 25 cm absorption length
   vec3 sky = vec3(0.72, 0.82, 0.93);
   vec3 sun = normalize(vec3(-0.5, 0.8, -0.3));
   float highlight = pow(max(dot(n, normalize(sun + v)), 0.0), 90.0);
-  vec3 c = mix(body * (0.55 + 0.45 * max(dot(n, sun), 0.0)), sky, fresnel) + 0.5 * highlight;
+  vec3 c = mix(body * (0.55 + 0.45 * max(dot(n, sun), 0.0)), sky, fresnel) + 0.25 * highlight;
   float shore = smoothstep(min_depth, 3.0 * min_depth, depth);  // thin edges fade out
   colour = vec4(c, shore * clamp(0.45 + 0.5 * absorbed + fresnel, 0.0, 0.95));
 })";
