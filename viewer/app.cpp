@@ -11,6 +11,7 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -287,6 +288,14 @@ void Viewer::handle_input() {
     sources_.push_back(brush_.disc());
     message_ = "source placed: " + with_thousands(brush_.discharge()) + " m3/s";
   }
+  if (pressed(GLFW_KEY_D) && brush_.over_terrain && can_paint) {
+    RainDisc sink = brush_.disc();
+    sink.rate = -1.0;
+    sources_.push_back(sink);
+    message_ = session_->model().water_view().depth.empty()
+                   ? "a sink does nothing here: the model has no standing water"
+                   : "sink placed: the water in it drains, its load settles";
+  }
   if (pressed(GLFW_KEY_C)) sources_.clear();
   if (pressed(GLFW_KEY_G) && !session_->replaying())
     session_->set_global_rain(!session_->global_rain());
@@ -443,7 +452,10 @@ void Viewer::draw_panel() {
                 with_thousands(rain_volume_ - session_->stroke_start_volume()).c_str());
   }
   ImGui::Text("water added in all: %s m3", with_thousands(rain_volume_).c_str());
-  ImGui::Text("sources: %zu (F places one, C clears)", sources_.size());
+  const auto sinks =
+      std::count_if(sources_.begin(), sources_.end(), [](const RainDisc& d) { return d.rate < 0; });
+  ImGui::Text("sources: %zu, sinks: %zu (F, D place; C clears)",
+              sources_.size() - static_cast<std::size_t>(sinks), static_cast<std::size_t>(sinks));
   int overlay = static_cast<int>(overlay_), colour = static_cast<int>(particle_colour_);
   ImGui::Combo("terrain overlay", &overlay,
                "none\0erosion / deposition\0water depth\0flow speed\0");
@@ -478,7 +490,7 @@ void Viewer::draw_panel() {
     ImGui::Begin("help", &help_);
     ImGui::Text("left drag: paint rain   right drag: orbit   middle drag: pan");
     ImGui::Text("wheel: zoom   ctrl/shift + wheel: brush radius");
-    ImGui::Text("F: water source at the brush   C: clear sources   G: scenario rain on/off");
+    ImGui::Text("F: water source at the brush   D: sink   C: clear both   G: scenario rain on/off");
     ImGui::Text("ctrl+Z: undo the last stroke   space: play/pause   N: step   R: reset");
     ImGui::Text("S: save checkpoint   P: screenshot   V: record   H: this help   Esc: quit");
     ImGui::End();

@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
       "runnel-viewer: any runnel erosion model live in a window (docs/viewer.md). Paint rain with "
       "the left mouse button (brush radius in m, intensity in mm/h in the panel); the water is "
       "drawn as a surface tinted by its sediment load. Right drag orbits, middle drag pans, the "
-      "wheel zooms (ctrl/shift + wheel: brush radius); F places a water source, C clears them, "
+      "wheel zooms (ctrl/shift + wheel: brush radius); F places a water source, D a sink, C clears "
+      "them, "
       "G switches the scenario's rain, ctrl+Z undoes the last stroke, space pauses, N steps, R "
       "resets, S saves a checkpoint, P takes a screenshot, V records, H helps, Esc quits."};
   app.add_option("input", o.input,

@@ -71,6 +71,25 @@ TEST_P(PaintsWater, PaintedDepthLandsOnTheDiscsVerticesAndNowhereElse) {
   EXPECT_EQ(grid.mass_balance().residual_quanta, 0);
 }
 
+// A sink drains the water standing in its disc every step, and the sediment that water held settles
+// there: terrain + suspended sediment stay exact.
+TEST_P(PaintsWater, ASinkDrainsItsDiscAndTheLoadSettles) {
+  Session s = session(GetParam());
+  s.set_rain({disc(0.2)});
+  for (int k = 0; k < 15; ++k) s.step();
+  const RainDisc sink{16.0, 15.0, 3.0, -1.0};
+  s.set_rain({disc(0.2), sink});
+  s.step();
+  const std::vector<float> depth = s.model().water_view().depth;
+  const std::vector<int> drained = vertices_in_disc(33, 33, 1.0, sink);
+  ASSERT_FALSE(drained.empty());
+  for (int k : drained) EXPECT_EQ(depth[k], 0.0f) << "vertex " << k;
+  double wet = 0;
+  for (float d : depth) wet += d;
+  EXPECT_GT(wet, 0.0) << "the rest of the disc's water stays";
+  EXPECT_EQ(s.model().mass_balance().residual_quanta, 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(GridModels, PaintsWater, ::testing::Values("pipe", "olsen"));
 
 TEST(Session, TheScenarioRainSwitchesOffAndOn) {
@@ -274,6 +293,10 @@ TEST(SessionLog, BadFilesAreRefusedNamingTheProblem) {
              "events": [{"event": "rain", "step": 3, "discs": [{"x_m": 1, "z_m": 1,
              "radius_m": -2, "rate_m_per_s": 1}]}]})",
           "radius_m > 0");
+  refused(R"({"runnel_session_log": 1, "input": "", "model": "sph", "global_rain": true,
+             "events": [{"event": "rain", "step": 3, "discs": [{"x_m": 1, "z_m": 1,
+             "radius_m": 2, "rate_m_per_s": "fast"}]}]})",
+          "missing or mistyped");
   refused(R"({"runnel_session_log": 1, "model": "sph"})", "missing or mistyped");
 }
 

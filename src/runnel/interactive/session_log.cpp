@@ -2,6 +2,7 @@
 #include "runnel/interactive/session_log.hpp"
 
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -104,9 +105,9 @@ SessionLog read_session_log(const std::string& path) {
         for (const auto& d : j.at("discs")) {
           RainDisc disc{d.at("x_m").get<double>(), d.at("z_m").get<double>(),
                         d.at("radius_m").get<double>(), d.at("rate_m_per_s").get<double>()};
-          if (!(disc.radius > 0) || !(disc.rate >= 0))
+          if (!(disc.radius > 0) || !std::isfinite(disc.rate))
             throw fail("event " + std::to_string(index) +
-                       ": a disc needs radius_m > 0 and rate ≥ 0");
+                       ": a disc needs radius_m > 0 and a finite rate (negative: a sink)");
           e.discs.push_back(disc);
         }
       }

@@ -122,6 +122,7 @@ double DropletModel::take_step() {
 void DropletModel::paint(double dt) {
   const double cell = state_.initial_terrain().cell;
   for (const RainDisc& disc : painted()) {
+    if (disc.rate <= 0) continue;  // a sink: droplets have no standing water to drain
     paint_carry_ += disc.rate * dt * M_PI * disc.radius * disc.radius / droplet_volume();
     auto count = static_cast<long long>(std::floor(paint_carry_));
     paint_carry_ -= static_cast<double>(count);

@@ -53,6 +53,7 @@ void GridModel::paint(double dt) {
   const double cell = state_.terrain().cell();
   for (const RainDisc& disc : painted_) {
     const std::vector<int> inside = vertices_in_disc(nx, ny, cell, disc);
+    if (disc.rate < 0) drain(inside);
     if (inside.empty() || disc.rate <= 0) continue;
     const float depth = static_cast<float>(disc.rate * dt);
     const std::size_t first = static_cast<std::size_t>(inside.front() / nx) * nx,
@@ -67,6 +68,35 @@ void GridModel::paint(double dt) {
     painted_volume_ +=
         static_cast<double>(depth) * cell * cell * static_cast<double>(inside.size());
   }
+}
+
+// A sink: the water on the vertices leaves the model; the sediment it held settles on them, so the
+// volume of terrain and sediment stays exact.
+void GridModel::drain(const std::vector<int>& vertices) {
+  if (vertices.empty()) return;
+  std::vector<float> depth = state_.download_float(kSurfaceWaterDepth);
+  for (int k : vertices) depth[k] = 0.0f;
+  upload_field(kSurfaceWaterDepth, depth, {});
+  if (!state_.has(kSedimentSuspended)) return;
+  std::vector<std::int64_t> sediment = state_.download_int64(kSedimentSuspended);
+  std::vector<std::int64_t> height = state_.terrain().download_fixed();
+  for (int k : vertices) {
+    height[k] += sediment[k];
+    sediment[k] = 0;
+  }
+  upload_field(kSedimentSuspended, {}, sediment);
+  state_.terrain().upload_fixed(height);
+}
+
+void GridModel::upload_field(const std::string& name, const std::vector<float>& f32,
+                             const std::vector<std::int64_t>& i64) {
+  std::vector<StoredField> fields = state_.download();
+  for (StoredField& f : fields) {
+    if (f.name != name) continue;
+    if (!f32.empty()) f.f32 = f32;
+    if (!i64.empty()) f.i64 = i64;
+  }
+  state_.upload(fields);
 }
 
 WaterView GridModel::water_view() {

@@ -64,8 +64,12 @@ class GridModel : public Model {
   virtual double next_dt() const { return 1.0; }
   virtual void restore_next_dt(double) {}
 
-  // Painted rain for a step of `dt` clock units (models with a water depth field).
+  // Painted rain for a step of `dt` clock units (models with a water depth field), and sinks.
   virtual void paint(double dt);
+  void drain(const std::vector<int>& vertices);
+  // Replaces one field's values (f32 or i64, whichever is given).
+  void upload_field(const std::string& name, const std::vector<float>& f32,
+                    const std::vector<std::int64_t>& i64);
   const std::vector<RainDisc>& painted() const { return painted_; }
   // The scenario rain's switch as the kernels read it (1 or 0), and how long it has been on.
   float rain_on() const { return global_rain_ ? 1.0f : 0.0f; }

@@ -9,6 +9,8 @@ namespace runnel {
 
 // A disc of painted rain: centre (x, z) and radius in metres from the terrain's first vertex, and
 // the rain rate as water depth per second of the model's clock (an iteration counts as a second).
+// A negative rate marks a sink: the water standing in the disc drains away each step (models with
+// a water depth field; its suspended sediment settles where it is).
 struct RainDisc {
   double x = 0, z = 0, radius = 0;
   double rate = 0;  // m/s

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/sph_model.hpp"
 
+#include <algorithm>
+
 #include "runnel/models/water_binning.hpp"
 
 namespace runnel {
@@ -50,8 +52,10 @@ bool SphModel::set_global_rain(bool on) {
 
 void SphModel::apply_rain() {
   RainSettings rain = scenario_rain_;
-  if (!painted_.empty()) {
-    const RainDisc& d = painted_.front();
+  const auto raining = std::find_if(painted_.begin(), painted_.end(),
+                                    [](const RainDisc& d) { return d.rate > 0; });  // not sinks
+  if (raining != painted_.end()) {
+    const RainDisc& d = *raining;
     rain.rain_on_disc(d.x, d.z, d.radius, d.rate * 1000.0 * 3600.0, particle_spacing());
   } else {
     rain.enabled = rain.enabled && global_rain_;

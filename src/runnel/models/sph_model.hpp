@@ -32,8 +32,9 @@ class SphModel final : public Model {
   const char* work_unit() const override { return "particle_steps"; }
   double device_bytes() const override { return sim_->device_bytes(); }
   Ground* ground() override { return sim_->ground(); }
-  // Painting: the emitter has one region, so the first disc rains (in place of the scenario's
-  // rain) while there is one; water_view() bins the particles onto the vertices.
+  // Painting: the emitter has one region, so the first disc that rains (not a sink: the SPH model
+  // has none) rains in place of the scenario's rain; water_view() bins the particles onto the
+  // vertices.
   bool paints_rain() const override { return true; }
   void set_painted_rain(const std::vector<RainDisc>& discs) override;
   bool set_global_rain(bool on) override;
