@@ -94,6 +94,10 @@ class Viewer {
   OrbitCamera camera_;
   Brush brush_;
   std::vector<RainDisc> sources_;
+  // What the brush paints: rain, or the ground's erodibility mask (layered ground only).
+  enum class BrushMode { kRain = 0, kFreeze = 1, kHarden = 2, kRestore = 3 };
+  BrushMode brush_mode_ = BrushMode::kRain;
+  RainDisc last_mask_disc_;
   bool playing_ = true, step_once_ = false, help_ = false, show_particles_ = false;
   bool mouse_down_ = false, failed_ = false;
   TerrainOverlay overlay_ = TerrainOverlay::kNone;
@@ -146,6 +150,7 @@ void Viewer::load() {
 void Viewer::on_new_model() {
   Model& model = session_->model();
   shown_generation_ = session_->model_generation();
+  if (!model.ground()) brush_mode_ = BrushMode::kRain;
   failed_ = false;
   const Heightmap& t = model.initial_terrain();
   min_height_ = t.min_height();
@@ -265,12 +270,26 @@ void Viewer::handle_input() {
     brush_.z = hit->z;
   }
   const bool down = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-  const bool can_paint = session_->model().paints_rain() && !session_->replaying();
+  const bool painting_rain = brush_mode_ == BrushMode::kRain;
+  const bool can_paint =
+      !session_->replaying() &&
+      (painting_rain ? session_->model().paints_rain() : session_->model().ground() != nullptr);
   if (down && !mouse_down_ && brush_.over_terrain && can_paint) session_->begin_stroke();
-  if (down && !mouse_down_ && brush_.over_terrain && !can_paint && !session_->replaying())
-    message_ = "the " + session_->model().info().name + " model takes no rain";
+  if (down && !mouse_down_ && brush_.over_terrain && !can_paint && !session_->replaying()) {
+    message_ = painting_rain ? "the " + session_->model().info().name + " model takes no rain"
+                             : "no layered ground here: the scenario has no [[layers]] or masks";
+  }
   if (!down && session_->painting() && !session_->replaying()) session_->end_stroke();
   mouse_down_ = down && (mouse_down_ || brush_.over_terrain);
+  // A mask stroke sets the mask under the brush wherever it goes.
+  if (session_->painting() && !painting_rain && brush_.over_terrain &&
+      !(brush_.disc() == last_mask_disc_)) {
+    const double value = brush_mode_ == BrushMode::kFreeze   ? 0.0
+                         : brush_mode_ == BrushMode::kHarden ? 0.2
+                                                             : 1.0;
+    session_->paint_mask(brush_.disc(), value);
+    last_mask_disc_ = brush_.disc();
+  }
   if (io.WantCaptureKeyboard) return;
   if (pressed(GLFW_KEY_Z | kCtrl) && !session_->replaying()) {
     message_ = session_->undo() ? "undone: back to the stroke's start"
@@ -307,7 +326,7 @@ void Viewer::handle_input() {
 void Viewer::update_rain() {
   if (session_->replaying()) return;
   std::vector<RainDisc> discs;
-  if (session_->painting()) discs.push_back(brush_.disc());
+  if (session_->painting() && brush_mode_ == BrushMode::kRain) discs.push_back(brush_.disc());
   discs.insert(discs.end(), sources_.begin(), sources_.end());
   session_->set_rain(discs);
 }
@@ -435,6 +454,11 @@ void Viewer::draw_panel() {
   bool rain = session_->global_rain();
   if (model.info().has_rain && ImGui::Checkbox("scenario rain", &rain) && !session_->replaying())
     panel_actions_.push_back([this, rain] { session_->set_global_rain(rain); });
+  int mode = static_cast<int>(brush_mode_);
+  const char* modes = session_->model().ground()
+                          ? "rain\0freeze (mask 0)\0harden (mask 0.2)\0restore (mask 1)\0"
+                          : "rain\0";
+  if (ImGui::Combo("brush paints", &mode, modes)) brush_mode_ = static_cast<BrushMode>(mode);
   // The brush: a radius in metres and an intensity in mm/h, shown as plain numbers.
   float radius = static_cast<float>(brush_.radius),
         intensity = static_cast<float>(brush_.intensity);

@@ -244,6 +244,49 @@ void act(Session& s, const std::string& first_model) {
   s.end();
 }
 
+// On a layered ground, a frozen disc (mask 0) never erodes while the rain erodes around it; the
+// stroke's undo brings back the scenario's mask (the checkpoint from before the painting has none),
+// and a replay of the log reproduces the painted run bit for bit.
+TEST(Session, AFrozenMaskStopsErosionUndoAndReplayIncluded) {
+  Parameters p = parameters("pipe");
+  p.add_layer({{"name", std::string("soft")}, {"thickness", 2.0}, {"erodibility", 2.0}}, "test");
+  p.set("pipe.rain", 0.02);
+  Session s(compute(), p, terrain(), "", true);
+  const RainDisc frozen{16.0, 16.0, 6.0, 0.0};
+  s.begin_stroke();
+  ASSERT_TRUE(s.paint_mask(frozen, 0.0));
+  s.end_stroke();
+  const std::vector<std::int64_t> before = s.model().checkpoint().height_fixed;
+  for (int k = 0; k < 60; ++k) s.step();
+  const std::vector<std::int64_t> after = s.model().checkpoint().height_fixed;
+  const std::vector<int> inside = vertices_in_disc(33, 33, 1.0, frozen);
+  long long eroded_inside = 0, eroded_outside = 0;
+  std::vector<bool> is_inside(after.size(), false);
+  for (int k : inside) is_inside[k] = true;
+  for (std::size_t k = 0; k < after.size(); ++k)
+    (is_inside[k] ? eroded_inside : eroded_outside) +=
+        std::max<std::int64_t>(0, before[k] - after[k]);
+  EXPECT_EQ(eroded_inside, 0) << "frozen ground never loses rock";
+  EXPECT_GT(eroded_outside, 0);
+  EXPECT_EQ(s.model().mass_balance().residual_quanta, 0);
+
+  ASSERT_TRUE(s.undo());
+  ASSERT_NE(s.model().ground(), nullptr);
+  for (float m : s.model().ground()->mask()) ASSERT_EQ(m, 1.0f) << "the scenario's mask is back";
+  s.begin_stroke();
+  ASSERT_TRUE(s.paint_mask({10.0, 20.0, 4.0, 0.0}, 0.25));
+  s.end_stroke();
+  for (int k = 0; k < 20; ++k) s.step();
+  s.end();
+
+  Session again(compute(), p, terrain(), "", true);
+  again.start_replay(s.log());
+  for (int guard = 0; !again.replay_finished() && guard < 1000; ++guard) again.step();
+  EXPECT_EQ(again.model().checkpoint().height_fixed, s.model().checkpoint().height_fixed);
+  EXPECT_EQ(again.model().ground()->mask(), s.model().ground()->mask());
+  EXPECT_FALSE(session("pipe").paint_mask(frozen, 0.0)) << "no ground, no mask";
+}
+
 class Replay : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Replay, ReproducesTheSessionBitForBit) {

@@ -67,6 +67,7 @@ Ground::Ground(ComputeContext& compute, const Parameters& params, DeviceTerrain&
   previous_ = device_copy(compute, initial_fixed);
   bed_.sediment = device_copy(compute, std::vector<std::int64_t>(n, 0));
   mask_ = device_copy(compute, mask);
+  scenario_mask_ = mask;
   material_erodibility_ = device_copy(compute, erodibility);
   material_talus_ = device_copy(compute, talus);
   bed_.erodibility = device_copy(compute, std::vector<float>(n, 1.0f));
@@ -122,6 +123,19 @@ std::vector<int> Ground::exposed() {
   return host_copy<int>(compute_, exposed_, strata_.vertices());
 }
 
+std::vector<float> Ground::mask() {
+  return host_copy<float>(compute_, mask_, strata_.vertices());
+}
+
+void Ground::paint_mask(const std::vector<int>& vertices, float value) {
+  if (vertices.empty()) return;
+  std::vector<float> m = mask();
+  for (int k : vertices) m[static_cast<std::size_t>(k)] = value;
+  compute_.queue().enqueueWriteBuffer(mask_, CL_TRUE, 0, m.size() * sizeof(float), m.data());
+  mask_painted_ = true;
+  update();  // the factors the models read follow at once
+}
+
 std::vector<StoredField> Ground::fields() {
   StoredField sediment{kGroundSediment, 1, {}, this->sediment()};
   // Contacts interleaved per vertex, (ny, nx, L + 1), as every stored field.
@@ -138,13 +152,21 @@ std::vector<StoredField> Ground::fields() {
   for (std::size_t k = 0; k < n; ++k)
     for (int l = 0; l < strata_.strata; ++l)
       thickness.i64[k * thickness.components + l] = left[l * n + k];
-  return {sediment, contacts, thickness};
+  std::vector<StoredField> out{sediment, contacts, thickness};
+  if (mask_painted_) out.push_back({kGroundMask, 1, mask(), {}});
+  return out;
 }
 
 void Ground::restore(const std::vector<StoredField>& fields) {
   const std::size_t n = strata_.vertices();
   bool have_sediment = false, have_contacts = false;
+  std::vector<float> mask = scenario_mask_;
+  mask_painted_ = false;
   for (const StoredField& f : fields) {
+    if (f.name == kGroundMask && f.f32.size() == n) {
+      mask = f.f32;
+      mask_painted_ = true;
+    }
     if (f.name == kGroundSediment && f.i64.size() == n) {
       compute_.queue().enqueueWriteBuffer(bed_.sediment, CL_TRUE, 0, n * 8, f.i64.data());
       have_sediment = true;
@@ -163,6 +185,7 @@ void Ground::restore(const std::vector<StoredField>& fields) {
     throw input_error("checkpoint: the run has layers or ground masks, but /fields/" +
                       std::string(kGroundSediment) + " or /fields/" + kGroundContacts +
                       " is missing or has another number of strata");
+  compute_.queue().enqueueWriteBuffer(mask_, CL_TRUE, 0, n * sizeof(float), mask.data());
   // At a step boundary the previous heights are the heights.
   compute_.queue().enqueueCopyBuffer(terrain_.height_fixed(), previous_, 0, 0, n * 8);
   update();
@@ -204,7 +227,8 @@ cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params,
 std::vector<StoredField> without_ground_fields(const std::vector<StoredField>& fields) {
   std::vector<StoredField> out;
   for (const StoredField& f : fields)
-    if (f.name != kGroundSediment && f.name != kGroundContacts && f.name != kGroundThickness)
+    if (f.name != kGroundSediment && f.name != kGroundContacts && f.name != kGroundThickness &&
+        f.name != kGroundMask)
       out.push_back(f);
   return out;
 }

@@ -19,6 +19,7 @@ namespace runnel {
 inline constexpr const char* kGroundSediment = "ground__sediment_thickness";
 inline constexpr const char* kGroundContacts = "ground__contact_elevation";
 inline constexpr const char* kGroundThickness = "ground__stratum_thickness";
+inline constexpr const char* kGroundMask = "ground__erodibility_mask";
 
 // The layer stack of a run on the device (docs/layers.md; host side of cl/ground.cl): the strata's
 // contacts, the loose sediment and, derived from them after every step, the exposed material's
@@ -45,8 +46,14 @@ class Ground {
   std::vector<std::int64_t> sediment();
   std::vector<int> exposed();
 
-  // The stack for a checkpoint (the sediment and the contacts, and for readers the thickness left
-  // of each stratum), and back; restore() then refreshes the factors from the restored heights.
+  // Paints the erodibility mask (hardness × frozen: 0 freezes, 1 is the material's own) on these
+  // vertices (runnel-viewer). Once painted, the mask is part of the checkpoint.
+  void paint_mask(const std::vector<int>& vertices, float value);
+  std::vector<float> mask();
+
+  // The stack for a checkpoint (the sediment and the contacts, for readers the thickness left of
+  // each stratum, and a painted mask), and back; restore() then refreshes the factors from the
+  // restored heights. A checkpoint without a mask restores the mask of the scenario's files.
   std::vector<StoredField> fields();
   void restore(const std::vector<StoredField>& fields);
 
@@ -63,6 +70,8 @@ class Ground {
   cl::Buffer contacts_, previous_, mask_, material_erodibility_, material_talus_, exposed_;
   BedFields bed_;
   Kernel update_kernel_;
+  std::vector<float> scenario_mask_;  // the mask from the scenario's files
+  bool mask_painted_ = false;
 };
 
 // The ground of a run, or nullptr when it has none (has_ground(params) is false).

@@ -5,6 +5,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/ground/ground.hpp"
 #include "runnel/models/registry.hpp"
 
 namespace runnel {
@@ -83,6 +84,15 @@ void Session::set_global_rain(bool on) {
   e.on = on;
   record(std::move(e));
 }
+bool Session::paint_mask(const RainDisc& disc, double value) {
+  if (!model_->ground()) return false;
+  SessionEvent e = event(SessionEvent::Kind::kMask);
+  e.discs = {disc};
+  e.value = value;
+  record(std::move(e));
+  return true;
+}
+
 void Session::switch_model(const std::string& name) {
   model_entry(name);  // an unknown name is refused before anything is logged
   SessionEvent e = event(SessionEvent::Kind::kModel);
@@ -135,6 +145,13 @@ void Session::apply(const SessionEvent& e) {
     case Kind::kReset:
       undo_.clear();
       make_start_model();
+      break;
+    case Kind::kMask:
+      if (Ground* ground = model_->ground()) {
+        const Heightmap& t = model_->initial_terrain();
+        ground->paint_mask(vertices_in_disc(t.nx, t.ny, t.cell, e.discs.front()),
+                           static_cast<float>(e.value));
+      }
       break;
     case Kind::kEnd:
       if (replay_) replay_finished_ = true;

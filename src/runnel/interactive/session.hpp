@@ -39,6 +39,9 @@ class Session {
   void end_stroke();
   bool undo();  // false when there is nothing to undo
   void set_global_rain(bool on);
+  // Sets the ground's erodibility mask to `value` (0 frozen … 1) on the disc; false (and nothing
+  // logged) when the model's ground has no mask (no layers or masks in the scenario).
+  bool paint_mask(const RainDisc& disc, double value);
   void switch_model(const std::string& name);
   void reset();
   void end();  // logs the end (at exit)

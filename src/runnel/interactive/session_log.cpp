@@ -41,7 +41,7 @@ std::string session_log_json(const SessionLog& log) {
     j["step"] = e.step;
     j["time"] = e.time;
     j["wall_seconds"] = e.wall_seconds;
-    if (e.kind == Kind::kRain) {
+    if (e.kind == Kind::kRain || e.kind == Kind::kMask) {
       j["discs"] = nlohmann::ordered_json::array();
       for (const RainDisc& d : e.discs) {
         // The rate in the brush's unit; metres per second as read back exactly (%.17g).
@@ -53,6 +53,7 @@ std::string session_log_json(const SessionLog& log) {
       }
     }
     if (e.kind == Kind::kGlobalRain) j["on"] = e.on;
+    if (e.kind == Kind::kMask) j["value"] = e.value;
     if (e.kind == Kind::kModel) j["model"] = e.model;
     events.push_back(j);
   }
@@ -101,7 +102,7 @@ SessionLog read_session_log(const std::string& path) {
       e.step = j.at("step").get<std::uint64_t>();
       e.time = j.value("time", 0.0);
       e.wall_seconds = j.value("wall_seconds", 0.0);
-      if (e.kind == Kind::kRain) {
+      if (e.kind == Kind::kRain || e.kind == Kind::kMask) {
         for (const auto& d : j.at("discs")) {
           RainDisc disc{d.at("x_m").get<double>(), d.at("z_m").get<double>(),
                         d.at("radius_m").get<double>(), d.at("rate_m_per_s").get<double>()};
@@ -112,6 +113,12 @@ SessionLog read_session_log(const std::string& path) {
         }
       }
       if (e.kind == Kind::kGlobalRain) e.on = j.at("on").get<bool>();
+      if (e.kind == Kind::kMask) {
+        e.value = j.at("value").get<double>();
+        if (e.discs.size() != 1 || !(e.value >= 0 && e.value <= 1))
+          throw fail("event " + std::to_string(index) +
+                     ": a mask event needs one disc and a value in [0, 1]");
+      }
       if (e.kind == Kind::kModel) e.model = j.at("model").get<std::string>();
       log.events.push_back(std::move(e));
       ++index;

@@ -20,6 +20,7 @@ struct SessionEvent {
     kGlobalRain,   // the scenario's rain switched `on`
     kModel,        // another `model` takes over the terrain as it is
     kReset,        // back to the session's start
+    kMask,         // the ground's erodibility mask set to `value` on the disc `discs[0]`
     kEnd,          // the session ended here
   };
   Kind kind = Kind::kEnd;
@@ -29,6 +30,7 @@ struct SessionEvent {
   std::vector<RainDisc> discs;
   bool on = false;
   std::string model;
+  double value = 0;  // kMask: 0 frozen … 1 the material's own erodibility
 };
 
 struct SessionLog {
