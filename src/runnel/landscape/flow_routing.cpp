@@ -3,7 +3,8 @@
 
 #include <cmath>
 #include <functional>
-#include <queue>
+
+#include "runnel/landscape/radix_heap.hpp"
 
 namespace runnel {
 
@@ -43,18 +44,16 @@ void priority_flood(std::vector<double>& filled, int nx, int ny,
   static const int di[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dj[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   const std::size_t n = filled.size();
   std::vector<bool> closed(n, false);
-  using Item = std::pair<double, std::int32_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  RadixHeap open;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
       if (is_outlet(i, j)) {
         const std::int32_t k = j * nx + i;
         closed[k] = true;
-        open.push({filled[k], k});
+        open.push(filled[k], k);
       }
   while (!open.empty()) {
-    const auto [h, k] = open.top();
-    open.pop();
+    const auto [h, k] = open.pop();
     const int i = k % nx, j = k / nx;
     for (int d = 0; d < 8; ++d) {
       const int a = i + di[d], b = j + dj[d];
@@ -63,7 +62,7 @@ void priority_flood(std::vector<double>& filled, int nx, int ny,
       if (closed[m]) continue;
       closed[m] = true;
       filled[m] = std::max(filled[m], h + epsilon);
-      open.push({filled[m], m});
+      open.push(filled[m], m);
     }
   }
 }

@@ -27,10 +27,10 @@ inline bool is_base_level(int i, int j, int nx, int ny, BaseLevel base) {
 }
 
 // Priority-flood depression filling (Barnes et al. 2014) of `height` (nx × ny) in place: from the
-// outlet vertices (`is_outlet(i, j)`) inwards, lowest first (ties by index); a vertex lower than
-// the one that reached it is raised to that one's height plus `epsilon`, so every depression drains
-// over its rim and flats drain towards their outlet. The one flood of the project: routing and the
-// terrain metrics use it.
+// outlet vertices (`is_outlet(i, j)`) inwards, lowest first (a radix heap; equal heights last-in
+// first-out); a vertex lower than the one that reached it is raised to that one's height plus
+// `epsilon`, so every depression drains over its rim and flats drain towards their outlet. The one
+// flood of the project: routing and the terrain metrics use it.
 void priority_flood(std::vector<double>& height, int nx, int ny,
                     const std::function<bool(int, int)>& is_outlet, double epsilon);
 
