@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 // runnel-viewer: watch the terrain erode and paint rain with the mouse.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 
 #include "app.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/interactive/session_log.hpp"
+#include "runnel/models/registry.hpp"
 
 int main(int argc, char** argv) {
   runnel::viewer::ViewerOptions o;
@@ -66,6 +69,11 @@ int main(int argc, char** argv) {
       throw runnel::input_error("--size " + size + ": out of range");
     }
     o.rain = !no_rain;
+    // Files and names are checked before a window opens: a bad one is refused without a display.
+    if (!o.input.empty() && !std::filesystem::exists(o.input))
+      throw runnel::input_error(o.input + ": no such file");
+    if (!o.replay.empty()) runnel::read_session_log(o.replay);
+    if (!o.model.empty()) runnel::model_entry(o.model);
     o.overlay = overlay == "erosion" ? 1 : overlay == "water" ? 2 : overlay == "speed" ? 3 : 0;
     return runnel::viewer::run_viewer(o);
   } catch (const CLI::CallForHelp& e) {

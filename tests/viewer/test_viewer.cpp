@@ -102,6 +102,28 @@ Picture read_rgb_png(const std::string& path) {
     }                                                                                              \
   } while (0)
 
+// Bad files and names are refused with one line and exit 2 before a window opens (no display
+// needed).
+TEST(Viewer, BadFlagsAreRefusedBeforeAWindowOpens) {
+  if (!std::filesystem::exists(RUNNEL_VIEWER_BINARY))
+    GTEST_SKIP() << "runnel-viewer is not built here (RUNNEL_BUILD_VIEWER=OFF, as in build-asan)";
+  test::ScratchDir dir;
+  test::write_text(dir.path("bad.json"), R"({"runnel_session_log": 1, "model": "sph"})");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--replay", dir.path("missing.json")}, "missing.json: cannot read the session log"},
+      {{"--replay", dir.path("bad.json")}, "bad.json: missing or mistyped entry"},
+      {{"--model", "nope"}, "model 'nope' is unknown"},
+      {{dir.path("nothing.toml")}, "nothing.toml: no such file"},
+      {{"--screenshot-scale", "20"}, "--screenshot-scale"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const auto r = test::run_program(RUNNEL_VIEWER_BINARY, args, "DISPLAY=");
+    EXPECT_EQ(r.exit_code, 2) << args.front() << ": " << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  }
+}
+
 TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
   REQUIRE_X_TOOLS();
   XServer x;
@@ -406,6 +428,25 @@ TEST(Viewer, RecordingHasOneFramePerFrameAndScreenshotsScale) {
       dir.path("out.mp4") + " > " + dir.path("count.txt");
   ASSERT_EQ(std::system(probe.c_str()), 0);
   EXPECT_EQ(std::stoi(test::read_text(dir.path("count.txt"))), 9);
+}
+
+// A checkpoint of a grid model opens in the viewer (it used to be refused with exit 2), runs its
+// model from where the run stopped: the stats name the model.
+TEST(Viewer, OpensAGridModelsCheckpoint) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  const std::string scenario = test::source_dir() + "/data/scenarios/default.toml";
+  const auto run = test::run_cli(
+      {"run", scenario, "--model", "olsen", "--steps", "5", "--out", dir.path("o"), "--quiet"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ViewerProcess v(x, dir, dir.path("o/final.h5") + " --frames 20 --size 320x240");
+  ASSERT_TRUE(v.wait_exit()) << v.log();
+  const auto stats = v.stats();
+  ASSERT_FALSE(stats.empty()) << v.log();
+  EXPECT_NE(stats.back().text.find("\"model\": \"olsen\""), std::string::npos) << v.log();
+  EXPECT_GT(stats.back().number("steps"), 5) << "it continues from step 5";
 }
 
 TEST(Viewer, MouseDragOnTheTerrainPaintsRain) {
