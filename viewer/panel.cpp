@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: MIT
+// The ImGui panel (model, play, undo, brush, overlays, statistics) and the stats line on stdout.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "runnel/io/json.hpp"
+#include "viewer.hpp"
+
+namespace runnel::viewer {
+
+void Viewer::draw_panel() {
+  Model& model = session_->model();
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("runnel");
+  int current = 0;
+  for (std::size_t k = 0; k < model_names_.size(); ++k)
+    if (model_names_[k] == model.info().name) current = static_cast<int>(k);
+  if (!session_->replaying() && ImGui::BeginCombo("model", model.info().name.c_str())) {
+    for (std::size_t k = 0; k < model_names_.size(); ++k) {
+      if (ImGui::Selectable(model_names_[k].c_str(), static_cast<int>(k) == current) &&
+          static_cast<int>(k) != current) {
+        const std::string name = model_names_[k];
+        panel_actions_.push_back([this, name] { session_->switch_model(name); });
+      }
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::TextWrapped("%s", model.info().class_name.c_str());
+  if (session_->replaying())
+    ImGui::Text("replaying %s%s", options_.replay.c_str(),
+                session_->replay_finished() ? " (finished)" : "");
+  if (ImGui::Button(playing_ ? "Pause" : "Play")) playing_ = !playing_;
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) step_once_ = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset") && !session_->replaying())
+    panel_actions_.push_back([this] { session_->reset(); });
+  ImGui::SameLine();
+  if (ImGui::Button("Reset view")) frame_camera();
+  if (ImGui::Button("Undo stroke") && !session_->replaying())
+    panel_actions_.push_back([this] { session_->undo(); });
+  ImGui::SameLine();
+  ImGui::Text("(%zu of %zu kept)", session_->undo_depth(), Session::kUndoDepth);
+  if (ImGui::Button("Save checkpoint")) save_checkpoint();
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot"))
+    screenshot("runnel-viewer-" + std::to_string(model.steps()) + ".png");
+  ImGui::SameLine();
+  if (ImGui::Button(recorder_ ? "Stop recording" : "Record")) toggle_recording();
+  if (recorder_) ImGui::Text("recording: %lld frames", recorder_->frames());
+  ImGui::Separator();
+  bool rain = session_->global_rain();
+  if (model.info().has_rain && ImGui::Checkbox("scenario rain", &rain) && !session_->replaying())
+    panel_actions_.push_back([this, rain] { session_->set_global_rain(rain); });
+  int mode = static_cast<int>(brush_mode_);
+  const char* modes = session_->model().ground()
+                          ? "rain\0freeze (mask 0)\0harden (mask 0.2)\0restore (mask 1)\0"
+                          : "rain\0";
+  if (ImGui::Combo("brush paints", &mode, modes)) brush_mode_ = static_cast<BrushMode>(mode);
+  // The brush: a radius in metres and an intensity in mm/h, shown as plain numbers.
+  float radius = static_cast<float>(brush_.radius),
+        intensity = static_cast<float>(brush_.intensity);
+  if (ImGui::SliderFloat("brush radius", &radius, 0.5f, 500.0f, "%.1f m",
+                         ImGuiSliderFlags_Logarithmic))
+    brush_.radius = radius;
+  const std::string shown = with_thousands(brush_.intensity) + " mm/h";
+  if (ImGui::SliderFloat("brush rain", &intensity, 10.0f, 1e8f, shown.c_str(),
+                         ImGuiSliderFlags_Logarithmic)) {
+    brush_.intensity = round_to_nice(intensity);
+  }
+  ImGui::Text("brush: %s m3/s of water", with_thousands(brush_.discharge()).c_str());
+  if (session_->painting()) {
+    ImGui::Text("this stroke: %s m3",
+                with_thousands(rain_volume_ - session_->stroke_start_volume()).c_str());
+  }
+  ImGui::Text("water added in all: %s m3", with_thousands(rain_volume_).c_str());
+  const auto sinks =
+      std::count_if(sources_.begin(), sources_.end(), [](const RainDisc& d) { return d.rate < 0; });
+  ImGui::Text("sources: %zu, sinks: %zu (F, D place; C clears)",
+              sources_.size() - static_cast<std::size_t>(sinks), static_cast<std::size_t>(sinks));
+  int overlay = static_cast<int>(overlay_), colour = static_cast<int>(particle_colour_);
+  ImGui::Combo("terrain overlay", &overlay,
+               "none\0erosion / deposition\0water depth\0flow speed\0");
+  overlay_ = static_cast<TerrainOverlay>(overlay);
+  ImGui::Checkbox("particles", &show_particles_);
+  if (show_particles_) {
+    ImGui::Combo("particle colour", &colour, "sediment load\0flow speed\0");
+    particle_colour_ = static_cast<ParticleColour>(colour);
+  }
+  ImGui::Separator();
+  ImGui::Text("%s", model.status().c_str());
+  ImGui::Text("steps/s: %.0f   step %llu", steps_per_second_,
+              static_cast<unsigned long long>(model.steps()));
+  ImGui::Text("time: %.2f%s", model.time(), clock_suffix(model.info().clock));
+  ImGui::Text("eroded %.4g m3, deposited %.4g m3", balance_.eroded, balance_.deposited);
+  ImGui::Text("mass balance %.2e m3 (rel %.1e)", balance_.residual, balance_.relative);
+  ImGui::Text("framerate: %.1f fps", ImGui::GetIO().Framerate);
+  if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+  ImGui::InputText("##checkpoint", load_path_, sizeof load_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Open") && !session_->replaying()) {
+    const std::string path = load_path_;
+    panel_actions_.push_back([this, path] { open(path); });
+  }
+  if (ImGui::CollapsingHeader("parameters")) {
+    for (auto& [key, value] : model.parameters().values()) {
+      ImGui::Text("%s = %s", key.c_str(), Parameters::to_text(value).c_str());
+    }
+  }
+  ImGui::End();
+  if (help_) {
+    ImGui::Begin("help", &help_);
+    ImGui::Text("left drag: paint rain   right drag: orbit   middle drag: pan");
+    ImGui::Text("wheel: zoom   ctrl/shift + wheel: brush radius");
+    ImGui::Text("F: water source at the brush   D: sink   C: clear both   G: scenario rain on/off");
+    ImGui::Text("ctrl+Z: undo the last stroke   space: play/pause   N: step   R: reset");
+    ImGui::Text("S: save checkpoint   P: screenshot   V: record   H: this help   Esc: quit");
+    ImGui::End();
+  }
+}
+
+void Viewer::print_stats(long long frame, double fps) {
+  Model& m = session_->model();
+  std::printf("%s\n",
+              JsonObject()
+                  .add("frame", frame)
+                  .add("model", m.info().name)
+                  .add("particles", static_cast<long long>(m.water_view().points.size() / 4))
+                  .add("steps", static_cast<long long>(m.steps()))
+                  .add("steps_per_second", steps_per_second_)
+                  .add("rain_volume", rain_volume_)
+                  .add("eroded_volume", balance_.eroded)
+                  .add("mass_balance_abs", balance_.residual)
+                  .add("painting", session_->painting())
+                  .add("undo_depth", static_cast<long long>(session_->undo_depth()))
+                  .add("recorded_frames", recorder_ ? recorder_->frames() : 0LL)
+                  .add("fps", fps)
+                  .str()
+                  .c_str());
+  std::fflush(stdout);
+}
+
+}  // namespace runnel::viewer
