@@ -32,6 +32,10 @@ void Viewer::load() {
   if (!options_.replay.empty()) {
     replay = read_session_log(options_.replay);
     if (input.empty()) input = replay.input;
+    // A log names its input as the session was given it; from elsewhere, beside the log.
+    const auto beside = std::filesystem::path(options_.replay).parent_path() / input;
+    if (!input.empty() && !std::filesystem::exists(input) && std::filesystem::exists(beside))
+      input = beside.string();
     options_.rain = replay.global_rain;
   }
   if (!input.empty() && std::filesystem::path(input).extension() == ".h5") {
