@@ -46,23 +46,25 @@ void Viewer::handle_input() {
   }
   const bool down = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
   const bool painting_rain = brush_mode_ == BrushMode::kRain;
-  const bool can_paint =
-      !session_->replaying() &&
-      (painting_rain ? session_->model().paints_rain() : session_->model().ground() != nullptr);
+  const bool rain_mask = brush_mode_ == BrushMode::kDry || brush_mode_ == BrushMode::kWet;
+  const bool can_paint = !session_->replaying() &&
+                         (painting_rain ? session_->model().paints_rain()
+                                        : session_->has_mask(rain_mask ? "rain" : "erodibility"));
   if (down && !mouse_down_ && brush_.over_terrain && can_paint) session_->begin_stroke();
   if (down && !mouse_down_ && brush_.over_terrain && !can_paint && !session_->replaying()) {
-    message_ = painting_rain ? "the " + session_->model().info().name + " model takes no rain"
-                             : "no layered ground here: the scenario has no [[layers]] or masks";
+    message_ = painting_rain
+                   ? "the " + session_->model().info().name + " model takes no rain"
+                   : "no such mask here: the scenario has no [[layers]], masks or rain mask";
   }
   if (!down && session_->painting() && !session_->replaying()) session_->end_stroke();
   mouse_down_ = down && (mouse_down_ || brush_.over_terrain);
   // A mask stroke sets the mask under the brush wherever it goes.
   if (session_->painting() && !painting_rain && brush_.over_terrain &&
       !(brush_.disc() == last_mask_disc_)) {
-    const double value = brush_mode_ == BrushMode::kFreeze   ? 0.0
-                         : brush_mode_ == BrushMode::kHarden ? 0.2
-                                                             : 1.0;
-    session_->paint_mask(brush_.disc(), value);
+    const double value = brush_mode_ == BrushMode::kFreeze || brush_mode_ == BrushMode::kDry ? 0.0
+                         : brush_mode_ == BrushMode::kHarden                                 ? 0.2
+                                                                                             : 1.0;
+    session_->paint_mask(brush_.disc(), value, rain_mask ? "rain" : "erodibility");
     last_mask_disc_ = brush_.disc();
   }
   if (io.WantCaptureKeyboard) return;

@@ -56,9 +56,13 @@ void Viewer::draw_panel() {
   if (model.info().has_rain && ImGui::Checkbox("scenario rain", &rain) && !session_->replaying())
     panel_actions_.push_back([this, rain] { session_->set_global_rain(rain); });
   int mode = static_cast<int>(brush_mode_);
-  const char* modes = session_->model().ground()
-                          ? "rain\0freeze (mask 0)\0harden (mask 0.2)\0restore (mask 1)\0"
-                          : "rain\0";
+  const char* modes =
+      session_->has_mask("rain")
+          ? "rain\0freeze (mask 0)\0harden (mask 0.2)\0restore (mask 1)\0dry (rain mask "
+            "0)\0wet (rain mask 1)\0"
+      : session_->has_mask("erodibility")
+          ? "rain\0freeze (mask 0)\0harden (mask 0.2)\0restore (mask 1)\0"
+          : "rain\0";
   if (ImGui::Combo("brush paints", &mode, modes)) brush_mode_ = static_cast<BrushMode>(mode);
   // The brush: a radius in metres and an intensity in mm/h, shown as plain numbers.
   float radius = static_cast<float>(brush_.radius),

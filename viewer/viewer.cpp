@@ -64,7 +64,9 @@ void Viewer::load() {
 void Viewer::on_new_model() {
   Model& model = session_->model();
   shown_generation_ = session_->model_generation();
-  if (!model.ground()) brush_mode_ = BrushMode::kRain;
+  const bool rain_mask = brush_mode_ == BrushMode::kDry || brush_mode_ == BrushMode::kWet;
+  if (brush_mode_ != BrushMode::kRain && !session_->has_mask(rain_mask ? "rain" : "erodibility"))
+    brush_mode_ = BrushMode::kRain;
   failed_ = false;
   const Heightmap& t = model.initial_terrain();
   min_height_ = t.min_height();

@@ -78,7 +78,7 @@ class Viewer {
   Brush brush_;
   std::vector<RainDisc> sources_;
   // What the brush paints: rain, or the ground's erodibility mask (layered ground only).
-  enum class BrushMode { kRain = 0, kFreeze = 1, kHarden = 2, kRestore = 3 };
+  enum class BrushMode { kRain = 0, kFreeze = 1, kHarden = 2, kRestore = 3, kDry = 4, kWet = 5 };
   BrushMode brush_mode_ = BrushMode::kRain;
   RainDisc last_mask_disc_;
   bool playing_ = true, step_once_ = false, help_ = false, show_particles_ = false;

@@ -11,8 +11,10 @@
 #include "runnel/core/error.hpp"
 #include "runnel/interactive/session.hpp"
 #include "runnel/models/grid_model.hpp"
+#include "runnel/models/registry.hpp"
 #include "runnel/models/water_binning.hpp"
 #include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/terrain_io.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -279,13 +281,57 @@ TEST(Session, AFrozenMaskStopsErosionUndoAndReplayIncluded) {
   for (int k = 0; k < 20; ++k) s.step();
   s.end();
 
+  test::ScratchDir dir;  // through the file, as --replay reads it
+  write_session_log(dir.path("strokes.json"), s.log());
   Session again(compute(), p, terrain(), "", true);
-  again.start_replay(s.log());
+  again.start_replay(read_session_log(dir.path("strokes.json")));
   for (int guard = 0; !again.replay_finished() && guard < 1000; ++guard) again.step();
   EXPECT_EQ(again.model().checkpoint().height_fixed, s.model().checkpoint().height_fixed);
   EXPECT_EQ(again.model().ground()->mask(), s.model().ground()->mask());
   EXPECT_FALSE(session("pipe").paint_mask(frozen, 0.0)) << "no ground, no mask";
 }
+
+// A scenario with a rain mask (all 1): painting it dry stops the scenario's rain from the next
+// step, a checkpoint of the painted state resumes dry, and undo brings the rain back.
+class RainMask : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RainMask, PaintedDryTheRainStopsAResumeStaysDryAndUndoBringsItBack) {
+  test::ScratchDir dir;
+  const Heightmap t = terrain();
+  write_terrain(dir.path("wet.npy"), Heightmap(t.nx, t.ny, t.cell, 1.0f));
+  Parameters p = parameters(GetParam());
+  p.set("ground.rain_mask", dir.path("wet.npy"));
+  p.set("rain.rate", 400.0);
+  Session s(compute(), p, t, "", true);
+  for (int k = 0; k < 10; ++k) s.step();
+  const double wet = s.model().rain_volume();
+  ASSERT_GT(wet, 0.0);
+  s.begin_stroke();
+  ASSERT_TRUE(s.paint_mask({16.0, 16.0, 100.0, 0.0}, 0.0, "rain"));  // the whole terrain
+  s.end_stroke();
+  const double dry = s.model().rain_volume();
+  EXPECT_EQ(dry, wet) << "painting rains nothing";
+  for (int k = 0; k < 10; ++k) s.step();
+  EXPECT_EQ(s.model().rain_volume(), dry) << "no rain falls on a dry mask";
+
+  write_checkpoint(dir.path("dry.h5"), s.model().checkpoint());
+  auto resumed = make_model_from_checkpoint(compute(), read_checkpoint(dir.path("dry.h5")));
+  for (int k = 0; k < 5; ++k) {
+    s.step();
+    resumed->step();
+  }
+  EXPECT_EQ(resumed->rain_volume(), dry) << "the painted mask is in the checkpoint";
+  EXPECT_EQ(resumed->checkpoint().height_fixed, s.model().checkpoint().height_fixed);
+
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(s.model().rain_volume(), wet);
+  for (int k = 0; k < 5; ++k) s.step();
+  EXPECT_GT(s.model().rain_volume(), wet) << "the scenario's mask rains again";
+  EXPECT_FALSE(session(GetParam()).paint_mask({16.0, 16.0, 5.0, 0.0}, 0.0, "rain"))
+      << "no rain mask, nothing to paint";
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, RainMask, ::testing::Values("sph", "pipe", "olsen", "droplet"));
 
 class Replay : public ::testing::TestWithParam<std::string> {};
 
@@ -340,6 +386,10 @@ TEST(SessionLog, BadFilesAreRefusedNamingTheProblem) {
              "events": [{"event": "rain", "step": 3, "discs": [{"x_m": 1, "z_m": 1,
              "radius_m": 2, "rate_m_per_s": "fast"}]}]})",
           "missing or mistyped");
+  refused(R"({"runnel_session_log": 1, "input": "", "model": "sph", "global_rain": true,
+             "events": [{"event": "mask", "step": 3, "mask": "snow", "value": 0.5, "discs": [
+             {"x_m": 1, "z_m": 1, "radius_m": 2, "rate_m_per_s": 0}]}]})",
+          "the mask erodibility or rain");
   refused(R"({"runnel_session_log": 1, "model": "sph"})", "missing or mistyped");
 }
 

@@ -8,6 +8,7 @@
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/ground/ground_settings.hpp"
+#include "runnel/ground/rain_mask.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 #include "runnel/terrain/thermal.hpp"
 
@@ -228,7 +229,7 @@ std::vector<StoredField> without_ground_fields(const std::vector<StoredField>& f
   std::vector<StoredField> out;
   for (const StoredField& f : fields)
     if (f.name != kGroundSediment && f.name != kGroundContacts && f.name != kGroundThickness &&
-        f.name != kGroundMask)
+        f.name != kGroundMask && f.name != kGroundRainMask)
       out.push_back(f);
   return out;
 }

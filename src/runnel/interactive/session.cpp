@@ -84,11 +84,17 @@ void Session::set_global_rain(bool on) {
   e.on = on;
   record(std::move(e));
 }
-bool Session::paint_mask(const RainDisc& disc, double value) {
-  if (!model_->ground()) return false;
+bool Session::has_mask(const std::string& mask) {
+  if (mask == "rain") return model_->has_rain_mask();
+  return mask == "erodibility" && model_->ground();
+}
+
+bool Session::paint_mask(const RainDisc& disc, double value, const std::string& mask) {
+  if (!has_mask(mask)) return false;
   SessionEvent e = event(SessionEvent::Kind::kMask);
   e.discs = {disc};
   e.value = value;
+  e.mask = mask;
   record(std::move(e));
   return true;
 }
@@ -146,13 +152,15 @@ void Session::apply(const SessionEvent& e) {
       undo_.clear();
       make_start_model();
       break;
-    case Kind::kMask:
-      if (Ground* ground = model_->ground()) {
-        const Heightmap& t = model_->initial_terrain();
-        ground->paint_mask(vertices_in_disc(t.nx, t.ny, t.cell, e.discs.front()),
-                           static_cast<float>(e.value));
-      }
+    case Kind::kMask: {
+      const Heightmap& t = model_->initial_terrain();
+      const std::vector<int> vertices = vertices_in_disc(t.nx, t.ny, t.cell, e.discs.front());
+      if (e.mask == "rain")
+        model_->paint_rain_mask(vertices, static_cast<float>(e.value));
+      else if (Ground* ground = model_->ground())
+        ground->paint_mask(vertices, static_cast<float>(e.value));
       break;
+    }
     case Kind::kEnd:
       if (replay_) replay_finished_ = true;
       break;

@@ -39,9 +39,11 @@ class Session {
   void end_stroke();
   bool undo();  // false when there is nothing to undo
   void set_global_rain(bool on);
-  // Sets the ground's erodibility mask to `value` (0 frozen … 1) on the disc; false (and nothing
-  // logged) when the model's ground has no mask (no layers or masks in the scenario).
-  bool paint_mask(const RainDisc& disc, double value);
+  // Sets a mask of the ground on the disc: "erodibility" (0 frozen … 1) or "rain" (the fraction of
+  // the scenario's rain, when it has a rain mask); false (and nothing logged) when the model's
+  // ground has no such mask.
+  bool paint_mask(const RainDisc& disc, double value, const std::string& mask = "erodibility");
+  bool has_mask(const std::string& mask);
   void switch_model(const std::string& name);
   void reset();
   void end();  // logs the end (at exit)

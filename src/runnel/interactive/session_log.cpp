@@ -14,7 +14,7 @@ namespace runnel {
 namespace {
 
 using Kind = SessionEvent::Kind;
-constexpr std::array<std::pair<Kind, const char*>, 8> kKinds = {
+constexpr std::array<std::pair<Kind, const char*>, 9> kKinds = {
     {{Kind::kStrokeBegin, "stroke_begin"},
      {Kind::kRain, "rain"},
      {Kind::kStrokeEnd, "stroke_end"},
@@ -22,6 +22,7 @@ constexpr std::array<std::pair<Kind, const char*>, 8> kKinds = {
      {Kind::kGlobalRain, "global_rain"},
      {Kind::kModel, "model"},
      {Kind::kReset, "reset"},
+     {Kind::kMask, "mask"},
      {Kind::kEnd, "end"}}};
 constexpr int kFormatVersion = 1;
 
@@ -53,7 +54,10 @@ std::string session_log_json(const SessionLog& log) {
       }
     }
     if (e.kind == Kind::kGlobalRain) j["on"] = e.on;
-    if (e.kind == Kind::kMask) j["value"] = e.value;
+    if (e.kind == Kind::kMask) {
+      j["mask"] = e.mask;
+      j["value"] = e.value;
+    }
     if (e.kind == Kind::kModel) j["model"] = e.model;
     events.push_back(j);
   }
@@ -115,9 +119,12 @@ SessionLog read_session_log(const std::string& path) {
       if (e.kind == Kind::kGlobalRain) e.on = j.at("on").get<bool>();
       if (e.kind == Kind::kMask) {
         e.value = j.at("value").get<double>();
-        if (e.discs.size() != 1 || !(e.value >= 0 && e.value <= 1))
+        e.mask = j.value("mask", std::string("erodibility"));
+        if (e.discs.size() != 1 || !(e.value >= 0 && e.value <= 1) ||
+            (e.mask != "erodibility" && e.mask != "rain"))
           throw fail("event " + std::to_string(index) +
-                     ": a mask event needs one disc and a value in [0, 1]");
+                     ": a mask event needs one disc, a value in [0, 1] and the mask erodibility "
+                     "or rain");
       }
       if (e.kind == Kind::kModel) e.model = j.at("model").get<std::string>();
       log.events.push_back(std::move(e));

@@ -20,7 +20,7 @@ struct SessionEvent {
     kGlobalRain,   // the scenario's rain switched `on`
     kModel,        // another `model` takes over the terrain as it is
     kReset,        // back to the session's start
-    kMask,         // the ground's erodibility mask set to `value` on the disc `discs[0]`
+    kMask,         // the ground's `mask` ("erodibility" or "rain") set to `value` on `discs[0]`
     kEnd,          // the session ended here
   };
   Kind kind = Kind::kEnd;
@@ -30,7 +30,8 @@ struct SessionEvent {
   std::vector<RainDisc> discs;
   bool on = false;
   std::string model;
-  double value = 0;  // kMask: 0 frozen … 1 the material's own erodibility
+  double value = 0;                  // kMask: 0 (frozen, or dry) … 1
+  std::string mask = "erodibility";  // kMask: which mask
 };
 
 struct SessionLog {

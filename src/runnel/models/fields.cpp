@@ -18,6 +18,7 @@ const std::vector<FieldDescription>& field_dictionary() {
       {"ground__sediment_thickness", L::kVertex, T::kInt64, 1, "height quanta", "loose sediment on the rock (what was eroded and deposited), the first to be eroded again (docs/layers.md)"},
       {"ground__contact_elevation", L::kVertex, T::kInt64, 0, "height quanta", "the strata's contacts, top first: contact 0 the initial surface, stratum l between contacts l and l + 1, the bedrock below the last (L + 1 components)"},
       {"ground__erodibility_mask", L::kVertex, T::kFloat32, 1, "1", "the erodibility mask as painted in runnel-viewer (hardness × frozen: 0 never erodes); only in checkpoints of a session that painted it"},
+      {"ground__rain_mask", L::kVertex, T::kFloat32, 1, "1", "the rain mask as painted in runnel-viewer (the fraction of the scenario's rain falling at the vertex); only in checkpoints of a session that painted it"},
       {"ground__stratum_thickness", L::kVertex, T::kInt64, 0, "height quanta", "the thickness left of each stratum above the rock surface's fall (L components; written for readers, derived on restart)"},
       {"particle__position", L::kParticle, T::kFloat32, 3, "m", "SPH particle position (x, y, z)"},
       {"particle__velocity", L::kParticle, T::kFloat32, 3, "m/s", "SPH particle velocity"},

@@ -8,6 +8,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
 #include "runnel/core/version.hpp"
+#include "runnel/ground/ground_settings.hpp"
 #include "runnel/models/fields.hpp"
 
 namespace runnel {
@@ -22,6 +23,7 @@ GridModel::GridModel(ComputeContext& compute, const Parameters& params, const He
   const std::vector<float> weights = rain_weights(params, terrain.nx, terrain.ny);  // read once
   rain_weight_ = rain_weight_buffer(compute, params, weights);
   for (float w : weights) rained_vertices_ += w;
+  if (runnel::has_rain_mask(params)) rain_mask_ = RainMask(weights);
 }
 
 double GridModel::step() {
@@ -99,6 +101,29 @@ void GridModel::upload_field(const std::string& name, const std::vector<float>& 
   state_.upload(fields);
 }
 
+double GridModel::scenario_rain_volume() {
+  const double cell = state_.terrain().cell();
+  // The order of a run that never changes its mask: rate · Σw · cell · cell · time (+ 0).
+  return scenario_rain_rate() * rained_vertices_ * cell * cell * (rain_time_ - rain_mark_) +
+         rain_accum_;
+}
+
+bool GridModel::paint_rain_mask(const std::vector<int>& vertices, float value) {
+  if (!rain_mask_.present()) return false;
+  rain_accum_ = scenario_rain_volume();  // what fell under the old weights
+  rain_mark_ = rain_time_;
+  rain_mask_.paint(vertices, value);
+  sync_rain_weights();
+  return true;
+}
+
+void GridModel::sync_rain_weights() {
+  const std::vector<float>& w = rain_mask_.weights();
+  compute_.queue().enqueueWriteBuffer(rain_weight_, CL_TRUE, 0, w.size() * sizeof(float), w.data());
+  rained_vertices_ = 0;
+  for (float v : w) rained_vertices_ += v;
+}
+
 WaterView GridModel::water_view() {
   WaterView view;
   if (!state_.has(kSurfaceWaterDepth)) return view;
@@ -167,13 +192,17 @@ CheckpointData GridModel::checkpoint() {
   d.fields = state_.download();
   if (ground_)
     for (StoredField& f : ground_->fields()) d.fields.push_back(std::move(f));
+  rain_mask_.store(d.fields);
   d.model_counters = counters();
   // What painting (runnel-viewer) adds to the state; absent from every run without it.
-  if (painted_volume_ != 0 || paint_carry_ != 0 || rain_time_ != time_) {
+  if (painted_volume_ != 0 || paint_carry_ != 0 || rain_time_ != time_ || rain_accum_ != 0 ||
+      rain_mark_ != 0) {
     d.model_counters.emplace_back("painted_water_bits",
                                   std::bit_cast<std::int64_t>(painted_volume_));
     d.model_counters.emplace_back("paint_carry_bits", std::bit_cast<std::int64_t>(paint_carry_));
     d.model_counters.emplace_back("rain_time_bits", std::bit_cast<std::int64_t>(rain_time_));
+    d.model_counters.emplace_back("rain_accum_bits", std::bit_cast<std::int64_t>(rain_accum_));
+    d.model_counters.emplace_back("rain_mark_bits", std::bit_cast<std::int64_t>(rain_mark_));
   }
   return d;
 }
@@ -191,13 +220,17 @@ void GridModel::restore(const CheckpointData& d) {
   time_ = d.time;
   steps_ = d.steps;
   restore_next_dt(d.dt);
-  painted_volume_ = paint_carry_ = 0;
+  painted_volume_ = paint_carry_ = rain_accum_ = rain_mark_ = 0;
   rain_time_ = time_;
   for (auto& [key, value] : d.model_counters) {
     if (key == "painted_water_bits") painted_volume_ = std::bit_cast<double>(value);
     if (key == "paint_carry_bits") paint_carry_ = std::bit_cast<double>(value);
     if (key == "rain_time_bits") rain_time_ = std::bit_cast<double>(value);
+    if (key == "rain_accum_bits") rain_accum_ = std::bit_cast<double>(value);
+    if (key == "rain_mark_bits") rain_mark_ = std::bit_cast<double>(value);
   }
+  rain_mask_.restore(d.fields);
+  if (rain_mask_.present()) sync_rain_weights();
 }
 
 std::int64_t counter_value(const std::vector<std::pair<std::string, std::int64_t>>& counters,

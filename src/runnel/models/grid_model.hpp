@@ -7,6 +7,7 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/ground/ground.hpp"
+#include "runnel/ground/rain_mask.hpp"
 #include "runnel/models/grid_state.hpp"
 #include "runnel/models/model.hpp"
 
@@ -51,6 +52,8 @@ class GridModel : public Model {
   void set_painted_rain(const std::vector<RainDisc>& discs) override { painted_ = discs; }
   bool set_global_rain(bool on) override;
   WaterView water_view() override;
+  bool paint_rain_mask(const std::vector<int>& vertices, float value) override;
+  bool has_rain_mask() const override { return rain_mask_.present(); }
 
  protected:
   // One step of the numerics; returns its length in clock units.
@@ -71,11 +74,20 @@ class GridModel : public Model {
   void upload_field(const std::string& name, const std::vector<float>& f32,
                     const std::vector<std::int64_t>& i64);
   const std::vector<RainDisc>& painted() const { return painted_; }
+  // The scenario's rain as depth per clock unit on a vertex of weight 1 (pipe.rain, olsen.rain),
+  // and the volume it has rained: rate × Σ weights × cell² × the time it was on, summed over the
+  // stretches between rain-mask changes.
+  virtual double scenario_rain_rate() const { return 0.0; }
+  double scenario_rain_volume();
+  // The rain weights on the device (and their sum) from the rain mask.
+  void sync_rain_weights();
   // The scenario rain's switch as the kernels read it (1 or 0), and how long it has been on.
   float rain_on() const { return global_rain_ ? 1.0f : 0.0f; }
   double rain_time() const { return rain_time_; }
   // m³ of painted water so far, and the fraction of a droplet or particle painting carries over.
   double painted_volume_ = 0, paint_carry_ = 0;
+  // The scenario rain's volume before the last rain-mask change, and the rain time then.
+  double rain_accum_ = 0, rain_mark_ = 0;
 
   // The ground's fields and the rain weights the model's kernels read (bed() is null, and the rain
   // weights a placeholder, when the run has none: the kernels then never read them).
@@ -89,6 +101,7 @@ class GridModel : public Model {
   GridState state_;
   std::unique_ptr<Ground> ground_;
   cl::Buffer placeholder_, rain_weight_;
+  RainMask rain_mask_;
   double rained_vertices_ = 0;
 
  private:

@@ -94,6 +94,14 @@ class Model {
     return false;
   }
   virtual WaterView water_view() { return {}; }
+  // Sets the rain mask (ground.rain_mask, the fraction of the scenario's rain falling at each
+  // vertex) to `value` on these vertices from the next step; false when the scenario has none.
+  virtual bool paint_rain_mask(const std::vector<int>& vertices, float value) {
+    (void)vertices;
+    (void)value;
+    return false;
+  }
+  virtual bool has_rain_mask() const { return false; }
 };
 
 }  // namespace runnel

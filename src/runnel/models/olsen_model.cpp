@@ -86,8 +86,7 @@ double OlsenModel::take_step() {
 }
 
 double OlsenModel::rain_volume() {
-  const double cell = state_.terrain().cell();
-  return settings_.rain * rained_vertices() * cell * cell * rain_time() + painted_volume_;
+  return scenario_rain_volume() + painted_volume_;
 }
 
 JsonObject OlsenModel::diagnostics() {

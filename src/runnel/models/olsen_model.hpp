@@ -26,6 +26,7 @@ class OlsenModel final : public GridModel {
 
   std::vector<float> water() { return state_.download_float(kSurfaceWaterDepth); }
   double rain_volume() override;
+  double scenario_rain_rate() const override { return settings_.rain; }
   JsonObject diagnostics() override;
 
  protected:

@@ -238,8 +238,7 @@ void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::i
 }
 
 double PipeModel::rain_volume() {
-  const double cell = state_.terrain().cell();
-  return settings_.rain * rained_vertices() * cell * cell * rain_time() + painted_volume_;
+  return scenario_rain_volume() + painted_volume_;
 }
 
 JsonObject PipeModel::diagnostics() {

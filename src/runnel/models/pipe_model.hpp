@@ -46,6 +46,7 @@ class PipeModel final : public GridModel {
   long long outflow_quanta() override;
   long long lost_quanta() override;
   double rain_volume() override;
+  double scenario_rain_rate() const override { return settings_.rain; }
   JsonObject diagnostics() override;
 
  protected:

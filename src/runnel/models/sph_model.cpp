@@ -36,7 +36,18 @@ SphModel::SphModel(std::unique_ptr<Simulation> simulation)
 
 void SphModel::restore(const CheckpointData& data) {
   sim_->restore(data);
+  if (scenario_rain_.region == RainSettings::Region::kMask) {  // a restored mask's rain
+    scenario_rain_ = sim_->rain().masked_rain();
+    apply_rain();
+  }
   if (!painted_.empty() || !global_rain_) apply_rain();  // the front end's rain outlives a restore
+}
+
+bool SphModel::paint_rain_mask(const std::vector<int>& vertices, float value) {
+  if (!sim_->paint_rain_mask(vertices, value)) return false;
+  scenario_rain_ = sim_->rain().masked_rain();
+  apply_rain();
+  return true;
 }
 
 void SphModel::set_painted_rain(const std::vector<RainDisc>& discs) {

@@ -39,6 +39,8 @@ class SphModel final : public Model {
   void set_painted_rain(const std::vector<RainDisc>& discs) override;
   bool set_global_rain(bool on) override;
   WaterView water_view() override;
+  bool paint_rain_mask(const std::vector<int>& vertices, float value) override;
+  bool has_rain_mask() const override { return sim_->has_rain_mask(); }
 
   Simulation& simulation() { return *sim_; }
 

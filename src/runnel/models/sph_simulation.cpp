@@ -66,11 +66,10 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   }
   const RainSettings rain =
       RainSettings::from(params, solver_->terrain(), spacing, reference_speed_);
+  rain_mask_ = RainMask(params, terrain.nx, terrain.ny);
   rain_ = std::make_unique<RainEmitter>(
       compute, rain, static_cast<std::uint64_t>(params.integer("run.seed")),
-      static_cast<float>(sph.rho0),
-      has_rain_mask(params) ? rain_weights(params, terrain.nx, terrain.ny) : std::vector<float>{},
-      terrain.nx);
+      static_cast<float>(sph.rho0), rain_mask_.weights(), terrain.nx);
   ground_ = make_ground(compute, params, solver_->terrain(), initial_, initial_fixed_);
   erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_,
                                        static_cast<std::uint64_t>(params.integer("run.seed")),
@@ -159,6 +158,7 @@ CheckpointData Simulation::checkpoint() {
   d.seed = params_.integer("run.seed");
   d.counters = solver_->counters();
   if (ground_) d.fields = ground_->fields();
+  rain_mask_.store(d.fields);
   return d;
 }
 
@@ -183,6 +183,15 @@ void Simulation::restore(const CheckpointData& d) {
   solver_->restore_counters(d.counters);
   rain_->restore(d.rain_spawned, d.rain_carry);
   if (ground_) ground_->restore(d.fields);
+  rain_mask_.restore(d.fields);
+  if (rain_mask_.present()) rain_->set_weights(rain_mask_.weights(), initial_.nx);
+}
+
+bool Simulation::paint_rain_mask(const std::vector<int>& vertices, float value) {
+  if (!rain_mask_.present()) return false;
+  rain_mask_.paint(vertices, value);
+  rain_->set_weights(rain_mask_.weights(), initial_.nx);
+  return true;
 }
 
 Heightmap Simulation::terrain() {

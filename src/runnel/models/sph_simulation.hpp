@@ -8,6 +8,7 @@
 #include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
 #include "runnel/ground/ground.hpp"
+#include "runnel/ground/rain_mask.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/mass_balance.hpp"
@@ -33,6 +34,9 @@ class Simulation {
   void step();
 
   MassBalance mass_balance();
+  // The rain mask painted (runnel-viewer) on these vertices; false without ground.rain_mask.
+  bool paint_rain_mask(const std::vector<int>& vertices, float value);
+  bool has_rain_mask() const { return rain_mask_.present(); }
   Heightmap terrain();
   const Heightmap& initial_terrain() const { return initial_; }
   double time() const { return solver_->time(); }
@@ -63,6 +67,7 @@ class Simulation {
   std::vector<std::int64_t> initial_fixed_;
   double reference_speed_ = 0;
   std::unique_ptr<SphSolver> solver_;
+  RainMask rain_mask_;  // ground.rain_mask, as painted
   std::unique_ptr<RainEmitter> rain_;
   std::unique_ptr<Erosion> erosion_;
   std::unique_ptr<ThermalRelaxation> thermal_;

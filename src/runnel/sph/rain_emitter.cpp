@@ -116,29 +116,44 @@ JsonObject RainSettings::json() const {
 
 RainEmitter::RainEmitter(ComputeContext& compute, const RainSettings& settings, std::uint64_t seed,
                          float rest_density, const std::vector<float>& rain_weights, int nx)
-    : settings_(settings),
+    : compute_(compute),
+      settings_(settings),
       seed_(seed),
       rest_density_(rest_density),
       kernel_(compute,
               compute.program({"cl/common.cl", "cl/grid.cl", "cl/terrain_sample.cl", "cl/rain.cl"}),
               "rain_emit") {
+  unmasked_ = masked_ = settings_;
   std::vector<float> cdf(1, 1.0f);
   if (!rain_weights.empty()) {
     if (settings_.region != RainSettings::Region::kTerrain)
       throw input_error(
           "ground.rain_mask: a rain mask shapes the rain of the whole terrain; "
           "use it with rain.region = \"terrain\"");
-    double fraction = 0;
-    std::tie(cdf, fraction) =
-        rain_cell_cdf(rain_weights, nx, static_cast<int>(rain_weights.size()) / nx);
-    settings_.region = RainSettings::Region::kMask;
-    settings_.rate *= fraction;
-    settings_.intensity_mm_h *= fraction;  // the mean over the terrain
-    cells_ = static_cast<int>(cdf.size());
+    cells_ = (nx - 1) * (static_cast<int>(rain_weights.size()) / nx - 1);
   }
-  cell_cdf_ = cl::Buffer(compute.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                         cdf.size() * sizeof(float), cdf.data());
+  cell_cdf_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, cells_ * sizeof(float));
+  compute.queue().enqueueWriteBuffer(cell_cdf_, CL_TRUE, 0, sizeof(float), cdf.data());
+  if (!rain_weights.empty()) set_weights(rain_weights, nx);
   kernel_.set("cell_cdf", cell_cdf_).set("cells", static_cast<cl_int>(cells_));
+}
+
+void RainEmitter::set_weights(const std::vector<float>& rain_weights, int nx) {
+  const auto [cdf, fraction] =
+      rain_cell_cdf(rain_weights, nx, static_cast<int>(rain_weights.size()) / nx);
+  masked_ = unmasked_;
+  masked_.region = RainSettings::Region::kMask;
+  masked_.rate *= fraction;
+  masked_.intensity_mm_h *= fraction;  // the mean over the terrain
+  // At construction the settings are the scenario's (the whole terrain); later only the mask's
+  // own rain follows (a brush's disc stays as it is).
+  if (settings_.region == RainSettings::Region::kMask || settings_.region == unmasked_.region) {
+    const bool enabled = settings_.enabled;
+    settings_ = masked_;
+    settings_.enabled = enabled;
+  }
+  compute_.queue().enqueueWriteBuffer(cell_cdf_, CL_TRUE, 0, cdf.size() * sizeof(float),
+                                      cdf.data());
 }
 
 std::pair<std::vector<float>, double> rain_cell_cdf(const std::vector<float>& weights, int nx,

@@ -65,6 +65,11 @@ class RainEmitter {
   std::size_t emit(SphSolver& solver, double dt);
 
   RainSettings& settings() { return settings_; }
+  // A new rain mask (same size; runnel-viewer paints it): the drawing distribution and the mask
+  // rain's rate follow. The settings change only while they rain by the mask; masked_rain() is
+  // the mask's rain whatever the settings are now.
+  void set_weights(const std::vector<float>& rain_weights, int nx);
+  const RainSettings& masked_rain() const { return masked_; }
   std::uint64_t spawned() const { return spawned_; }
   double carry() const { return carry_; }
   void restore(std::uint64_t spawned, double carry) {
@@ -73,7 +78,9 @@ class RainEmitter {
   }
 
  private:
+  ComputeContext& compute_;
   RainSettings settings_;
+  RainSettings unmasked_, masked_;  // the scenario's rain without and with the mask
   std::uint64_t seed_;
   float rest_density_;
   Kernel kernel_;
