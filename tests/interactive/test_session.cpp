@@ -149,6 +149,23 @@ TEST(Session, SphRainsOnTheBrushDisc) {
   EXPECT_DOUBLE_EQ(s.model().rain_volume(), static_cast<double>(w.points.size() / 4) * 0.125);
 }
 
+// Over a sink the SPH particles evaporate at the next step, leaving their load where they are: a
+// sink over the whole terrain empties it, and the mass balance stays exact.
+TEST(Session, AnSphSinkEvaporatesTheParticlesOverIt) {
+  Session s = session("sph");
+  s.set_rain({{10.0, 20.0, 4.0, 0.5}});
+  for (int k = 0; k < 60; ++k) s.step();
+  const std::size_t before = s.model().water_view().points.size();
+  ASSERT_GT(before, 0u);
+  s.set_rain({{30.0, 2.0, 1.5, -1.0}});  // a sink in a corner, away from the water
+  s.step();
+  EXPECT_EQ(s.model().water_view().points.size(), before) << "nothing over it, nothing drained";
+  s.set_rain({{16.0, 16.0, 100.0, -1.0}});  // one over everything
+  for (int k = 0; k < 3; ++k) s.step();
+  EXPECT_EQ(s.model().water_view().points.size(), 0u);
+  EXPECT_EQ(s.model().mass_balance().residual_quanta, 0);
+}
+
 // The binned depth holds the particles' volume (the smoothing scatters, it does not lose), and a
 // load every particle shares is the load of every wet vertex.
 TEST(WaterBinning, KeepsTheVolumeAndTheLoad) {

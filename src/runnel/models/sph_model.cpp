@@ -50,6 +50,29 @@ bool SphModel::paint_rain_mask(const std::vector<int>& vertices, float value) {
   return true;
 }
 
+// A sink: the particles over it reach the end of their lifespan, so this step's evaporation
+// removes them and leaves their load where they are, as it does for any drop at the end of its
+// life (the mass balance books it the same way).
+void SphModel::drain_sinks() {
+  ParticleStore& store = sim_->solver().particles();
+  if (store.size() == 0) return;
+  const std::vector<float> x = store.read_field(kX), z = store.read_field(kZ),
+                           age = store.read_field(kAge);
+  std::vector<float> lifespan = store.read_field(kLifespan);
+  bool drained = false;
+  for (const RainDisc& d : painted_) {
+    if (d.rate >= 0) continue;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double dx = x[i] - d.x, dz = z[i] - d.z;
+      if (dx * dx + dz * dz <= d.radius * d.radius && lifespan[i] > age[i]) {
+        lifespan[i] = age[i];
+        drained = true;
+      }
+    }
+  }
+  if (drained) store.upload_field(kLifespan, lifespan);
+}
+
 void SphModel::set_painted_rain(const std::vector<RainDisc>& discs) {
   painted_ = discs;
   apply_rain();
@@ -81,6 +104,8 @@ WaterView SphModel::water_view() {
 }
 
 double SphModel::step() {
+  if (std::any_of(painted_.begin(), painted_.end(), [](const RainDisc& d) { return d.rate < 0; }))
+    drain_sinks();
   const double before = sim_->time();
   sim_->step();
   return sim_->time() - before;

@@ -32,8 +32,8 @@ class SphModel final : public Model {
   const char* work_unit() const override { return "particle_steps"; }
   double device_bytes() const override { return sim_->device_bytes(); }
   Ground* ground() override { return sim_->ground(); }
-  // Painting: the emitter has one region, so the first disc that rains (not a sink: the SPH model
-  // has none) rains in place of the scenario's rain; water_view() bins the particles onto the
+  // Painting: the emitter has one region, so the first disc that rains rains in place of the
+  // scenario's rain; over a sink the particles evaporate; water_view() bins the particles onto the
   // vertices.
   bool paints_rain() const override { return true; }
   void set_painted_rain(const std::vector<RainDisc>& discs) override;
@@ -58,6 +58,7 @@ class SphModel final : public Model {
  private:
   // The emitter's settings from the scenario's rain, the painted disc and the switch.
   void apply_rain();
+  void drain_sinks();
   std::unique_ptr<Simulation> sim_;
   RainSettings scenario_rain_;
   std::vector<RainDisc> painted_;
