@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 
 #include "runnel/core/error.hpp"
@@ -170,6 +171,50 @@ TEST(DamagedCheckpoint, FlippedBytesAreRefusedOrChangeNothing) {
   }
   EXPECT_GT(refused, 0);
   std::printf("flipped bytes: %d refused, %d harmless\n", refused, harmless);
+}
+
+// A local heap (a group's names) whose free list loops back on itself: libhdf5 1.10 follows such
+// a list without end, allocating until memory runs out (found by fuzz.checkpoint). The reader
+// walks every heap's list first and refuses the file in one line.
+TEST(DamagedCheckpoint, ALocalHeapWhoseFreeListLoopsIsRefused) {
+  ScratchDir dir;
+  const std::string path = write_sample(dir);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto u64 = [&](std::size_t at) {
+    std::uint64_t v = 0;
+    for (int k = 7; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(bytes[at + k]);
+    return v;
+  };
+  const auto put64 = [&](std::size_t at, std::uint64_t v) {
+    for (int k = 0; k < 8; ++k) bytes[at + k] = static_cast<char>((v >> (8 * k)) & 0xff);
+  };
+  // The first heap with a free block: its first free block's "next" made to point at itself.
+  bool looped = false;
+  for (std::size_t at = bytes.find("HEAP"); at != std::string::npos && !looped;
+       at = bytes.find("HEAP", at + 1)) {
+    const std::uint64_t size = u64(at + 8), head = u64(at + 16), data = u64(at + 24);
+    if (head == 1 || head + 16 > size || data + size > bytes.size()) continue;
+    put64(data + head, head);
+    looped = true;
+  }
+  ASSERT_TRUE(looped) << "the sample has a local heap with a free block";
+  const std::string damaged = dir.path("loop.h5");
+  {
+    std::ofstream out(damaged, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  try {
+    read_checkpoint(damaged);
+    FAIL() << "a looping free list went unnoticed";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kUsage);
+    EXPECT_NE(std::string(e.what()).find("free list loops"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(read_checkpoint(path)) << "the undamaged file still reads";
 }
 
 }  // namespace

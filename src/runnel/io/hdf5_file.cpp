@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/io/hdf5_file.hpp"
 
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
 #include <filesystem>
 
 #include "runnel/core/error.hpp"
@@ -19,6 +23,59 @@ void silence_hdf5() {
     return true;
   }();
   (void)silenced;
+}
+
+// libhdf5 1.10 follows a local heap's free list without a bound: a damaged file whose list loops
+// back on itself makes a group lookup allocate list nodes until memory runs out (found by
+// fuzz.checkpoint). Before HDF5 sees a file, each local heap ("HEAP", version 0, 8-byte lengths and
+// addresses, as runnel writes) that lies inside the file has its free list walked here; a loop
+// refuses the file. A heap header that does not parse is left to HDF5, which reports it.
+void check_local_heaps(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return;
+  std::fseek(f, 0, SEEK_END);
+  const long file_size = std::ftell(f);
+  const auto read_at = [&](long at, void* out, std::size_t n) {
+    return at >= 0 && at + static_cast<long>(n) <= file_size && std::fseek(f, at, SEEK_SET) == 0 &&
+           std::fread(out, 1, n, f) == n;
+  };
+  const auto u64 = [](const unsigned char* p) {
+    std::uint64_t v = 0;
+    for (int k = 7; k >= 0; --k) v = (v << 8) | p[k];
+    return v;
+  };
+  std::vector<unsigned char> block(1 << 20);
+  bool looping = false;
+  for (long start = 0; start < file_size && !looping;
+       start += static_cast<long>(block.size()) - 3) {
+    const std::size_t n =
+        std::min<std::size_t>(block.size(), static_cast<std::size_t>(file_size - start));
+    if (!read_at(start, block.data(), n)) break;
+    for (std::size_t i = 0; i + 4 <= n && !looping; ++i) {
+      if (std::memcmp(block.data() + i, "HEAP", 4) != 0) continue;
+      unsigned char header[32];
+      const long at = start + static_cast<long>(i);
+      if (!read_at(at, header, sizeof header) || header[4] != 0) continue;
+      const std::uint64_t size = u64(header + 8), head = u64(header + 16), data = u64(header + 24);
+      if (size > static_cast<std::uint64_t>(file_size) ||
+          data > static_cast<std::uint64_t>(file_size) - size)
+        continue;
+      // H5HL_FREE_NULL (1) ends the list; every step moves to another block of at least 16 bytes.
+      std::uint64_t offset = head;
+      for (std::uint64_t steps = 0; offset != 1 && offset + 16 <= size; ++steps) {
+        if (steps > size / 16) {
+          looping = true;
+          break;
+        }
+        unsigned char entry[8];
+        if (!read_at(static_cast<long>(data + offset), entry, sizeof entry)) break;
+        offset = u64(entry);
+      }
+    }
+  }
+  std::fclose(f);
+  if (looping)
+    throw input_error(path + ": damaged HDF5 file (a local heap's free list loops back on itself)");
 }
 
 std::string dims_text(const std::vector<hsize_t>& d) {
@@ -48,6 +105,7 @@ H5File H5File::open_read(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw input_error(path + ": no such file");
   if (H5Fis_hdf5(path.c_str()) <= 0) throw input_error(path + ": not an HDF5 file (or truncated)");
+  check_local_heaps(path);
   H5File f;
   f.path_ = path;
   f.reading_ = true;
