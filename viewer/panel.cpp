@@ -128,22 +128,21 @@ void Viewer::draw_panel() {
 
 void Viewer::print_stats(long long frame, double fps) {
   Model& m = session_->model();
-  std::printf("%s\n",
-              JsonObject()
-                  .add("frame", frame)
-                  .add("model", m.info().name)
-                  .add("particles", static_cast<long long>(m.water_view().points.size() / 4))
-                  .add("steps", static_cast<long long>(m.steps()))
-                  .add("steps_per_second", steps_per_second_)
-                  .add("rain_volume", rain_volume_)
-                  .add("eroded_volume", balance_.eroded)
-                  .add("mass_balance_abs", balance_.residual)
-                  .add("painting", session_->painting())
-                  .add("undo_depth", static_cast<long long>(session_->undo_depth()))
-                  .add("recorded_frames", recorder_ ? recorder_->frames() : 0LL)
-                  .add("fps", fps)
-                  .str()
-                  .c_str());
+  std::printf("%s\n", JsonObject()
+                          .add("frame", frame)
+                          .add("model", m.info().name)
+                          .add("particles", static_cast<long long>(particles_shown_))
+                          .add("steps", static_cast<long long>(m.steps()))
+                          .add("steps_per_second", steps_per_second_)
+                          .add("rain_volume", rain_volume_)
+                          .add("eroded_volume", balance_.eroded)
+                          .add("mass_balance_abs", balance_.residual)
+                          .add("painting", session_->painting())
+                          .add("undo_depth", static_cast<long long>(session_->undo_depth()))
+                          .add("recorded_frames", recorder_ ? recorder_->frames() : 0LL)
+                          .add("fps", fps)
+                          .str()
+                          .c_str());
   std::fflush(stdout);
 }
 

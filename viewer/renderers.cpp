@@ -3,6 +3,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "grid_mesh.hpp"
+
 namespace runnel::viewer {
 namespace {
 
@@ -93,46 +95,21 @@ void main() {
 
 TerrainRenderer::TerrainRenderer(const Heightmap& t)
     : program_(kTerrainVertex, kTerrainFragment), nx_(t.nx), ny_(t.ny) {
-  std::vector<float> grid;
-  grid.reserve(t.size() * 3);
-  for (int j = 0; j < t.ny; ++j) {
-    for (int i = 0; i < t.nx; ++i) {
-      grid.push_back(static_cast<float>(i * t.cell));
-      grid.push_back(static_cast<float>(j * t.cell));
-      grid.push_back(t.at(i, j));
-    }
-  }
-  std::vector<GLuint> index;
-  for (int j = 0; j + 1 < t.ny; ++j) {
-    for (int i = 0; i + 1 < t.nx;
-         ++i) {  // the diagonal (i, j)–(i+1, j+1), as the simulation's mesh
-      const GLuint a = j * t.nx + i, b = a + 1, c = a + t.nx + 1, d = a + t.nx;
-      index.insert(index.end(), {a, c, b, a, d, c});
-    }
-  }
+  const std::vector<float> grid = grid_positions(t, true);
+  const std::vector<GLuint> index = grid_triangles(t.nx, t.ny);
   indices_ = static_cast<GLsizei>(index.size());
   glGenVertexArrays(1, &vao_);
   glBindVertexArray(vao_);
-  glGenBuffers(1, &grid_vbo_);
-  glBindBuffer(GL_ARRAY_BUFFER, grid_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, grid.size() * sizeof(float), grid.data(), GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(0);
-  glGenBuffers(1, &dynamic_vbo_);
-  glBindBuffer(GL_ARRAY_BUFFER, dynamic_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, t.size() * 4 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
-  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(1);
-  glGenBuffers(1, &water_vbo_);
-  glBindBuffer(GL_ARRAY_BUFFER, water_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, t.size() * 2 * sizeof(float),
-               std::vector<float>(t.size() * 2, 0.0f).data(), GL_DYNAMIC_DRAW);
-  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(2);
-  glGenBuffers(1, &ibo_);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo_);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
-               GL_STATIC_DRAW);
+  grid_vbo_ =
+      make_buffer(GL_ARRAY_BUFFER, grid.size() * sizeof(float), grid.data(), GL_STATIC_DRAW);
+  float_attribute(0, 3);
+  dynamic_vbo_ =
+      make_buffer(GL_ARRAY_BUFFER, t.size() * 4 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+  float_attribute(1, 4);
+  water_vbo_ = make_buffer(GL_ARRAY_BUFFER, t.size() * 2 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+  float_attribute(2, 2);
+  ibo_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
+                     GL_STATIC_DRAW);
   glBindVertexArray(0);
 }
 

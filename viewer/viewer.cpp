@@ -206,6 +206,7 @@ void Viewer::upload() {
   }
   terrain_->update_water(depth_speed);
   terrain_->set_depth_scale(static_cast<float>(t.cell));
+  particles_shown_ = w.points.size() / 4;
   std::vector<float> points = w.points;
   for (std::size_t i = 3; i < points.size(); i += 4)  // load → colour: 5 % is full colour
     points[i] = std::min(1.0f, 20.0f * points[i]);

@@ -90,6 +90,7 @@ class Viewer {
   double last_x_ = 0, last_y_ = 0;
   MassBalance balance_;
   double rain_volume_ = 0;
+  std::size_t particles_shown_ = 0;  // water particles in the last upload
   std::string message_;
   std::vector<std::string> model_names_;
   // What the panel asked for, done at the next frame's start: a model replaced in the middle of

@@ -78,7 +78,7 @@ void GridModel::drain(const std::vector<int>& vertices) {
   if (vertices.empty()) return;
   std::vector<float> depth = state_.download_float(kSurfaceWaterDepth);
   for (int k : vertices) depth[k] = 0.0f;
-  upload_field(kSurfaceWaterDepth, depth, {});
+  state_.upload_field({kSurfaceWaterDepth, 1, depth, {}});
   if (!state_.has(kSedimentSuspended)) return;
   std::vector<std::int64_t> sediment = state_.download_int64(kSedimentSuspended);
   std::vector<std::int64_t> height = state_.terrain().download_fixed();
@@ -86,19 +86,8 @@ void GridModel::drain(const std::vector<int>& vertices) {
     height[k] += sediment[k];
     sediment[k] = 0;
   }
-  upload_field(kSedimentSuspended, {}, sediment);
+  state_.upload_field({kSedimentSuspended, 1, {}, sediment});
   state_.terrain().upload_fixed(height);
-}
-
-void GridModel::upload_field(const std::string& name, const std::vector<float>& f32,
-                             const std::vector<std::int64_t>& i64) {
-  std::vector<StoredField> fields = state_.download();
-  for (StoredField& f : fields) {
-    if (f.name != name) continue;
-    if (!f32.empty()) f.f32 = f32;
-    if (!i64.empty()) f.i64 = i64;
-  }
-  state_.upload(fields);
 }
 
 double GridModel::scenario_rain_volume() {

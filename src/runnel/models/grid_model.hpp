@@ -70,9 +70,6 @@ class GridModel : public Model {
   // Painted rain for a step of `dt` clock units (models with a water depth field), and sinks.
   virtual void paint(double dt);
   void drain(const std::vector<int>& vertices);
-  // Replaces one field's values (f32 or i64, whichever is given).
-  void upload_field(const std::string& name, const std::vector<float>& f32,
-                    const std::vector<std::int64_t>& i64);
   const std::vector<RainDisc>& painted() const { return painted_; }
   // The scenario's rain as depth per clock unit on a vertex of weight 1 (pipe.rain, olsen.rain),
   // and the volume it has rained: rate × Σ weights × cell² × the time it was on, summed over the

@@ -99,24 +99,24 @@ void GridState::upload(const std::vector<StoredField>& stored) {
   if (stored.size() != fields_.size())
     throw input_error("checkpoint: it holds " + std::to_string(stored.size()) +
                       " grid fields, the model has " + std::to_string(fields_.size()));
-  for (const StoredField& s : stored) {
-    const std::size_t k = index_of(s.name);
-    if (k == fields_.size())
-      throw input_error("checkpoint: field " + s.name + " does not belong to this model");
-    Field& f = fields_[k];
-    const std::size_t count = vertices_ * static_cast<std::size_t>(f.components);
-    const bool ok = s.components == f.components &&
-                    (f.is_int64 ? s.i64.size() == count : s.f32.size() == count);
-    if (!ok) throw input_error("checkpoint: field " + s.name + " has the wrong size or type");
-    if (f.is_int64) {
-      const auto device = transposed(s.i64, vertices_, static_cast<std::size_t>(f.components));
-      compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(),
-                                          device.data());
-    } else {
-      const auto device = transposed(s.f32, vertices_, static_cast<std::size_t>(f.components));
-      compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(),
-                                          device.data());
-    }
+  for (const StoredField& s : stored) upload_field(s);
+}
+
+void GridState::upload_field(const StoredField& s) {
+  const std::size_t k = index_of(s.name);
+  if (k == fields_.size())
+    throw input_error("checkpoint: field " + s.name + " does not belong to this model");
+  Field& f = fields_[k];
+  const std::size_t count = vertices_ * static_cast<std::size_t>(f.components);
+  const bool ok =
+      s.components == f.components && (f.is_int64 ? s.i64.size() == count : s.f32.size() == count);
+  if (!ok) throw input_error("checkpoint: field " + s.name + " has the wrong size or type");
+  if (f.is_int64) {
+    const auto device = transposed(s.i64, vertices_, static_cast<std::size_t>(f.components));
+    compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(), device.data());
+  } else {
+    const auto device = transposed(s.f32, vertices_, static_cast<std::size_t>(f.components));
+    compute_.queue().enqueueWriteBuffer(f.buffer, CL_TRUE, 0, vertices_ * f.bytes(), device.data());
   }
 }
 

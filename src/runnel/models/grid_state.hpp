@@ -38,6 +38,7 @@ class GridState {
   // Every field's values, and back (same names and sizes).
   std::vector<StoredField> download();
   void upload(const std::vector<StoredField>& fields);
+  void upload_field(const StoredField& field);  // one field (same name and size)
   std::vector<float> download_float(const std::string& name);
   std::vector<std::int64_t> download_int64(const std::string& name);
   std::size_t vertices() const { return static_cast<std::size_t>(terrain_.nx()) * terrain_.ny(); }

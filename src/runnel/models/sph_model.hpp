@@ -44,15 +44,12 @@ class SphModel final : public Model {
 
   Simulation& simulation() { return *sim_; }
 
-  // What an interactive front end (runnel-viewer) needs beyond Model: the particles as they are,
-  // their size, and the rain, which a brush may replace.
+  // The particles as they are, their size, the rain spawned and its settings (water_view(),
+  // the erosion-convergence validation, runnel compare's rain budget).
   HostParticles particles() { return sim_->solver().particles().download(); }
-  std::size_t particle_count() const { return sim_->particles(); }
   std::uint64_t drops_spawned() { return sim_->rain().spawned(); }
   double particle_spacing() const { return sim_->solver().settings().spacing; }
   double volume_quantum() { return sim_->solver().terrain().volume_quantum(); }
-  // The terrain's vertex normals as the device has them (3 floats a vertex): no host recompute.
-  std::vector<float> terrain_normals() { return sim_->solver().terrain().download_normals(); }
   const RainSettings& rain() { return sim_->rain().settings(); }
 
  private:
