@@ -1,114 +1,198 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/landscape/flow_routing.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
+#include <stdexcept>
+#include <vector>
 
 #include "runnel/landscape/radix_heap.hpp"
 
 namespace runnel {
 
-void build_stack(FlowRouting& r, const std::vector<double>& cell_area) {
+namespace {
+
+// The stack of r.receiver (donors first, as a topological order): from every source (a node no one
+// drains to), in raster order, down its receivers for as long as the next one has all its donors
+// in the order, adding r.area (each node's own on entry) on the way; then reversed. Walking down
+// channels keeps the order, and so the erosion's pass over it, local in memory; no donor lists
+// are needed. `waiting` is working memory.
+void order_stack(FlowRouting& r, std::vector<std::uint8_t>& waiting) {
   const std::size_t n = r.receiver.size();
-  // Donor lists (counting sort by receiver), then a depth-first walk from each base-level node.
-  std::vector<std::int32_t> first(n + 1, 0), donors(n);
+  constexpr std::uint8_t kInOrder = 0xff;
+  waiting.assign(n, 0);  // donors not yet in the order (at most 8)
   for (std::size_t k = 0; k < n; ++k)
-    if (r.receiver[k] != static_cast<std::int32_t>(k)) ++first[r.receiver[k] + 1];
-  for (std::size_t k = 0; k < n; ++k) first[k + 1] += first[k];
-  std::vector<std::int32_t> fill(first.begin(), first.end() - 1);
-  for (std::size_t k = 0; k < n; ++k)
-    if (r.receiver[k] != static_cast<std::int32_t>(k))
-      donors[fill[r.receiver[k]]++] = static_cast<std::int32_t>(k);
+    if (r.receiver[k] != static_cast<std::int32_t>(k)) ++waiting[r.receiver[k]];
   r.stack.clear();
   r.stack.reserve(n);
-  std::vector<std::int32_t> pending;  // the depth-first walk's own stack
-  for (std::size_t b = 0; b < n; ++b) {
-    if (r.receiver[b] != static_cast<std::int32_t>(b)) continue;
-    pending.push_back(static_cast<std::int32_t>(b));
-    while (!pending.empty()) {
-      const std::int32_t k = pending.back();
-      pending.pop_back();
+  for (std::size_t source = 0; source < n; ++source) {
+    if (waiting[source] != 0) continue;
+    for (std::int32_t k = static_cast<std::int32_t>(source);;) {
       r.stack.push_back(k);
-      for (std::int32_t d = first[k]; d < first[k + 1]; ++d) pending.push_back(donors[d]);
+      waiting[k] = kInOrder;  // not a source when the raster scan reaches it
+      const std::int32_t receiver = r.receiver[k];
+      if (receiver == k) break;
+      r.area[receiver] += r.area[k];
+      if (--waiting[receiver] != 0) break;
+      k = receiver;
     }
   }
+  if (r.stack.size() != n)
+    throw std::logic_error("flow routing: the receivers form a cycle, not a tree");
+  std::reverse(r.stack.begin(), r.stack.end());
+}
+
+}  // namespace
+
+void build_stack(FlowRouting& r, const std::vector<double>& cell_area) {
   r.area = cell_area;
-  for (std::size_t s = n; s-- > 0;) {
-    const std::int32_t k = r.stack[s];
-    if (r.receiver[k] != k) r.area[r.receiver[k]] += r.area[k];
-  }
+  std::vector<std::uint8_t> waiting;
+  order_stack(r, waiting);
 }
 
 void priority_flood(std::vector<double>& filled, int nx, int ny,
                     const std::function<bool(int, int)>& is_outlet, double epsilon) {
-  static const int di[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dj[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   const std::size_t n = filled.size();
-  std::vector<bool> closed(n, false);
+  const GridNeighbours around(nx, ny);
+  std::vector<std::uint8_t> closed(n, 0);
   RadixHeap open;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
       if (is_outlet(i, j)) {
         const std::int32_t k = j * nx + i;
-        closed[k] = true;
+        closed[k] = 1;
         open.push(filled[k], k);
       }
-  while (!open.empty()) {
-    const auto [h, k] = open.pop();
-    const int i = k % nx, j = k / nx;
-    for (int d = 0; d < 8; ++d) {
-      const int a = i + di[d], b = j + dj[d];
-      if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
-      const std::int32_t m = b * nx + a;
-      if (closed[m]) continue;
-      closed[m] = true;
-      filled[m] = std::max(filled[m], h + epsilon);
-      open.push(filled[m], m);
+  // Zhou, Sun & Fu 2016's variant: a vertex above the flood level keeps its own height, and so does
+  // every vertex uphill of it, so those are traced here without the queue (most of a landscape);
+  // a traced vertex with a lower or equal neighbour still open goes into the queue at its height,
+  // to flood that neighbour when its turn comes.
+  std::vector<std::int32_t> uphill;
+  auto trace_uphill = [&](std::int32_t start) {
+    uphill.push_back(start);
+    while (!uphill.empty()) {
+      const std::int32_t t = uphill.back();
+      uphill.pop_back();
+      bool lower_open = false;
+      around.visit(t, [&](std::int32_t m, int) {
+        if (closed[m]) return;
+        if (filled[m] > filled[t]) {
+          closed[m] = 1;
+          uphill.push_back(m);
+        } else {
+          lower_open = true;
+        }
+      });
+      if (lower_open) open.push(filled[t], t);
     }
+  };
+  while (!open.empty()) {
+    const auto [level, k] = open.pop();
+    around.visit(k, [&](std::int32_t m, int) {
+      if (closed[m]) return;
+      closed[m] = 1;
+      if (filled[m] > level) {
+        trace_uphill(m);
+      } else {  // in k's depression (or flat): raised just above k, so it drains towards k
+        filled[m] = level + epsilon;
+        open.push(filled[m], m);
+      }
+    });
   }
+}
+
+D8Router::D8Router(int nx, int ny, double cell, BaseLevel base)
+    : nx_(nx),
+      ny_(ny),
+      cell_(cell),
+      around_(nx, ny, cell),
+      outlet_(static_cast<std::size_t>(nx) * ny, 0) {
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      outlet_[static_cast<std::size_t>(j) * nx + i] = is_base_level(i, j, nx, ny, base);
+}
+
+// k's steepest strictly downhill neighbour on `surface` as its receiver, or k itself when no
+// neighbour is lower.
+void D8Router::steepest_descent(const std::vector<double>& surface, std::int32_t k) {
+  double steepest = 0;
+  int towards = -1;
+  around_.visit(k, [&](std::int32_t m, int d) {
+    // Selects rather than a branch: which neighbour is steepest is a coin toss on rough ground.
+    const double slope = (surface[k] - surface[m]) * around_.inverse_length(d);
+    const bool steeper = slope > steepest;
+    steepest = steeper ? slope : steepest;
+    towards = steeper ? d : towards;
+  });
+  routing_.receiver[k] = towards < 0 ? k : around_.neighbour(k, towards);
+  routing_.distance[k] = towards < 0 ? 0.0 : around_.length(towards);
+}
+
+const FlowRouting& D8Router::route(const std::vector<double>& height) {
+  const std::size_t n = outlet_.size();
+  FlowRouting& r = routing_;
+  r.receiver.resize(n);
+  r.distance.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (outlet_[k]) {
+      r.receiver[k] = static_cast<std::int32_t>(k), r.distance[k] = 0;
+      continue;
+    }
+    steepest_descent(height, static_cast<std::int32_t>(k));
+  }
+  // Where neither a vertex nor its receiver was raised, the steepest descent on the filled surface
+  // is the one just found (filling only lessens the other slopes).
+  basins_.fill(height, r.receiver, outlet_, nx_, ny_, filled_);
+  flat_.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t rec = r.receiver[k];
+    if (outlet_[k] || (rec != static_cast<std::int32_t>(k) && filled_[k] == height[k] &&
+                       filled_[rec] == height[rec]))
+      continue;
+    steepest_descent(filled_, static_cast<std::int32_t>(k));
+    if (r.receiver[k] == static_cast<std::int32_t>(k))
+      flat_.push_back(static_cast<std::int32_t>(k));
+  }
+  drain_flats();
+  r.area.assign(n, cell_ * cell_);
+  order_stack(r, waiting_);
+  return r;
+}
+
+// The vertices of lakes and flats (no lower neighbour on the filled surface) drain to a neighbour
+// of their own level that is nearer, in steps, to one that drains: breadth first from those.
+void D8Router::drain_flats() {
+  FlowRouting& r = routing_;
+  pending_.assign(filled_.size(), 0);
+  for (const std::int32_t k : flat_) pending_[k] = 1;
+  reached_.clear();
+  for (const std::int32_t k : flat_) {
+    around_.visit(k, [&](std::int32_t m, int d) {
+      if (r.receiver[k] != k || pending_[m] || filled_[m] != filled_[k]) return;
+      r.receiver[k] = m, r.distance[k] = around_.length(d);
+    });
+    if (r.receiver[k] != k) reached_.push_back(k);
+  }
+  for (const std::int32_t k : reached_) pending_[k] = 0;
+  for (std::size_t q = 0; q < reached_.size(); ++q) {
+    const std::int32_t k = reached_[q];
+    around_.visit(k, [&](std::int32_t m, int d) {
+      if (!pending_[m] || filled_[m] != filled_[k]) return;
+      pending_[m] = 0;
+      r.receiver[m] = k, r.distance[m] = around_.length(d);
+      reached_.push_back(m);
+    });
+  }
+  if (reached_.size() != flat_.size())
+    throw std::logic_error("flow routing: a flat of the filled surface has no outlet");
 }
 
 FlowRouting route_d8(const std::vector<double>& height, int nx, int ny, double cell,
                      BaseLevel base) {
-  const std::size_t n = static_cast<std::size_t>(nx) * ny;
-  constexpr double kEpsilon = 1e-9;
-  static const int di[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dj[8] = {0, 0, 1, -1, 1, -1, 1, -1};
-  std::vector<double> filled(height);
-  // Most of a landscape that has been eroding for a while has no pit and no flat: then the filled
-  // surface is the surface, and the O(n log n) flood (most of the routing's time) is skipped.
-  bool pits = false;
-  for (int j = 0; j < ny && !pits; ++j)
-    for (int i = 0; i < nx && !pits; ++i) {
-      if (is_base_level(i, j, nx, ny, base)) continue;
-      bool lower = false;
-      for (int d = 0; d < 8 && !lower; ++d) {
-        const int a = i + di[d], b = j + dj[d];
-        if (a >= 0 && b >= 0 && a < nx && b < ny) lower = height[b * nx + a] < height[j * nx + i];
-      }
-      pits = !lower;
-    }
-  if (pits)
-    priority_flood(
-        filled, nx, ny, [&](int i, int j) { return is_base_level(i, j, nx, ny, base); }, kEpsilon);
-  FlowRouting r;
-  r.receiver.resize(n);
-  r.distance.assign(n, 0.0);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const std::int32_t k = j * nx + i;
-      r.receiver[k] = k;
-      if (is_base_level(i, j, nx, ny, base)) continue;
-      double steepest = 0;
-      for (int d = 0; d < 8; ++d) {
-        const int a = i + di[d], b = j + dj[d];
-        if (b < 0 || b >= ny) continue;  // a closed edge
-        const std::int32_t m = b * nx + a;
-        const double length = d < 4 ? cell : cell * std::sqrt(2.0);
-        const double slope = (filled[k] - filled[m]) / length;
-        if (slope > steepest) steepest = slope, r.receiver[k] = m, r.distance[k] = length;
-      }
-    }
-  build_stack(r, std::vector<double>(n, cell * cell));
-  return r;
+  D8Router router(nx, ny, cell, base);
+  return router.route(height);
 }
 
 }  // namespace runnel

@@ -58,7 +58,8 @@ StreamPowerModel::StreamPowerModel(ComputeContext& compute, const Parameters& pa
                                    const Heightmap& terrain)
     : GridModel(compute, params, terrain),
       settings_(StreamPowerSettings::from(params)),
-      base_(settings_.base_level == "all" ? BaseLevel::kAllEdges : BaseLevel::kWestEast) {
+      base_(settings_.base_level == "all" ? BaseLevel::kAllEdges : BaseLevel::kWestEast),
+      router_(terrain.nx, terrain.ny, terrain.cell, base_) {
   const int nx = terrain.nx, ny = terrain.ny;
   if (nx < 3 || ny < 3)
     throw input_error(
@@ -85,23 +86,24 @@ double StreamPowerModel::take_step() {
   DeviceTerrain& terrain = state_.terrain();
   const int nx = terrain.nx(), ny = terrain.ny();
   const double q = terrain.quantum();
-  std::vector<std::int64_t> fixed = terrain.download_fixed();
-  std::vector<double> h(fixed.size());
-  for (std::size_t k = 0; k < fixed.size(); ++k) {
-    fixed[k] += uplift_per_step_[k];
+  terrain.download_fixed(fixed_);
+  std::vector<double>& h = height_;
+  h.resize(fixed_.size());
+  for (std::size_t k = 0; k < fixed_.size(); ++k) {
+    fixed_[k] += uplift_per_step_[k];
     uplift_ += uplift_per_step_[k];
-    h[k] = static_cast<double>(fixed[k]) * q;
+    h[k] = static_cast<double>(fixed_[k]) * q;
   }
   if (ground_) {  // the strata rise with the rock; K × the exposed rock's erodibility
     ground_->raise(uplift_per_step_);
     const std::vector<float> e = ground_->rock_erodibility();
     for (std::size_t k = 0; k < k_.size(); ++k) k_[k] = settings_.k * e[k];
   }
-  const FlowRouting routing = route_d8(h, nx, ny, terrain.cell(), base_);
-  const std::vector<double> before = h;
+  const FlowRouting& routing = router_.route(h);
+  if (settings_.deposition > 0) before_ = h;
   erode_stream_power(h, routing, k_, settings_.m, settings_.n, settings_.dt);
   if (settings_.deposition > 0)
-    deposit_sediment_flux(h, before, routing, settings_.deposition,
+    deposit_sediment_flux(h, before_, routing, settings_.deposition,
                           terrain.cell() * terrain.cell());
   diffuse(h, nx, ny, terrain.cell(), settings_.diffusivity, settings_.dt, base_);
   // Back to whole quanta; what the interior lost left the map over the base level.
@@ -110,10 +112,10 @@ double StreamPowerModel::take_step() {
       if (is_base_level(i, j, nx, ny, base_)) continue;
       const std::size_t k = static_cast<std::size_t>(j) * nx + i;
       const std::int64_t now = std::llround(h[k] / q);
-      outflow_ += fixed[k] - now;
-      fixed[k] = now;
+      outflow_ += fixed_[k] - now;
+      fixed_[k] = now;
     }
-  terrain.upload_fixed(fixed);
+  terrain.upload_fixed(fixed_);
   return settings_.dt;
 }
 
@@ -134,7 +136,7 @@ JsonObject StreamPowerModel::diagnostics() {
   std::vector<double> h(fixed.size());
   for (std::size_t k = 0; k < h.size(); ++k)
     h[k] = static_cast<double>(fixed[k]) * terrain.quantum();
-  const FlowRouting r = route_d8(h, terrain.nx(), terrain.ny(), terrain.cell(), base_);
+  const FlowRouting& r = router_.route(h);
   const SlopeArea fit = fit_slope_area(h, r, 10.0 * terrain.cell() * terrain.cell());
   return JsonObject()
       .add("uplift_volume_m3", static_cast<double>(uplift_) * terrain.volume_quantum())

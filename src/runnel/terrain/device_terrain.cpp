@@ -129,10 +129,15 @@ std::vector<float> DeviceTerrain::download_normals() {
 }
 
 std::vector<std::int64_t> DeviceTerrain::download_fixed() {
-  std::vector<std::int64_t> fixed(static_cast<std::size_t>(nx_) * ny_);
+  std::vector<std::int64_t> fixed;
+  download_fixed(fixed);
+  return fixed;
+}
+
+void DeviceTerrain::download_fixed(std::vector<std::int64_t>& fixed) {
+  fixed.resize(static_cast<std::size_t>(nx_) * ny_);
   compute_.queue().enqueueReadBuffer(height_fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_long),
                                      fixed.data());
-  return fixed;
 }
 
 void DeviceTerrain::bind(Kernel& k) {

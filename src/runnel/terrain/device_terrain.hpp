@@ -36,6 +36,8 @@ class DeviceTerrain {
   // The float view as a heightmap, and the exact fixed-point state.
   Heightmap download();
   std::vector<std::int64_t> download_fixed();
+  // The same into `fixed` (resized), whose memory a caller stepping every frame keeps.
+  void download_fixed(std::vector<std::int64_t>& fixed);
   std::vector<float> download_normals();  // 3 floats a vertex, refreshed first if stale
 
   // The arguments every terrain-aware kernel takes: terrain_height, terrain_normal, tnx, tny,

@@ -71,12 +71,13 @@ SteadyStateCheck stream_power_grid(int nx, double n, int min_cells) {
           rng_uniform_double(11, 0x5350ULL, static_cast<std::uint64_t>(j) * nx + i);
   const std::vector<double> kk(size, k);
   SteadyStateCheck c;
+  D8Router router(nx, nx, cell);
   FlowRouting r;
   for (double change = 1e300; change > 1e-9 * nx && c.steps < 200000; ++c.steps) {
     const std::vector<double> before = h;
     for (int j = 1; j < nx - 1; ++j)
       for (int i = 1; i < nx - 1; ++i) h[static_cast<std::size_t>(j) * nx + i] += u * dt;
-    r = route_d8(h, nx, nx, cell);
+    r = router.route(h);
     erode_stream_power(h, r, kk, m, n, dt);
     change = l2_change(h, before);
   }
