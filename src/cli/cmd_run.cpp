@@ -44,7 +44,9 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::IsMember(model_names()));
   auto* steps =
       cmd->add_option("--steps", opt->steps, "number of steps (run.steps)")->check(at_least(1));
-  cmd->add_option("--sim-time", opt->sim_time, "simulated seconds (run.sim_time)")
+  cmd->add_option("--sim-time", opt->sim_time,
+                  "simulated seconds (run.sim_time); years for a model whose clock is years "
+                  "(stream-power: run.sim_years)")
       ->excludes(steps)
       ->check(at_least(1e-9));
   cmd->add_option("--seed", opt->seed, "random seed of the rain (run.seed)")->check(at_least(0));
@@ -73,6 +75,8 @@ void add_run_command(CLI::App& app) {
       throw input_error("--sim-time: the " + params.text("run.model") +
                         " model counts iterations, not seconds; use --steps or run.iterations");
     }
+    if (opt->sim_time >= 0 && clock == ModelClock::kYears)  // the flag wins over the scenario
+      params.set("run.sim_years", opt->sim_time, "--sim-time");
     require_run_length(params, clock);
     const Heightmap terrain = load_terrain(params);
     ComputeContext compute(opt->device);

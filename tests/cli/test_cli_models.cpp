@@ -85,6 +85,48 @@ TEST(CliModels, ScenarioFileChoosesTheModelAndItsClock) {
   EXPECT_NE(m.find("\"clock\": \"iterations\""), std::string::npos);
 }
 
+TEST(CliModels, OneScenarioGivesSecondsToTheRainAndYearsToTheLandscape) {
+  ScratchDir dir;
+  test::write_text(dir.path("both.toml"),
+                   "[terrain]\ngenerator = \"fbm\"\nsize = 33\ncell = 50.0\n"
+                   "[stream_power]\ndt = 1000.0\n[rain]\nrate = 50.0\nmax_particles = 500\n"
+                   "[run]\nsim_time = 2.0\nsim_years = 5000.0\n");
+  auto steps = [&](const std::string& folder) {
+    return json_number(test::read_text(dir.path(folder + "/metrics.json")), "steps");
+  };
+  auto run = [&](std::vector<std::string> args) {
+    const auto r = run_cli(std::move(args));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  };
+  run({"run", dir.path("both.toml"), "--model", "stream-power", "--out", dir.path("sp"),
+       "--quiet"});
+  EXPECT_EQ(steps("sp"), 5.0) << "run.sim_years / stream_power.dt";
+  run({"run", dir.path("both.toml"), "--model", "stream-power", "--sim-time", "3000", "--out",
+       dir.path("flag"), "--quiet"});
+  EXPECT_EQ(steps("flag"), 3.0) << "--sim-time wins over the scenario's years";
+  run({"compare", dir.path("both.toml"), "--models", "pipe,stream-power", "--out", dir.path("cmp"),
+       "--quiet"});
+  EXPECT_EQ(steps("cmp/stream-power"), 5.0);
+  const std::string pipe = test::read_text(dir.path("cmp/pipe/metrics.json"));
+  EXPECT_NEAR(json_number(pipe, "sim_time"), 2.0, 0.05) << "the rain model keeps run.sim_time";
+}
+
+TEST(CliModels, TheShippedUpliftScenarioGrowsADrainageNetwork) {
+  ScratchDir dir;
+  const auto r = run_cli({"run", test::source_dir() + "/data/scenarios/uplift.toml", "--out",
+                          dir.path("u"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string m = test::read_text(dir.path("u/metrics.json"));
+  EXPECT_EQ(json_number(m, "steps"), 1000.0) << "1 Myr in steps of 1000 yr";
+  EXPECT_EQ(json_number(m, "mass_balance_abs"), 0.0);
+  // A plateau of 32 m roughness becomes a dissected range hundreds of metres high, its channels
+  // near the steady state's concavity m/n = 0.5 (diffusion bends the smallest catchments).
+  const Heightmap final_terrain = read_terrain(dir.path("u/final.npy"));
+  EXPECT_GT(final_terrain.max_height() - final_terrain.min_height(), 10 * 32.0);
+  EXPECT_GT(json_number(m, "channel_nodes"), 1000.0);
+  EXPECT_NEAR(json_number(m, "concavity_theta"), 0.5, 0.15);
+}
+
 TEST(CliModels, ResumedPipeRunEqualsTheUninterruptedOne) {
   ScratchDir dir;
   const auto base = with({"--model", "pipe", "--quiet"}, kSmallTerrain);

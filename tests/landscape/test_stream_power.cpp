@@ -91,6 +91,28 @@ TEST(StreamPower, TheModelBooksUpliftAndOutflowExactly) {
   EXPECT_DOUBLE_EQ(model->time(), 20 * 1000.0);
 }
 
+TEST(StreamPower, ErosionIsMeasuredFromTheUpliftedSurface) {
+  // Detachment-limited incision without diffusion only ever lowers a vertex below where the uplift
+  // put it, and all it removes leaves the map: measured from the uplifted surface, nothing is
+  // deposited and the eroded volume is the outflow. The erosion map is that difference.
+  Parameters p;
+  p.set("run.model", std::string("stream-power"));
+  p.set("stream_power.k", 1e-4);
+  const Heightmap t = generate_terrain("fbm", 33, 33, 20.0, 2, {{"relief", 0.1}});
+  auto model = make_model(test::compute(), p, t);
+  for (int s = 0; s < 20; ++s) model->step();
+  const MassBalance m = model->mass_balance();
+  EXPECT_GT(m.eroded, 0.0);
+  EXPECT_EQ(m.deposited, 0.0);
+  EXPECT_NEAR(m.eroded, m.outflow, 1e-9 * m.outflow);
+  const Heightmap reference = model->erosion_reference(), now = model->terrain();
+  const double rise = 20 * 1000.0 * 1e-3;  // 20 steps of 1000 yr at 1 mm/yr
+  EXPECT_NEAR(reference.at(16, 16) - t.at(16, 16), rise, 1e-3) << "an interior vertex rose";
+  EXPECT_EQ(reference.at(0, 16), t.at(0, 16)) << "the base level did not";
+  for (std::size_t k = 0; k < now.h.size(); ++k)
+    EXPECT_LE(now.h[k], reference.h[k] + 1e-3) << "vertex " << k << " above the uplifted surface";
+}
+
 TEST(StreamPower, TheErosionDepositionFormDepositsWhereTheDetachmentLimitedOneCannot) {
   // Without uplift nothing can rise in the detachment-limited form; with G > 0 the flux from
   // upstream settles in the valleys and lows rise. Both balance exactly.

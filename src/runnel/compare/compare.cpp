@@ -136,6 +136,7 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
     r.balance = s.balance;
     r.terrain_values = s.terrain_values;
     r.final_terrain = model->terrain();
+    r.erosion_reference = model->erosion_reference();
     if (Ground* ground = model->ground()) {
       r.strata = ground->strata();
       const MaterialTally t = ground->tally();

@@ -39,6 +39,7 @@ struct ModelResult {
   MassBalance balance;
   std::vector<std::pair<std::string, double>> terrain_values;
   Heightmap final_terrain;
+  Heightmap erosion_reference;  // what its erosion map is measured from (Model::erosion_reference)
   // A layered run (docs/layers.md): its strata, the material exposed at each vertex at the end,
   // and the rock eroded from each material (m³; the strata, then the bedrock).
   std::optional<Strata> strata;

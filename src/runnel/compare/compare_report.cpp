@@ -69,9 +69,10 @@ void write_compare_png(const std::string& path, const Heightmap& initial,
   top.push_back(with_title(terrain_picture(before, lo, hi), "initial terrain"));
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string name = lower(results[k].model);
-    const double scale = erosion_scale(before, after[k]);
+    const Heightmap reference = subsample(results[k].erosion_reference, factor);
+    const double scale = erosion_scale(reference, after[k]);
     top.push_back(with_title(terrain_picture(after[k], lo, hi), name + ": final"));
-    bottom.push_back(with_title(erosion_picture(before, after[k], scale),
+    bottom.push_back(with_title(erosion_picture(reference, after[k], scale),
                                 name + ": dh +-" + format("%.2g", scale) + " m"));
   }
   // A layered scenario (docs/layers.md): a third row, the geological maps, the initial one first.

@@ -157,7 +157,16 @@ double GridModel::water_volume() {
 MassBalance GridModel::mass_balance() {
   return mass_balance_of(state_.initial_fixed(), state_.terrain().download_fixed(),
                          suspended_quanta(), outflow_quanta(), lost_quanta(),
-                         state_.terrain().volume_quantum(), uplift_quanta());
+                         state_.terrain().volume_quantum(), uplift_quanta(), uplift_per_vertex());
+}
+
+Heightmap GridModel::erosion_reference() {
+  Heightmap reference = initial_terrain();
+  const std::vector<std::int64_t> uplift = uplift_per_vertex();
+  for (std::size_t k = 0; k < uplift.size(); ++k)
+    reference.h[k] +=
+        static_cast<float>(static_cast<double>(uplift[k]) * state_.terrain().quantum());
+  return reference;
 }
 
 std::string GridModel::status() {

@@ -28,6 +28,7 @@ class GridModel : public Model {
   Heightmap terrain() final;
   const Heightmap& initial_terrain() const final { return state_.initial_terrain(); }
   MassBalance mass_balance() final;
+  Heightmap erosion_reference() final;
   double rain_volume() override { return painted_volume_; }
   CheckpointData checkpoint() final;
   void restore(const CheckpointData& data) final;
@@ -42,8 +43,9 @@ class GridModel : public Model {
   virtual long long outflow_quanta() { return 0; }
   // Height quanta a documented non-conserving option destroyed (negative: created).
   virtual long long lost_quanta() { return 0; }
-  // Height quanta tectonic uplift added (stream-power).
+  // Height quanta tectonic uplift added (stream-power), in all and per vertex (empty: none).
   virtual long long uplift_quanta() { return 0; }
+  virtual std::vector<std::int64_t> uplift_per_vertex() { return {}; }
   virtual long long suspended_quanta();
 
   // Painting (interaction.hpp): models with a water depth field take painted rain as depth added

@@ -21,11 +21,13 @@ JsonObject MassBalance::json() const {
 
 MassBalance mass_balance_of(const std::vector<std::int64_t>& initial,
                             const std::vector<std::int64_t>& current, long long suspended,
-                            long long outflow, long long lost, double q, long long uplift) {
+                            long long outflow, long long lost, double q, long long uplift,
+                            const std::vector<std::int64_t>& uplift_per_vertex) {
   long long change = 0, eroded = 0, deposited = 0;
   for (std::size_t k = 0; k < current.size(); ++k) {
-    const long long d = current[k] - initial[k];
+    long long d = current[k] - initial[k];
     change += d;
+    if (!uplift_per_vertex.empty()) d -= uplift_per_vertex[k];
     if (d < 0)
       eroded -= d;
     else

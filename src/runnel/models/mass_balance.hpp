@@ -22,10 +22,13 @@ struct MassBalance {
 };
 
 // The balance of a fixed-point terrain against its initial state, with the other terms in
-// quanta; `volume_quantum` is m³ per quantum (height quantum · cell²).
+// quanta; `volume_quantum` is m³ per quantum (height quantum · cell²). With tectonic uplift
+// (`uplift` in all, `uplift_per_vertex` quanta each, or empty), eroded and deposited are measured
+// from the uplifted initial surface: what the surface processes did, not the rock's rise.
 MassBalance mass_balance_of(const std::vector<std::int64_t>& initial,
                             const std::vector<std::int64_t>& current, long long suspended,
                             long long outflow, long long lost, double volume_quantum,
-                            long long uplift = 0);
+                            long long uplift = 0,
+                            const std::vector<std::int64_t>& uplift_per_vertex = {});
 
 }  // namespace runnel

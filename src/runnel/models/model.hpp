@@ -58,6 +58,10 @@ class Model {
   // The terrain as it is now (float view of the fixed-point state) and as it started.
   virtual Heightmap terrain() = 0;
   virtual const Heightmap& initial_terrain() const = 0;
+  // The surface the erosion map and the eroded and deposited volumes are measured from: the
+  // initial terrain, raised by the uplift so far in a model with tectonic uplift (stream-power),
+  // so that they show what the surface processes did, not the rock's rise.
+  virtual Heightmap erosion_reference() { return initial_terrain(); }
   virtual MassBalance mass_balance() = 0;
   // Water the model has rained onto the terrain so far, m³ (0 for models without rain).
   virtual double rain_volume() = 0;

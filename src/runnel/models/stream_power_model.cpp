@@ -119,6 +119,14 @@ double StreamPowerModel::take_step() {
   return settings_.dt;
 }
 
+std::vector<std::int64_t> StreamPowerModel::uplift_per_vertex() {
+  // The rate is the same every step, so the uplift so far is the rate times the steps (a resumed
+  // run included).
+  std::vector<std::int64_t> total(uplift_per_step_);
+  for (std::int64_t& u : total) u *= static_cast<std::int64_t>(steps());
+  return total;
+}
+
 std::vector<std::pair<std::string, std::int64_t>> StreamPowerModel::counters() {
   return {{"outflow_quanta", outflow_}, {"uplift_quanta", uplift_}};
 }

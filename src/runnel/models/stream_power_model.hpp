@@ -37,6 +37,7 @@ class StreamPowerModel final : public GridModel {
 
   long long outflow_quanta() override { return outflow_; }
   long long uplift_quanta() override { return uplift_; }
+  std::vector<std::int64_t> uplift_per_vertex() override;
   JsonObject diagnostics() override;
   double next_dt() const override { return settings_.dt; }
 

@@ -44,7 +44,8 @@ std::vector<ParamSpec> assemble() {
       {"run.model", T::kString, "\"sph\"", "", 0, 0, model_names(), "erosion model (docs/models.md): sph (runnel's own), droplet (Beyer 2015), pipe (Mei 2007), olsen (Olsen 2004), thermal (talus), stream-power (Braun & Willett 2013, years)"},
       {"run.seed", T::kInteger, "1", "1", 0, 9.2e18, {}, "seed of the simulation's random numbers (rain)"},
       {"run.steps", T::kInteger, "0", "steps", 0, 1e12, {}, "steps to run; 0: run for run.sim_time"},
-      {"run.sim_time", T::kReal, "10", "s", 0, 1e12, {}, "simulated time to run when run.steps is 0 (models with a clock: sph and pipe in seconds, stream-power in years)"},
+      {"run.sim_time", T::kReal, "10", "s", 0, 1e12, {}, "simulated time to run when run.steps is 0 (models with a clock: sph and pipe in seconds, stream-power in years unless run.sim_years is set)"},
+      {"run.sim_years", T::kReal, "0", "yr", 0, 1e12, {}, "simulated years to run when run.steps is 0, for models whose clock is years (stream-power), so one scenario can give seconds of rain and years of landscape evolution (runnel compare); 0: run.sim_time, read as years"},
       {"run.iterations", T::kInteger, "100", "iterations", 0, 1e12, {}, "iterations to run when run.steps is 0 (models counting iterations: droplet batches, olsen, thermal)"},
       {"run.report_every", T::kInteger, "200", "steps", 1, 1e12, {}, "steps between mass-balance reports (progress lines when not on a terminal)"},
       // clang-format on

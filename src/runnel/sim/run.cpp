@@ -51,19 +51,25 @@ JsonObject parameters_json(const Parameters& params) {
 
 }  // namespace
 
+double run_length_in_clock(const Parameters& params, ModelClock clock) {
+  if (clock == ModelClock::kYears && params.real("run.sim_years") > 0)
+    return params.real("run.sim_years");
+  return params.real("run.sim_time");
+}
+
 RunOptions run_options_from(const Parameters& params, ModelClock clock) {
   RunOptions o;
   o.until_step = static_cast<std::uint64_t>(params.integer("run.steps"));
   if (o.until_step == 0 && clock == ModelClock::kIterations)
     o.until_step = static_cast<std::uint64_t>(params.integer("run.iterations"));
-  o.until_time = params.real("run.sim_time");
+  o.until_time = run_length_in_clock(params, clock);
   o.report_every = params.integer("run.report_every");
   return o;
 }
 
 void require_run_length(const Parameters& params, ModelClock clock) {
   if (params.integer("run.steps") > 0) return;
-  if (clock != ModelClock::kIterations && !(params.real("run.sim_time") > 0))
+  if (clock != ModelClock::kIterations && !(run_length_in_clock(params, clock) > 0))
     throw input_error("run.sim_time: must be positive when run.steps is 0");
   if (clock == ModelClock::kIterations && params.integer("run.iterations") <= 0)
     throw input_error("run.iterations: must be positive when run.steps is 0");
@@ -193,6 +199,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   // Outputs.
   const Heightmap& initial = model.initial_terrain();
   const Heightmap final_terrain = model.terrain();
+  const Heightmap reference = model.erosion_reference();  // the initial one, or uplifted
   const MassBalance m = model.mass_balance();
   const float lo = std::min(initial.min_height(), final_terrain.min_height());
   const float hi = std::max(initial.max_height(), final_terrain.max_height());
@@ -203,13 +210,13 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                            "after " + std::to_string(model.steps()) + " steps"));
   write_png_rgb(
       (out / "erosion.png").string(),
-      with_title(erosion_picture(initial, final_terrain, erosion_scale(initial, final_terrain)),
+      with_title(erosion_picture(reference, final_terrain, erosion_scale(reference, final_terrain)),
                  "erosion and deposition"));
   write_terrain((out / "final.asc").string(), final_terrain);
   write_terrain((out / "final.npy").string(), final_terrain);
   // GeoTIFF with the input's CRS, corner and NODATA value: they overlay the input in a GIS.
   write_terrain((out / "final.tif").string(), final_terrain);
-  write_terrain((out / "erosion.tif").string(), height_change(initial, final_terrain));
+  write_terrain((out / "erosion.tif").string(), height_change(reference, final_terrain));
   // The D8 drainage area of the final terrain (m², docs/metrics.md), as a map for analysis.
   Heightmap drainage(final_terrain.nx, final_terrain.ny, final_terrain.cell);
   const std::vector<double> area = metrics::flow_accumulation(final_terrain);

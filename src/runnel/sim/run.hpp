@@ -38,8 +38,12 @@ struct RunSummary {
 // final.asc, final.npy, final.h5 and metrics.json into the output folder.
 RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& options);
 
+// How long a run with `clock` lasts when run.steps is 0, in that clock: run.sim_time, or for a
+// model in years run.sim_years when set.
+double run_length_in_clock(const Parameters& params, ModelClock clock);
 // The run options a parameter set asks for: run.steps, else run.sim_time (models with a clock in
-// seconds) or run.iterations (iteration models); run.report_every.
+// seconds), run.sim_years or run.sim_time (years) or run.iterations (iteration models);
+// run.report_every.
 RunOptions run_options_from(const Parameters& params, ModelClock clock);
 // Throws an input error when the run has no length (run.steps, run.sim_time or run.iterations 0).
 void require_run_length(const Parameters& params, ModelClock clock);
