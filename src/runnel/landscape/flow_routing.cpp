@@ -89,7 +89,9 @@ void priority_flood(std::vector<double>& filled, int nx, int ny,
     }
   };
   while (!open.empty()) {
-    const auto [level, k] = open.pop();
+    const auto popped = open.pop();  // not a structured binding: clang 14 cannot capture those
+    const double level = popped.first;
+    const std::int32_t k = popped.second;
     around.visit(k, [&](std::int32_t m, int) {
       if (closed[m]) return;
       closed[m] = 1;
