@@ -71,13 +71,16 @@ __kernel void pipe_flux(const __global long* height, const __global float* depth
   const float level = (float)height[k] * quantum + d1;
   const float depth_4_3 = PIPE_FRICTION_ON ? pipe_pow_4_3(fmax(d1, 1e-3f)) : 1.0f;
   // A neighbour outside the map reads this cell (the select in pipe_face_flux discards it).
+  // Each face reads the one before through 0·f (exactly +0: the fluxes are finite and ≥ 0). Without that
+  // chain the SLP vectoriser packs the four alike faces into short vectors, and a loop holding vector
+  // instructions is not vectorised over the cells.
   const float level_l = pipe_level(height, depth, rain_weight, has_l ? k - 1 : k, quantum, dt, rain_on);
-  const float level_r = pipe_level(height, depth, rain_weight, has_r ? k + 1 : k, quantum, dt, rain_on);
-  const float level_t = pipe_level(height, depth, rain_weight, has_t ? k - nx : k, quantum, dt, rain_on);
-  const float level_b = pipe_level(height, depth, rain_weight, has_b ? k + nx : k, quantum, dt, rain_on);
   const float f_l = pipe_face_flux(flux[0 * n + k], level, level_l, has_l, depth_4_3, d1, cell, dt);
+  const float level_r = pipe_level(height, depth, rain_weight, has_r ? k + 1 : k, quantum, dt, rain_on) + 0.0f * f_l;
   const float f_r = pipe_face_flux(flux[1 * n + k], level, level_r, has_r, depth_4_3, d1, cell, dt);
+  const float level_t = pipe_level(height, depth, rain_weight, has_t ? k - nx : k, quantum, dt, rain_on) + 0.0f * f_r;
   const float f_t = pipe_face_flux(flux[2 * n + k], level, level_t, has_t, depth_4_3, d1, cell, dt);
+  const float level_b = pipe_level(height, depth, rain_weight, has_b ? k + nx : k, quantum, dt, rain_on) + 0.0f * f_t;
   const float f_b = pipe_face_flux(flux[3 * n + k], level, level_b, has_b, depth_4_3, d1, cell, dt);
   const float total = f_l + f_r + f_t + f_b;
   const float scale = total > 0.0f ? fmin(1.0f, d1 * cell * cell / (total * dt)) : 0.0f;
