@@ -82,12 +82,27 @@ const Case kCases[] = {{48, 40, 1, BaseLevel::kAllEdges},
                        {40, 56, 2, BaseLevel::kAllEdges},
                        {50, 30, 3, BaseLevel::kWestEast}};
 
+// A case's pitted fBm terrain, its outlets and its exact fill (the reference).
+struct Pitted {
+  Heightmap terrain;
+  std::vector<double> h;
+  std::vector<std::uint8_t> outlet;
+  std::vector<double> filled;
+};
+Pitted pitted(const Case& c, double cell) {
+  Pitted p;
+  p.terrain = generate_terrain("fbm", c.nx, c.ny, cell, c.seed, {{"relief", 0.3}});
+  p.h = heights_of(p.terrain);
+  p.outlet = outlets(c.nx, c.ny, c.base);
+  p.filled = planchon_darboux(p.h, c.nx, c.ny, p.outlet);
+  return p;
+}
+
 TEST(FlowRouting, TheBasinGraphAndThePriorityFloodFillExactlyAsPlanchonDarboux) {
   for (const Case& c : kCases) {
-    const Heightmap t = generate_terrain("fbm", c.nx, c.ny, 1.0, c.seed, {{"relief", 0.3}});
-    const std::vector<double> h = heights_of(t);
-    const std::vector<std::uint8_t> outlet = outlets(c.nx, c.ny, c.base);
-    const std::vector<double> reference = planchon_darboux(h, c.nx, c.ny, outlet);
+    const Pitted p = pitted(c, 1.0);
+    const std::vector<double>&h = p.h, &reference = p.filled;
+    const std::vector<std::uint8_t>& outlet = p.outlet;
     int raised = 0;
     for (std::size_t k = 0; k < h.size(); ++k) raised += reference[k] > h[k];
     ASSERT_GT(raised, 20) << "seed " << c.seed << ": the terrain must have depressions";
@@ -107,10 +122,9 @@ TEST(FlowRouting, TheBasinGraphAndThePriorityFloodFillExactlyAsPlanchonDarboux) 
 
 TEST(FlowRouting, ThePriorityFloodWithEpsilonDrainsEveryVertexAndRaisesOnlyByEpsilons) {
   const Case c = kCases[0];
-  const Heightmap t = generate_terrain("fbm", c.nx, c.ny, 1.0, c.seed, {{"relief", 0.3}});
-  const std::vector<double> h = heights_of(t);
-  const std::vector<std::uint8_t> outlet = outlets(c.nx, c.ny, c.base);
-  const std::vector<double> exact = planchon_darboux(h, c.nx, c.ny, outlet);
+  const Pitted p = pitted(c, 1.0);
+  const std::vector<double>&h = p.h, &exact = p.filled;
+  const std::vector<std::uint8_t>& outlet = p.outlet;
   const double epsilon = 1e-7;
   std::vector<double> f = h;
   priority_flood(
@@ -131,10 +145,10 @@ TEST(FlowRouting, ThePriorityFloodWithEpsilonDrainsEveryVertexAndRaisesOnlyByEps
 
 TEST(FlowRouting, EveryVertexDrainsToBaseLevelNeverUphillOnTheFilledSurface) {
   for (const Case& c : kCases) {
-    const Heightmap t = generate_terrain("fbm", c.nx, c.ny, 2.0, c.seed, {{"relief", 0.3}});
-    const std::vector<double> h = heights_of(t);
-    const std::vector<std::uint8_t> outlet = outlets(c.nx, c.ny, c.base);
-    const std::vector<double> filled = planchon_darboux(h, c.nx, c.ny, outlet);
+    const Pitted p = pitted(c, 2.0);
+    const Heightmap& t = p.terrain;
+    const std::vector<double>&h = p.h, &filled = p.filled;
+    const std::vector<std::uint8_t>& outlet = p.outlet;
     D8Router router(c.nx, c.ny, t.cell, c.base);
     router.route(h);  // a second call on the same router must give a full answer too
     const FlowRouting& r = router.route(h);
