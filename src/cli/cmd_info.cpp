@@ -66,6 +66,12 @@ void print_checkpoint_info(const std::string& file, bool json) {
     (change < 0 ? eroded : deposited) += std::fabs(change);
   }
   const double q = d.height_quantum * d.terrain.cell * d.terrain.cell;
+  // Tectonic uplift (stream-power) is in the change from the initial terrain here; the run's
+  // metrics.json measures eroded and deposited from the uplifted surface
+  // (Model::erosion_reference), which needs the model's uplift map.
+  double uplift = 0;
+  for (const auto& [name, value] : d.model_counters)
+    if (name == "uplift_quanta") uplift = static_cast<double>(value) * q;
   if (json) {
     std::cout << JsonObject()
                      .add("file", file)
@@ -87,6 +93,7 @@ void print_checkpoint_info(const std::string& file, bool json) {
                      .add("eroded_volume", eroded * q)
                      .add("deposited_volume", deposited * q)
                      .add("suspended_volume", suspended)
+                     .add("uplift_volume", uplift)
                      .add("fields", fields)
                      .add("ground",
                           ground ? ground_summary(ground->first, d.height_fixed, ground->second, q)
@@ -113,6 +120,11 @@ void print_checkpoint_info(const std::string& file, bool json) {
   }
   std::printf("  eroded %.6g m^3, deposited %.6g m^3, suspended %.6g m^3\n", eroded * q,
               deposited * q, suspended);
+  if (uplift > 0)
+    std::printf(
+        "  uplift %.6g m^3 (eroded and deposited above are changes from the initial terrain, the\n"
+        "  uplift included; the run's metrics.json measures them from the uplifted surface)\n",
+        uplift);
   if (ground) print_ground(d, ground->first, ground->second);
 }
 

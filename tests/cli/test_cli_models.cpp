@@ -125,6 +125,11 @@ TEST(CliModels, TheShippedUpliftScenarioGrowsADrainageNetwork) {
   EXPECT_GT(final_terrain.max_height() - final_terrain.min_height(), 10 * 32.0);
   EXPECT_GT(json_number(m, "channel_nodes"), 1000.0);
   EXPECT_NEAR(json_number(m, "concavity_theta"), 0.5, 0.15);
+  const auto info = run_cli({"info", dir.path("u/final.h5"), "--json"});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NEAR(json_number(info.out, "uplift_volume"), json_number(m, "uplift_volume_m3"),
+              1e-6 * json_number(m, "uplift_volume_m3"))
+      << "runnel info reports the uplift its eroded and deposited figures include";
 }
 
 TEST(CliModels, ResumedPipeRunEqualsTheUninterruptedOne) {
