@@ -42,7 +42,6 @@ class GridNeighbours {
   std::int32_t neighbour(std::int32_t k, int d) const { return k + offset_[d]; }
   double length(int d) const { return length_[d]; }
   double inverse_length(int d) const { return inverse_length_[d]; }
-  std::size_t size() const { return on_edge_.size(); }
 
  private:
   int nx_, ny_;
