@@ -46,6 +46,36 @@ TEST(TerrainApply, AddsTheDeltasExactlyAndRefreshesTheFloatView) {
   }
 }
 
+// A terrain whose heights a model writes directly (the grid models; no kernel ever given the
+// deltas) refreshes only the view: the same view terrain_apply computes, bit for bit, and fresh
+// normals.
+TEST(TerrainApply, HeightsWrittenDirectlyRefreshTheViewAsTheDeltaPathDoes) {
+  const int nx = 37, ny = 23;
+  const double quantum = 1e-6;
+  std::mt19937_64 rng(9);
+  std::uniform_int_distribution<std::int64_t> height(-3'000'000'000LL, 9'000'000'000LL);
+  std::vector<std::int64_t> fixed(nx * ny);
+  for (auto& h : fixed) h = height(rng);
+  DeviceTerrain direct(compute(), Heightmap(nx, ny, 1.0), quantum);
+  direct.normal();  // fresh normals of the flat start: apply() must make them stale
+  compute().queue().enqueueWriteBuffer(direct.height_fixed(), CL_TRUE, 0, fixed.size() * 8,
+                                       fixed.data());
+  direct.apply();
+  DeviceTerrain by_deltas(compute(), Heightmap(nx, ny, 1.0), quantum);
+  std::vector<std::int64_t> zero(nx * ny, 0);
+  by_deltas.upload_fixed(zero);
+  compute().queue().enqueueWriteBuffer(by_deltas.delta(), CL_TRUE, 0, fixed.size() * 8,
+                                       fixed.data());
+  by_deltas.apply();  // the delta() call above put it on the full path
+  const Heightmap a = direct.download(), b = by_deltas.download();
+  EXPECT_EQ(direct.download_fixed(), fixed);
+  for (std::size_t k = 0; k < fixed.size(); ++k) ASSERT_EQ(a.h[k], b.h[k]) << k;
+  const std::vector<float> normals = direct.download_normals();
+  const std::vector<float> oracle = terrain_normals_reference(a);
+  for (std::size_t k = 0; k < normals.size(); ++k)
+    ASSERT_NEAR(normals[k], oracle[k], 2e-5) << k / 3;
+}
+
 // apply_changed applies the deltas of the tiles marked changed and leaves the others: a kernel that
 // adds deltas must mark their tiles (mark_changed_tiles), and this is what it relies on.
 TEST(TerrainApply, ApplyChangedTouchesOnlyTheMarkedTiles) {

@@ -30,6 +30,7 @@ DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, 
       stale_normal_tiles_(compute.context(), CL_MEM_READ_WRITE,
                           static_cast<std::size_t>(tiles_x_) * tiles_y_ * sizeof(cl_uint)),
       apply_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}), "terrain_apply"),
+      view_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}), "terrain_view"),
       stale_normals_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}),
                      "terrain_stale_normals") {
   if (!(quantum > 0)) throw input_error("erosion.height_quantum: must be positive");
@@ -65,7 +66,18 @@ void DeviceTerrain::upload_fixed(const std::vector<std::int64_t>& fixed) {
 }
 
 void DeviceTerrain::apply() {
-  refresh_view();
+  if (deltas_in_use_) {
+    refresh_view();
+    return;
+  }
+  const int n = nx_ * ny_;
+  view_.set("height_fixed", height_fixed_)
+      .set("height", height_)
+      .set("n", n)
+      .set("quantum", static_cast<float>(quantum_))
+      .launch(round_up_work(static_cast<std::size_t>(n)));
+  fill_tiles(stale_normal_tiles_, 1);
+  normals_stale_ = true;
 }
 
 void DeviceTerrain::apply_changed() {
@@ -109,6 +121,7 @@ void DeviceTerrain::fill_tiles(cl::Buffer& tiles, cl_uint value) {
 }
 
 void DeviceTerrain::bind_changes(Kernel& k) {
+  deltas_in_use_ = true;
   k.set("delta", delta_).set("changed", changed_tiles_).set("tiles_x", tiles_x_);
 }
 

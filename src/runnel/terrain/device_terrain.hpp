@@ -26,9 +26,11 @@ class DeviceTerrain {
   void upload(const Heightmap& terrain);
   void upload_fixed(const std::vector<std::int64_t>& fixed);
   // Adds the accumulated deltas to the fixed-point heights, clears them and refreshes the view,
-  // after a change anywhere (a kernel that wrote height_fixed). The normals are refreshed when next
-  // asked for (normal(), bind()): the grid models never read them, and recomputing them every step
-  // cost the pipe model a sixth of its time.
+  // after a change anywhere (a kernel that wrote height_fixed). Where no kernel was ever given the
+  // deltas (bind_changes, delta()), only the view is refreshed: the grid models write the heights
+  // directly, and reading and clearing deltas that are all 0 was two thirds of the pass. The
+  // normals are refreshed when next asked for (normal(), bind()): the grid models never read them,
+  // and recomputing them every step cost the pipe model a sixth of its time.
   void apply();
   // The same for the tiles marked changed by the kernels that added deltas (bind_changes), and
   // only their normals turn stale: a step's cost follows the water, not the terrain's size.
@@ -45,7 +47,10 @@ class DeviceTerrain {
   void bind(Kernel& kernel);
   cl::Buffer& height() { return height_; }
   cl::Buffer& normal();
-  cl::Buffer& delta() { return delta_; }
+  cl::Buffer& delta() {
+    deltas_in_use_ = true;
+    return delta_;
+  }
   // The arguments of a kernel that adds to the deltas: delta, changed (the tiles it marks; see
   // mark_changed_tiles in cl/common.cl) and tiles_x.
   void bind_changes(Kernel& kernel);
@@ -76,7 +81,8 @@ class DeviceTerrain {
   cl::Buffer height_fixed_, delta_, height_, normal_;
   cl::Buffer changed_tiles_, stale_normal_tiles_;  // one cl_uint per tile, 1: marked
   bool normals_stale_ = true;                      // some tile of stale_normal_tiles_ may be marked
-  Kernel apply_, stale_normals_;
+  Kernel apply_, view_, stale_normals_;
+  bool deltas_in_use_ = false;  // some kernel may add to delta_ (apply() must read it)
 };
 
 }  // namespace runnel
