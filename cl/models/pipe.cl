@@ -247,16 +247,20 @@ __kernel void pipe_stats(const __global float* depth, const __global float* velo
                          const __global float* previous_depth, const int n, const int chunk, const float cell,
                          const float dt, __global float* stats) {
   const int b = get_global_id(0);
-  float dmax = 0.0f, vmax2 = 0.0f;
+  // Maxima of the bits: a non-negative float orders as its bits do, and NaN's bits lie above
+  // infinity's, so a NaN reaches the host (which stops the run) without a test per cell; the sign
+  // bit is cleared (a −0 would otherwise be the largest). An integer max is a reduction the loop
+  // vectoriser knows; fmax with NaN selects is not.
+  uint dmax = 0u, vmax2 = 0u;
   for (int k = b * chunk; k < min(n, (b + 1) * chunk); ++k) {
     const float vx = velocity[k], vz = velocity[n + k];
     const float out = (flux[0 * n + k] + flux[1 * n + k] + flux[2 * n + k] + flux[3 * n + k]) * dt;
     const int limited = out >= 0.999f * previous_depth[k] * cell * cell;
-    const float v2 = depth[k] >= PIPE_CFL_DEPTH && !limited ? vx * vx + vz * vz : 0.0f;
-    // fmax ignores NaN: turn it into infinity so that the host sees it.
-    dmax = fmax(dmax, isnan(depth[k]) ? INFINITY : depth[k]);
-    vmax2 = fmax(vmax2, isnan(vx + vz) ? INFINITY : v2);
+    const float v2 = vx * vx + vz * vz;
+    const float counted = depth[k] >= PIPE_CFL_DEPTH && !limited ? v2 : 0.0f * v2;  // NaN stays NaN
+    dmax = max(dmax, as_uint(depth[k]) & 0x7fffffffu);
+    vmax2 = max(vmax2, as_uint(counted) & 0x7fffffffu);
   }
-  stats[2 * b] = dmax;
-  stats[2 * b + 1] = sqrt(vmax2);
+  stats[2 * b] = as_float(dmax);
+  stats[2 * b + 1] = sqrt(as_float(vmax2));
 }

@@ -161,3 +161,59 @@ TEST(PipeModel, StepsMatchThePlainCppReference) {
 
 }  // namespace
 }  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// pipe_stats against a host computation of what the time step needs: the largest depth and the
+// largest speed where the water counts (deep enough, flux limit not acting), per block; a NaN
+// anywhere in the depth or in a velocity (counted or not) reaches the host; a −0 is not a maximum.
+TEST(PipeModel, StatsKernelFindsTheMaximaAndLetsANaNThrough) {
+  const int n = 300, blocks = 3, chunk = 100;
+  const float cell = 2.0f, dt = 0.01f;
+  cl::Program& program = compute().program({"cl/common.cl", "cl/models/pipe.cl"},
+                                           PipeSettings::from(Parameters()).build_options());
+  Kernel stats(compute(), program, "pipe_stats");
+  std::vector<float> depth(n, 0.05f), velocity(2 * n, 0.0f), flux(4 * n, 0.0f), previous(n, 0.05f);
+  for (int k = 0; k < n; ++k) {
+    depth[k] = 0.02f + 0.001f * static_cast<float>(k % 37);
+    velocity[k] = 0.1f * static_cast<float>(k % 11);
+    velocity[n + k] = -0.05f * static_cast<float>(k % 7);
+  }
+  depth[5] = -0.0f;
+  depth[150] = 0.005f;  // too thin to count: its large speed must not
+  velocity[150] = 50.0f;
+  flux[0 * n + 160] = 1e3f;  // the limit acts here: its speed must not count either
+  velocity[160] = 40.0f;
+  depth[250] = std::nanf("");        // block 2's depth
+  velocity[n + 60] = std::nanf("");  // block 0's velocity, in a counted cell
+  const auto upload = [&](const std::vector<float>& v) {
+    return cl::Buffer(compute().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                      v.size() * sizeof(float), const_cast<float*>(v.data()));
+  };
+  cl::Buffer d = upload(depth), v = upload(velocity), f = upload(flux), p = upload(previous),
+             out(compute().context(), CL_MEM_READ_WRITE, 2 * blocks * sizeof(float));
+  stats.set("depth", d).set("velocity", v).set("flux", f).set("previous_depth", p);
+  stats.set("n", n).set("chunk", chunk).set("cell", cell).set("dt", dt).set("stats", out);
+  stats.launch(blocks);
+  std::vector<float> got(2 * blocks);
+  compute().queue().enqueueReadBuffer(out, CL_TRUE, 0, got.size() * sizeof(float), got.data());
+  EXPECT_TRUE(std::isnan(got[1])) << "block 0: the NaN velocity";
+  EXPECT_TRUE(std::isnan(got[4])) << "block 2: the NaN depth";
+  // Block 1 (cells 100..199) on the host.
+  float dmax = 0, vmax = 0;
+  for (int k = 100; k < 200; ++k) {
+    dmax = std::max(dmax, depth[k]);
+    const float out_flux = (flux[k] + flux[n + k] + flux[2 * n + k] + flux[3 * n + k]) * dt;
+    const bool counted = depth[k] >= 0.01f && out_flux < 0.999f * previous[k] * cell * cell;
+    if (counted) vmax = std::max(vmax, std::hypot(velocity[k], velocity[n + k]));
+  }
+  EXPECT_EQ(got[2], dmax);
+  EXPECT_FLOAT_EQ(got[3], vmax);
+  EXPECT_LT(got[3], 40.0f) << "neither the thin cell nor the limited one counts";
+  EXPECT_FALSE(std::signbit(got[0])) << "a −0 depth is not the maximum of block 0";
+  EXPECT_GT(got[0], 0.02f);
+}
+
+}  // namespace
+}  // namespace runnel
