@@ -210,5 +210,21 @@ TEST(FlowRouting, ACycleOfReceiversIsRefused) {
   EXPECT_THROW(build_stack(r, std::vector<double>(4, 1.0)), std::logic_error);
 }
 
+TEST(FlowRouting, AStarOfDonorsWithinTheCountersReachIsStacked) {
+  // 254 donors of node 0 fit the byte that counts them; the 255th is refused, not miscounted.
+  for (int donors : {254, 255}) {
+    FlowRouting r;
+    r.receiver.assign(donors + 1, 0);
+    r.distance.assign(donors + 1, 1.0);
+    if (donors == 254) {
+      build_stack(r, std::vector<double>(donors + 1, 1.0));
+      EXPECT_EQ(r.stack.front(), 0);
+      EXPECT_EQ(r.area[0], donors + 1.0);
+    } else {
+      EXPECT_THROW(build_stack(r, std::vector<double>(donors + 1, 1.0)), std::logic_error);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace runnel

@@ -22,7 +22,7 @@ namespace {
 void order_stack(FlowRouting& r, std::vector<std::uint8_t>& waiting) {
   const std::size_t n = r.receiver.size();
   constexpr std::uint8_t kInOrder = 0xff;
-  waiting.assign(n, 0);  // donors not yet in the order (at most 8)
+  waiting.assign(n, 0);  // donors not yet in the order: at most 8 on a grid (build_stack checks)
   for (std::size_t k = 0; k < n; ++k)
     if (r.receiver[k] != static_cast<std::int32_t>(k)) ++waiting[r.receiver[k]];
   r.stack.clear();
@@ -47,6 +47,11 @@ void order_stack(FlowRouting& r, std::vector<std::uint8_t>& waiting) {
 }  // namespace
 
 void build_stack(FlowRouting& r, const std::vector<double>& cell_area) {
+  // Any receivers, not a grid's: the byte that counts a node's donors must not wrap.
+  std::vector<int> donors(r.receiver.size(), 0);
+  for (std::size_t k = 0; k < r.receiver.size(); ++k)
+    if (r.receiver[k] != static_cast<std::int32_t>(k) && ++donors[r.receiver[k]] > 254)
+      throw std::logic_error("flow routing: a node with more than 254 donors");
   r.area = cell_area;
   std::vector<std::uint8_t> waiting;
   order_stack(r, waiting);

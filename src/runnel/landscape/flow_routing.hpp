@@ -72,7 +72,8 @@ FlowRouting route_d8(const std::vector<double>& height, int nx, int ny, double c
                      BaseLevel base = BaseLevel::kAllEdges);
 
 // The stack and the area of given receivers (1-D profiles, tests): `cell_area` per node. Throws
-// std::logic_error when the receivers hold a cycle.
+// std::logic_error when the receivers hold a cycle or a node has more than 254 donors (a grid's
+// nodes have at most 8).
 void build_stack(FlowRouting& routing, const std::vector<double>& cell_area);
 
 }  // namespace runnel
