@@ -72,15 +72,16 @@ SteadyStateCheck stream_power_grid(int nx, double n, int min_cells) {
   const std::vector<double> kk(size, k);
   SteadyStateCheck c;
   D8Router router(nx, nx, cell);
-  FlowRouting r;
+  const FlowRouting* routing = nullptr;  // the router's own, valid until its next route()
   for (double change = 1e300; change > 1e-9 * nx && c.steps < 200000; ++c.steps) {
     const std::vector<double> before = h;
     for (int j = 1; j < nx - 1; ++j)
       for (int i = 1; i < nx - 1; ++i) h[static_cast<std::size_t>(j) * nx + i] += u * dt;
-    r = router.route(h);
-    erode_stream_power(h, r, kk, m, n, dt);
+    routing = &router.route(h);
+    erode_stream_power(h, *routing, kk, m, n, dt);
     change = l2_change(h, before);
   }
+  const FlowRouting& r = *routing;
   const double min_area = min_cells * cell * cell;
   for (std::size_t q = 0; q < size; ++q) {
     if (r.receiver[q] == static_cast<std::int32_t>(q) || r.area[q] < min_area) continue;
