@@ -5,7 +5,7 @@
 // One step of Δt, each pass reading only what the previous passes wrote:
 //   pipe_flux:      d1 = d + Δt·r (read only: neighbours read d too);  f_X = max(0, f_X + Δt·A·g·Δh_X/l);  with
 //                   pipe.manning_n > 0 (not in Mei 2007) the bed friction of the SPH model, implicitly,
-//                   f_X /= 1 + Δt g n² v / d1^(4/3), v = f_X/(l·d1); scale all four by
+//                   f_X /= 1 + Δt g n² v / d1^(4/3), v = f_X/(l·d1) (d1 at least 1 mm); scale all four by
 //                   K = min(1, d1·l²/(Σf·Δt))   (outflow edges: outside b = d = 0; closed edges: f = 0)
 //   pipe_water:     d2 = d1 + Δt(Σf_in − Σf_out)/l²;  v from the mean flux through the cell
 //   pipe_erode:     C = K_c · max(sin α, sin α_min) · |v|; below capacity dissolve (1 − e^(−K_s·Δt))(C − s),
@@ -32,32 +32,35 @@ inline float pipe_level(const __global long* height, const __global float* depth
   return (float)height[m] * quantum + depth[m] + dt * (PIPE_RAIN * rain_on * RAIN_WEIGHT(rain_weight, m));
 }
 
-// x^(4/3) for x > 0 (Manning's depth term) without cbrt(), which is a library call that stops the
-// vectoriser: an exponent-thirds first guess and three Newton steps on y³ = x reach float precision (within 1e-7).
-inline float pipe_pow_4_3(float x) {
-  float y = as_float(as_int(x) / 3 + 709958130);  // fdlibm cbrtf's B1: the exponent bias, thirded
-  y -= (y * y * y - x) / (3.0f * y * y);  // unrolled by hand: an inner loop stops the vectoriser too
-  y -= (y * y * y - x) / (3.0f * y * y);
-  y -= (y * y * y - x) / (3.0f * y * y);
-  return x * y;
+// x^(−1/3) for x > 0 (Manning's depth term) without cbrt(), a library call that stops the vectoriser,
+// and without a division: an exponent-thirds first guess (0x54a21d2a) and three Newton steps on
+// 1/y³ = x, y ← y(4 − x y³)/3, reach float precision (within 2e-7 for 1e-4 ≤ x ≤ 1e4).
+inline float pipe_inverse_cbrt(float x) {
+  float y = as_float(0x54a21d2a - as_int(x) / 3);
+  y = y * (4.0f - x * y * y * y) * (1.0f / 3.0f);  // unrolled by hand: an inner loop stops the vectoriser too
+  y = y * (4.0f - x * y * y * y) * (1.0f / 3.0f);
+  y = y * (4.0f - x * y * y * y) * (1.0f / 3.0f);
+  return y;
 }
 
-// The new outflux through one face: the old one accelerated by the level difference, never negative,
-// and (with pipe.manning_n > 0) slowed implicitly by Manning's bed friction. Outside the map: b = d = 0,
-// or no face at all when the edges are closed.
-inline float pipe_face_flux(float old_flux, float level, float other_level, int inside, float depth_4_3, float d1,
-                            float cell, float dt) {
+// The new outflux through one face: the old one accelerated by the level difference (`accel` =
+// Δt·A·g/l), never negative, and (with pipe.manning_n > 0) slowed implicitly by Manning's bed
+// friction, f /= 1 + Δt g n² v / d^(4/3) with v = f/(l·d), which is f /= 1 + friction·f, `friction` =
+// Δt g n² / (l d^(7/3)): one division per face. Outside the map: b = d = 0, or no face at all when
+// the edges are closed.
+inline float pipe_face_flux(float old_flux, float level, float other_level, int inside, float accel,
+                            float friction) {
 #if PIPE_CLOSED
   if (!inside) return 0.0f;
 #else
   other_level = inside ? other_level : 0.0f;
 #endif
-  float f = fmax(0.0f, old_flux + dt * PIPE_AREA * PIPE_GRAVITY * (level - other_level) / cell);
+  const float f = fmax(0.0f, old_flux + accel * (level - other_level));
 #if PIPE_FRICTION_ON
-  const float v = f / (cell * fmax(d1, 1e-3f));
-  f /= 1.0f + dt * PIPE_GRAVITY_N2 * v / depth_4_3;
-#endif
+  return f / (1.0f + friction * f);
+#else
   return f;
+#endif
 }
 
 __kernel void pipe_flux(const __global long* height, const __global float* depth, __global float* flux, const int nx,
@@ -69,19 +72,25 @@ __kernel void pipe_flux(const __global long* height, const __global float* depth
   const int has_l = i > 0, has_r = i < nx - 1, has_t = j > 0, has_b = j < ny - 1;
   const float d1 = depth[k] + dt * (PIPE_RAIN * rain_on * RAIN_WEIGHT(rain_weight, k));
   const float level = (float)height[k] * quantum + d1;
-  const float depth_4_3 = PIPE_FRICTION_ON ? pipe_pow_4_3(fmax(d1, 1e-3f)) : 1.0f;
+  // Uniform over the cells, so computed once for them all.
+  const float accel = dt * (PIPE_AREA * PIPE_GRAVITY) / cell;
+  float friction = 0.0f;
+#if PIPE_FRICTION_ON
+  const float d = fmax(d1, 1e-3f), third = pipe_inverse_cbrt(d), third2 = third * third;  // d^(−1/3), d^(−2/3)
+  friction = dt * PIPE_GRAVITY_N2 / cell * (third2 * third2 * third2 * third);                // d^(−7/3)
+#endif
   // A neighbour outside the map reads this cell (the select in pipe_face_flux discards it).
   // Each face reads the one before through 0·f (exactly +0: the fluxes are finite and ≥ 0). Without that
   // chain the SLP vectoriser packs the four alike faces into short vectors, and a loop holding vector
   // instructions is not vectorised over the cells.
   const float level_l = pipe_level(height, depth, rain_weight, has_l ? k - 1 : k, quantum, dt, rain_on);
-  const float f_l = pipe_face_flux(flux[0 * n + k], level, level_l, has_l, depth_4_3, d1, cell, dt);
+  const float f_l = pipe_face_flux(flux[0 * n + k], level, level_l, has_l, accel, friction);
   const float level_r = pipe_level(height, depth, rain_weight, has_r ? k + 1 : k, quantum, dt, rain_on) + 0.0f * f_l;
-  const float f_r = pipe_face_flux(flux[1 * n + k], level, level_r, has_r, depth_4_3, d1, cell, dt);
+  const float f_r = pipe_face_flux(flux[1 * n + k], level, level_r, has_r, accel, friction);
   const float level_t = pipe_level(height, depth, rain_weight, has_t ? k - nx : k, quantum, dt, rain_on) + 0.0f * f_r;
-  const float f_t = pipe_face_flux(flux[2 * n + k], level, level_t, has_t, depth_4_3, d1, cell, dt);
+  const float f_t = pipe_face_flux(flux[2 * n + k], level, level_t, has_t, accel, friction);
   const float level_b = pipe_level(height, depth, rain_weight, has_b ? k + nx : k, quantum, dt, rain_on) + 0.0f * f_t;
-  const float f_b = pipe_face_flux(flux[3 * n + k], level, level_b, has_b, depth_4_3, d1, cell, dt);
+  const float f_b = pipe_face_flux(flux[3 * n + k], level, level_b, has_b, accel, friction);
   const float total = f_l + f_r + f_t + f_b;
   const float scale = total > 0.0f ? fmin(1.0f, d1 * cell * cell / (total * dt)) : 0.0f;
   flux[0 * n + k] = f_l * scale;
