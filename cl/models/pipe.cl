@@ -151,7 +151,7 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   const float gx = (height_view[k + has_r] - height_view[k - has_l]) / ((float)(has_l + has_r) * cell);
   const float gz = (height_view[k + down] - height_view[k - up]) * ((up && down ? 0.5f : 1.0f) / cell);
   const float slope2 = fma(gx, gx, gz * gz);
-  const float sin_slope = sqrt(slope2) / sqrt(1.0f + slope2);
+  const float sin_slope = sqrt(slope2 / (1.0f + slope2));
   const float vx = velocity[k], vz = velocity[n + k];
   const float speed = sqrt(fma(vx, vx, vz * vz));  // not hypot: no overflow to guard against, and it is slow on CPUs
   // The water cannot carry more sediment than its own depth (thin films move fast).
@@ -162,8 +162,9 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   // Below capacity dissolve, above it deposit (never more than the load); both amounts are ≥ 0, so
   // truncation is the floor. Positive: from the bed into the water.
   // With a layer stack the dissolution is the bed's detachment (docs/layers.md); never the deposition.
-  const long dissolved = (long)(BED_DETACHMENT(dissolved_fraction * fmax(capacity - s, 0.0f) / quantum, k) + u);
-  const long deposited = min(load, (long)(deposited_fraction * fmax(s - capacity, 0.0f) / quantum + u));
+  const float per_quantum = 1.0f / quantum;  // uniform: computed once for all cells
+  const long dissolved = (long)(BED_DETACHMENT(dissolved_fraction * fmax(capacity - s, 0.0f) * per_quantum, k) + u);
+  const long deposited = min(load, (long)(deposited_fraction * fmax(s - capacity, 0.0f) * per_quantum + u));
   const long exchanged = capacity > s ? dissolved : -deposited;
   height[k] -= exchanged;
   sediment[k] = load + exchanged;
