@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Kick-drift-kick leapfrog (physics.md §2) with the density integrated like the position:
-//   kick:   v += a·dt/2                   (a from the last force pass)
+//   kick:   v += a·dt/2                   (a from the last force pass; the drift kernel's first act)
 //   drift:  x_new = x + v·dt, age += dt   (then the walls and the terrain contact, below)
 //   ρ:      ρ += (dρ/dt)·dt               (sph_continuity.cl, with the drift's actual displacements)
 //   kick:   v += a·dt/2                   (a at the new x, ρ: sph_forces.cl)
@@ -24,13 +24,36 @@
 // Units: m, s. Compile-time constants (host -D): SPH_WALLS, SPH_SURFACE_EPS, SPH_RESTITUTION,
 // SPH_CONTACT_RADIUS, SPH_MANNING_G_N2 (g n², m^(1/3)), SPH_GRAVITY.
 
+inline float kicked(float v, float a, float half_dt) { return v + a * half_dt; }
+
+// The closing half kick of a step (the opening one is part of the drift kernel).
 __kernel void kick(__global float* vx, __global float* vy, __global float* vz, const __global float* ax,
                    const __global float* ay, const __global float* az, const uint n, const float half_dt) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  vx[i] += ax[i] * half_dt;
-  vy[i] += ay[i] * half_dt;
-  vz[i] += az[i] * half_dt;
+  vx[i] = kicked(vx[i], ax[i], half_dt);
+  vy[i] = kicked(vy[i], ay[i], half_dt);
+  vz[i] = kicked(vz[i], az[i], half_dt);
+}
+
+// What the continuity pass (sph_continuity.cl) needs of the drift, once per particle: the drift's
+// midpoint (x(n) + x(n+1))/2, its velocity (x(n+1) − x(n))/dt, the displacement the particle
+// actually made, and the volume m/ρ(n) (into the store's spare buffers). Written by the drift,
+// which has both ends of the step at hand: no launch of its own.
+inline void write_continuity_inputs(uint i, float3 p, float3 p_new, float dt, float rho, __global float* mid_x,
+                                    __global float* mid_y, __global float* mid_z, __global float* drift_vx,
+                                    __global float* drift_vy, __global float* drift_vz, __global float* volume) {
+  const float inv_dt = 1.0f / dt;
+  const float3 step = p_new - p;
+  const float3 mid = p + 0.5f * step;
+  const float3 v = step * inv_dt;
+  mid_x[i] = mid.x;
+  mid_y[i] = mid.y;
+  mid_z[i] = mid.z;
+  drift_vx[i] = v.x;
+  drift_vy[i] = v.y;
+  drift_vz[i] = v.z;
+  volume[i] = SPH_MASS / rho;
 }
 
 // Bed friction on the velocity tangential to the surface of normal n, in water of depth D (m).
@@ -67,14 +90,17 @@ inline float3 rebound(float3* v, float3 a, float3 n, float t, float dt) {
 __kernel void drift(const __global float* x, const __global float* y, const __global float* z, __global float* vx,
                     __global float* vy, __global float* vz, __global float* age, __global int* sediment,
                     __global uint* contacts, __global uint* id, const __global float* ax, const __global float* ay, const __global float* az,
-                    const __global float* depth, __global float* x_new, __global float* y_new,
-                    __global float* z_new, const uint n,
-                    const float dt, const __global float* terrain_height, const __global float* terrain_normal,
-                    const int tnx, const int tny, const float tcell, const float domain_x, const float domain_z,
-                    volatile __global long* counters) {
+                    const __global float* depth, const __global float* rho, __global float* x_new,
+                    __global float* y_new, __global float* z_new, const uint n, const float dt,
+                    const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
+                    const int tny, const float tcell, const float domain_x, const float domain_z,
+                    volatile __global long* counters, __global float* mid_x, __global float* mid_y,
+                    __global float* mid_z, __global float* drift_vx, __global float* drift_vy,
+                    __global float* drift_vz, __global float* volume) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  float3 v = (float3)(vx[i], vy[i], vz[i]);
+  const float half_dt = 0.5f * dt;
+  float3 v = (float3)(kicked(vx[i], ax[i], half_dt), kicked(vy[i], ay[i], half_dt), kicked(vz[i], az[i], half_dt));
   const float3 start = (float3)(x[i], y[i], z[i]);
   float3 p = start + v * dt;
   age[i] += dt;
@@ -95,6 +121,11 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
     x_new[i] = p.x;
     y_new[i] = p.y;
     z_new[i] = p.z;
+    vx[i] = v.x;
+    vy[i] = v.y;
+    vz[i] = v.z;
+    // Still a candidate of the continuity pass until the next sort removes it.
+    write_continuity_inputs(i, start, p, dt, rho[i], mid_x, mid_y, mid_z, drift_vx, drift_vy, drift_vz, volume);
     return;
   }
 #endif
@@ -153,6 +184,7 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
   vx[i] = v.x;
   vy[i] = v.y;
   vz[i] = v.z;
+  write_continuity_inputs(i, start, p, dt, rho[i], mid_x, mid_y, mid_z, drift_vx, drift_vy, drift_vz, volume);
 }
 
 // Health and time-step statistics, one row of 6 floats per block of particles:

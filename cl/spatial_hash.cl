@@ -64,10 +64,22 @@ __kernel void radix_scatter(const __global uint* key_in, const __global uint* va
 }
 
 // Gathers one field into sorted order, as 4-byte words (bit-exact for floats and integers alike).
-__kernel void reorder_words(const __global uint* perm, const __global uint* in, __global uint* out, const uint n) {
+// Six fields at a time (the store lends six free buffers during the sort): one launch moves what six
+// would, and on a CPU device each launch costs a wake-up of every worker thread.
+__kernel void reorder_words(const __global uint* perm, const uint n, const __global uint* in0, __global uint* out0,
+                            const __global uint* in1, __global uint* out1, const __global uint* in2,
+                            __global uint* out2, const __global uint* in3, __global uint* out3,
+                            const __global uint* in4, __global uint* out4, const __global uint* in5,
+                            __global uint* out5) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  out[i] = in[perm[i]];
+  const uint from = perm[i];
+  out0[i] = in0[from];
+  out1[i] = in1[from];
+  out2[i] = in2[from];
+  out3[i] = in3[from];
+  out4[i] = in4[from];
+  out5[i] = in5[from];
 }
 
 // After sorting: the first and one-past-last sorted index of every occupied cell (empty cells hold

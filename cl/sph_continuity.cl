@@ -38,30 +38,6 @@ inline void add_pair_continuity(float* drho, float* ghost_drho, float* shepard, 
   *shepard += others * volume_j * wendland_w(r);
 }
 
-// The drift's midpoints and velocities, and each particle's volume: once per particle, what the
-// tiles then load for every candidate (into the store's spare buffers).
-__kernel void continuity_inputs(const __global float* x, const __global float* y, const __global float* z,
-                                const __global float* x_new, const __global float* y_new,
-                                const __global float* z_new, const __global float* rho, const uint n, const float dt,
-                                __global float* mid_x, __global float* mid_y, __global float* mid_z,
-                                __global float* drift_vx, __global float* drift_vy, __global float* drift_vz,
-                                __global float* volume) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  const float inv_dt = 1.0f / dt;
-  const float3 p = (float3)(x[i], y[i], z[i]);
-  const float3 step = (float3)(x_new[i], y_new[i], z_new[i]) - p;
-  const float3 mid = p + 0.5f * step;
-  const float3 v = step * inv_dt;
-  mid_x[i] = mid.x;
-  mid_y[i] = mid.y;
-  mid_z[i] = mid.z;
-  drift_vx[i] = v.x;
-  drift_vy[i] = v.y;
-  drift_vz[i] = v.z;
-  volume[i] = SPH_MASS / rho[i];
-}
-
 // One work-group per tile (spatial_hash.cl), as in sph_forces.cl: the tile's particles share their
 // cell's candidates and their images across the tank walls within reach.
 __kernel void sph_continuity(

@@ -84,7 +84,9 @@ TEST(IntegrateOracle, DriftMatchesThePlainCppReferenceOverAPlane) {
     Kernel k(compute(), sph_program(compute(), c.settings, c.terrain.cell), "drift");
     store.bind(k,
                {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth});
+    store.bind(k, {kRho});
     store.bind_new(k, {kX, kY, kZ});
+    bind_continuity_inputs(store, k);
     terrain.bind(k);
     k.set("domain_x", float(terrain.extent_x())).set("domain_z", float(terrain.extent_z()));
     k.set("dt", float(dt)).set("counters", counters).launch(round_up_work(n));
@@ -95,6 +97,25 @@ TEST(IntegrateOracle, DriftMatchesThePlainCppReferenceOverAPlane) {
       cl::Buffer& b = f < 3 ? store.scratch(read[f]) : store.buffer(read[f]);
       compute().queue().enqueueReadBuffer(b, CL_TRUE, 0, n * 4, out[f].data());
     }
+    // The continuity pass's inputs, written by the drift: midpoints, drift velocities, volumes.
+    std::vector<float> spare[7];
+    for (int k = 0; k < 7; ++k) {
+      spare[k].resize(n);
+      compute().queue().enqueueReadBuffer(store.spare(k), CL_TRUE, 0, n * 4, spare[k].data());
+    }
+    double worst_mid = 0, worst_drift_v = 0, worst_volume = 0;
+    for (std::size_t q = 0; q < n; ++q) {
+      for (int a = 0; a < 3; ++a) {
+        const double from = float(c.particles[q].x[a]), to = out[a][q];
+        worst_mid = std::max(worst_mid, std::fabs(spare[a][q] - 0.5 * (from + to)));
+        worst_drift_v = std::max(worst_drift_v, std::fabs(spare[3 + a][q] - (to - from) / dt));
+      }
+      worst_volume = std::max(worst_volume,
+                              std::fabs(spare[6][q] / (c.settings.mass() / c.settings.rho0) - 1));
+    }
+    EXPECT_LT(worst_mid, 2e-5) << "m";
+    EXPECT_LT(worst_drift_v, 1e-4) << "m/s";
+    EXPECT_LT(worst_volume, 1e-6);
     c.plane.lx = terrain.extent_x();
     c.plane.lz = terrain.extent_z();
     int touching = 0, agree = 0;

@@ -192,6 +192,10 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   JsonObject kernel_seconds;
   for (auto& [name, seconds] : compute.profiler().collect()) kernel_seconds.add(name, seconds);
+  // Launches per kernel: with many small launches a step, the device's per-launch cost (on PoCL a
+  // wake-up of its worker threads) is a cost of its own, outside every kernel's time.
+  JsonObject kernel_launches;
+  for (auto& [name, calls] : compute.profiler().calls()) kernel_launches.add(name, calls);
   compute.profiler().enable(false);
   const Parameters& params = model.parameters();
   write_checkpoint((out / "final.h5").string(), model.checkpoint());
@@ -263,6 +267,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                           .add("max_height", initial.max_height()))
       .add("terrain_metrics", metrics::terrain_metrics_json(s.terrain_values, final_terrain))
       .add("kernel_seconds", kernel_seconds)
+      .add("kernel_launches", kernel_launches)
       .add("parameters", parameters_json(params))
       .add("mass_balance_reports", reports);
   if (model.ground()) s.metrics.add("ground", ground_report);

@@ -56,7 +56,8 @@ Drifted drift(const Particle& p, const Plane& plane, const SphSettings& s, doubl
   surface.normal = {-plane.slope_x / len, 1 / len, -plane.slope_z / len};
   surface.lift = s.contact_radius / std::max(surface.normal[1], 0.2);
   Drifted out;
-  Vec v = p.v, x = p.x + dt * p.v;
+  Vec v = p.v + (0.5 * dt) * p.a;  // the opening half kick
+  Vec x = p.x + dt * v;
   if (x[0] < 0 || x[0] > plane.lx || x[2] < 0 || x[2] > plane.lz) {
     out.x = x, out.v = v, out.outflow = true;
     return out;

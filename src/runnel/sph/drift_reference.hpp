@@ -15,7 +15,7 @@ struct Plane {
 };
 
 struct Particle {
-  Vec x, v;      // m, m/s: position and the velocity after the opening half kick
+  Vec x, v;      // m, m/s: position and velocity at the start of the step
   Vec a;         // m/s², the last force pass's acceleration
   double depth;  // m, the water depth on the bed (water_depth.cl)
 };
@@ -26,9 +26,10 @@ struct Drifted {
   bool outflow = false;
 };
 
-// The drift of cl/integrate.cl (x + v·dt, outflow, the first crossing of the contact surface with
-// the time-accurate rebound, the end-of-step projection, Manning bed friction) for one particle
-// over a plane, in plain C++ and double precision: the oracle of the drift kernel.
+// The drift of cl/integrate.cl (the opening half kick v += a·dt/2, x + v·dt, outflow, the first
+// crossing of the contact surface with the time-accurate rebound, the end-of-step projection,
+// Manning bed friction) for one particle over a plane, in plain C++ and double precision: the
+// oracle of the drift kernel.
 Drifted drift(const Particle& p, const Plane& plane, const SphSettings& s, double dt);
 
 }  // namespace runnel::drift_reference

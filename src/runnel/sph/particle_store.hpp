@@ -79,11 +79,13 @@ class ParticleStore {
   // Per-particle temporaries of a pass, one float each, valid until the next sort.
   static constexpr int kSpareCount = 7;
   cl::Buffer& spare(int k) { return scratch_[kNewFieldCount + k]; }
-  // The hash's reorder, one field at a time through one buffer: gather into temporary(), then
-  // adopt_temporary(f) makes it the field (and the field's old buffer the next temporary). So the
-  // reorder needs no second copy of every field.
-  cl::Buffer& temporary() { return scratch_[0]; }
-  void adopt_temporary(ParticleField f) { std::swap(current_[f], scratch_[0]); }
+  // The hash's reorder, a few fields at a time through the next-state and spare buffers, which
+  // hold nothing during the sort: gather into temporary(k), then adopt_temporary(f, k) makes it the
+  // field (and the field's old buffer that temporary). So the reorder needs no second copy of
+  // every field.
+  static constexpr int kTemporaryCount = 11;
+  cl::Buffer& temporary(int k) { return scratch_[k]; }
+  void adopt_temporary(ParticleField f, int k) { std::swap(current_[f], scratch_[k]); }
   // Drops the particles past n (dead ones, sorted to the end).
   void truncate(std::size_t n);
 
@@ -121,6 +123,7 @@ class ParticleStore {
   // The next state of x, y, z, rho, then the spares: 11 words, so that with the 17 fields and the
   // hash's 4 a particle of capacity holds 32 words (128 bytes).
   std::array<cl::Buffer, kNewFieldCount + kSpareCount> scratch_;
+  static_assert(kTemporaryCount == kNewFieldCount + kSpareCount);
 };
 
 }  // namespace runnel

@@ -133,13 +133,22 @@ void SpatialHash::build(ParticleStore& store) {
   }
 
   // 3. Gather every persistent field into the sorted order (as 4-byte words: bit-exact for floats
-  // too), one field at a time through the store's temporary buffer.
-  for (int f = 0; f < kPersistentFieldCount; ++f) {
+  // too), six fields a launch through the store's free buffers. A short last group repeats its last
+  // field (the same word written twice by the same work-item).
+  constexpr int kGroup = 6;
+  static_assert(kGroup <= ParticleStore::kTemporaryCount);
+  for (int first = 0; first < kPersistentFieldCount; first += kGroup) {
     reorder_.set("perm", values_[in]).set("n", n);
-    reorder_.set("in", store.buffer(static_cast<ParticleField>(f)));
-    reorder_.set("out", store.temporary());
+    for (int g = 0; g < kGroup; ++g) {
+      const int f = std::min(first + g, static_cast<int>(kPersistentFieldCount) - 1);
+      const int t = f - first;
+      const std::string slot = std::to_string(g);
+      reorder_.set("in" + slot, store.buffer(static_cast<ParticleField>(f)));
+      reorder_.set("out" + slot, store.temporary(t));
+    }
     reorder_.launch(round_up_work(n), "reorder");
-    store.adopt_temporary(static_cast<ParticleField>(f));
+    for (int f = first; f < std::min<int>(first + kGroup, kPersistentFieldCount); ++f)
+      store.adopt_temporary(static_cast<ParticleField>(f), f - first);
   }
 
   // 4. Cell ranges and the live count (dead particles sorted to the end).

@@ -62,7 +62,6 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   forces_ = Kernel(compute, program, "sph_forces");
   forces_inputs_ = Kernel(compute, program, "forces_inputs");
   continuity_ = Kernel(compute, program, "sph_continuity");
-  continuity_inputs_ = Kernel(compute, program, "continuity_inputs");
   drift_ = Kernel(compute, program, "drift");
   kick_ = Kernel(compute, program, "kick");
   stats_ = Kernel(compute, program, "step_stats");
@@ -101,8 +100,9 @@ void SphSolver::step() {
 void SphSolver::drift() {
   if (!rates_ready_) prepare();
   if (hash_stale_) build_hash();  // a restored state: same order, cell tables rebuilt
-  kick();                         // v(n+½) = v(n) + a(n)·dt/2
-  drift_and_collide();  // x(n+1) into scratch: walls, outflow, terrain contact, bed friction
+  // v(n+½) = v(n) + a(n)·dt/2, then x(n+1) into scratch: walls, outflow, terrain contact, bed
+  // friction; and the drift's midpoints and velocities for the continuity pass.
+  drift_and_collide();
   integrate_density();  // ρ(n+1) = ρ(n) + dt·dρ/dt at x(n) with the actual displacements
   store_.swap_scratch({kX, kY, kZ, kRho});  // x(n+1), ρ(n+1) become the state
 }
@@ -137,7 +137,9 @@ void SphSolver::drift_and_collide() {
   auto& k = drift_;
   store_.bind(k,
               {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth});
+  store_.bind(k, {kRho});
   store_.bind_new(k, {kX, kY, kZ});
+  bind_continuity_inputs(store_, k);
   bind_domain(k);
   k.set("dt", static_cast<float>(dt_)).set("counters", counters_buffer_);
   k.launch(round_up_work(n));
@@ -163,19 +165,18 @@ void SphSolver::bind_domain(Kernel& k) {
   k.set("domain_z", static_cast<float>(terrain_.extent_z()));
 }
 
-void SphSolver::integrate_density() {
-  const cl_uint n = static_cast<cl_uint>(store_.size());
+void bind_continuity_inputs(ParticleStore& store, Kernel& k) {
   const char* inputs[] = {"mid_x", "mid_y", "mid_z", "drift_vx", "drift_vy", "drift_vz", "volume"};
-  auto& prepare = continuity_inputs_;
-  store_.bind(prepare, {kX, kY, kZ, kRho});
-  store_.bind_new(prepare, {kX, kY, kZ});
-  for (int s = 0; s < 7; ++s) prepare.set(inputs[s], store_.spare(s));
-  prepare.set("dt", static_cast<float>(dt_)).launch(round_up_work(n));
+  static_assert(std::size(inputs) <= ParticleStore::kSpareCount);
+  for (std::size_t s = 0; s < std::size(inputs); ++s)
+    k.set(inputs[s], store.spare(static_cast<int>(s)));
+}
 
-  auto& k = continuity_;
+void SphSolver::integrate_density() {
+  auto& k = continuity_;  // its inputs from the drift (drift_and_collide)
   store_.bind(k, {kX, kY, kZ, kRho, kDrho});
   store_.bind_new(k, {kRho});
-  for (int s = 0; s < 7; ++s) k.set(inputs[s], store_.spare(s));
+  bind_continuity_inputs(store_, k);
   bind_domain(k);
   hash_.launch_tiled(k.set("dt", static_cast<float>(dt_)));
 }

@@ -36,6 +36,10 @@ inline constexpr int kCounterCount = 6;
 // settings on a terrain of this cell size; kept by the context, built once.
 cl::Program& sph_program(ComputeContext& compute, const SphSettings& settings, double terrain_cell);
 
+// Sets the drift's outputs for the continuity pass (midpoints, drift velocities, volumes: the
+// store's spare buffers) as the arguments of the drift or continuity kernel `k`.
+void bind_continuity_inputs(ParticleStore& store, Kernel& k);
+
 // The weakly compressible SPH solver (physics.md §2) on a terrain floor, with kick-drift-kick
 // leapfrog and an adaptive time step. Host code of cl/sph_continuity.cl, cl/sph_forces.cl and
 // cl/integrate.cl (with cl/collide.cl).
@@ -94,8 +98,8 @@ class SphSolver {
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  Kernel forces_inputs_, forces_, continuity_inputs_, continuity_, drift_, kick_, stats_, project_,
-      depth_scatter_, depth_gather_;
+  Kernel forces_inputs_, forces_, continuity_, drift_, kick_, stats_, project_, depth_scatter_,
+      depth_gather_;
   cl::Buffer water_;  // water on each terrain vertex, counts of 1 µm of depth (cl/water_depth.cl)
   cl::Buffer stats_buffer_, counters_buffer_;
   bool rates_ready_ = false;
