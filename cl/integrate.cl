@@ -3,7 +3,7 @@
 //   kick:   v += a·dt/2                   (a from the last force pass; the drift kernel's first act)
 //   drift:  x_new = x + v·dt, age += dt   (then the walls and the terrain contact, below)
 //   ρ:      ρ += (dρ/dt)·dt               (sph_continuity.cl, with the drift's actual displacements)
-//   kick:   v += a·dt/2                   (a at the new x, ρ: sph_forces.cl)
+//   kick:   v += a·dt/2                   (a at the new x, ρ: sph_forces.cl; in step_stats)
 // so the force pass sees x and ρ of the same instant, and ρ changes exactly as the particles
 // actually moved, also where the contact stopped them.
 //
@@ -25,16 +25,6 @@
 // SPH_CONTACT_RADIUS, SPH_MANNING_G_N2 (g n², m^(1/3)), SPH_GRAVITY.
 
 inline float kicked(float v, float a, float half_dt) { return v + a * half_dt; }
-
-// The closing half kick of a step (the opening one is part of the drift kernel).
-__kernel void kick(__global float* vx, __global float* vy, __global float* vz, const __global float* ax,
-                   const __global float* ay, const __global float* az, const uint n, const float half_dt) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  vx[i] = kicked(vx[i], ax[i], half_dt);
-  vy[i] = kicked(vy[i], ay[i], half_dt);
-  vz[i] = kicked(vz[i], az[i], half_dt);
-}
 
 // What the continuity pass (sph_continuity.cl) needs of the drift, once per particle: the drift's
 // midpoint (x(n) + x(n+1))/2, its velocity (x(n+1) − x(n))/dt, the displacement the particle
@@ -187,18 +177,25 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
   write_continuity_inputs(i, start, p, dt, rho[i], mid_x, mid_y, mid_z, drift_vx, drift_vy, drift_vz, volume);
 }
 
-// Health and time-step statistics, one row of 6 floats per block of particles:
+// The step's closing half kick (`kick` 1: v += a·half_dt; 0 before the first step), then the
+// health and time-step statistics of the state, one row of 6 floats per block of particles:
 // max |v|², max |a|², min ρ, max ρ, number of non-finite values, max |dρ/dt|.
-// The host reduces the rows (max and min do not depend on order).
-__kernel void step_stats(const __global float* vx, const __global float* vy, const __global float* vz,
-                         const __global float* ax, const __global float* ay, const __global float* az,
-                         const __global float* rho, const __global float* drho, const uint n, const uint chunk,
-                         __global float* stats) {
+// The host reduces the rows (max and min do not depend on order). One launch for both: on a CPU
+// device each launch costs a wake-up of every worker thread.
+__kernel void step_stats(__global float* vx, __global float* vy, __global float* vz, const __global float* ax,
+                         const __global float* ay, const __global float* az, const __global float* rho,
+                         const __global float* drho, const uint n, const uint chunk, const uint kick,
+                         const float half_dt, __global float* stats) {
   const uint block = get_global_id(0);
   const uint begin = block * chunk;
   const uint end = min(begin + chunk, n);
   float v2max = 0.0f, a2max = 0.0f, rmin = INFINITY, rmax = -INFINITY, bad = 0.0f, drmax = 0.0f;
   for (uint i = begin; i < end; ++i) {
+    if (kick) {
+      vx[i] = kicked(vx[i], ax[i], half_dt);
+      vy[i] = kicked(vy[i], ay[i], half_dt);
+      vz[i] = kicked(vz[i], az[i], half_dt);
+    }
     const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
     const float a2 = ax[i] * ax[i] + ay[i] * ay[i] + az[i] * az[i];
     if (!isfinite(v2) || !isfinite(a2) || !isfinite(rho[i]) || !isfinite(drho[i])) {

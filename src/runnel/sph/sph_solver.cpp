@@ -63,7 +63,6 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   forces_inputs_ = Kernel(compute, program, "forces_inputs");
   continuity_ = Kernel(compute, program, "sph_continuity");
   drift_ = Kernel(compute, program, "drift");
-  kick_ = Kernel(compute, program, "kick");
   stats_ = Kernel(compute, program, "step_stats");
   project_ = Kernel(compute, program, "project_to_surface");
   depth_scatter_ = Kernel(compute, program, "water_depth_scatter");
@@ -126,10 +125,11 @@ void SphSolver::complete_step() {
   build_hash();           // sort by cell, reorder, drop dead particles, cell tables
   measure_water_depth();  // D at x(n+1), new drops included: the next step's friction and erosion
   compute_forces();       // a(n+1) at x(n+1), ρ(n+1)
-  kick();                 // v(n+1) = v(n+½) + a(n+1)·dt/2
   time_ += dt_;
   ++steps_;
-  choose_next_dt();  // CFL and acceleration limits; stops on NaN or a collapsing step
+  // v(n+1) = v(n+½) + a(n+1)·dt/2 in the pass that measures the state; then the CFL and
+  // acceleration limits. Stops on NaN or a collapsing step.
+  choose_next_dt(/*closing_kick=*/true);
 }
 
 void SphSolver::drift_and_collide() {
@@ -195,13 +195,7 @@ void SphSolver::compute_forces() {
   hash_.launch_tiled(k);
 }
 
-void SphSolver::kick() {
-  const cl_uint n = static_cast<cl_uint>(store_.size());
-  store_.bind(kick_, {kVx, kVy, kVz, kAx, kAy, kAz});
-  kick_.set("half_dt", static_cast<float>(0.5 * dt_)).launch(round_up_work(n));
-}
-
-void SphSolver::choose_next_dt() {
+void SphSolver::choose_next_dt(bool closing_kick) {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   health_ = SphHealth{};
   const auto& s = settings_;
@@ -211,6 +205,7 @@ void SphSolver::choose_next_dt() {
   }
   const cl_uint chunk = (n + kStatBlocks - 1) / kStatBlocks;
   store_.bind(stats_, {kVx, kVy, kVz, kAx, kAy, kAz, kRho, kDrho});
+  stats_.set("kick", cl_uint{closing_kick}).set("half_dt", static_cast<float>(0.5 * dt_));
   stats_.set("chunk", chunk).set("stats", stats_buffer_).launch(kStatBlocks);
   float rows[kStatBlocks * kStatColumns];
   compute_.queue().enqueueReadBuffer(stats_buffer_, CL_TRUE, 0, sizeof(rows), rows);

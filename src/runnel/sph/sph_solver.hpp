@@ -90,15 +90,15 @@ class SphSolver {
   void bind_domain(Kernel& k);
   void integrate_density();
   void compute_forces();
-  void kick();
-  void choose_next_dt();
+  // The step statistics (and, with closing_kick, v += a·dt/2 before them) and the next dt.
+  void choose_next_dt(bool closing_kick = false);
 
   ComputeContext& compute_;
   SphSettings settings_;
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  Kernel forces_inputs_, forces_, continuity_, drift_, kick_, stats_, project_, depth_scatter_,
+  Kernel forces_inputs_, forces_, continuity_, drift_, stats_, project_, depth_scatter_,
       depth_gather_;
   cl::Buffer water_;  // water on each terrain vertex, counts of 1 µm of depth (cl/water_depth.cl)
   cl::Buffer stats_buffer_, counters_buffer_;
