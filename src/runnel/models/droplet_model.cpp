@@ -31,7 +31,7 @@ const SettingsTable<DropletSettings> kDropletTable = {
       {"droplet.lifetime", "30", "steps", 1, 100000, {}, "steps a droplet lives", &DropletSettings::lifetime, "DROPLET_LIFETIME"},
       {"droplet.initial_water", "1", "1", 0, 1e6, {}, "water a droplet starts with", &DropletSettings::initial_water, "DROPLET_INITIAL_WATER"},
       {"droplet.initial_speed", "1", "1", 0, 1e6, {}, "speed a droplet starts with", &DropletSettings::initial_speed, "DROPLET_INITIAL_SPEED"},
-      {"droplet.batch", "0", "droplets", 0, 1e8, {}, "droplets per parallel batch (they see the terrain as at the batch start); 0: one per 64 cells, so few share a pit", &DropletSettings::batch},
+      {"droplet.batch", "0", "droplets", 0, 1e8, {}, "droplets per parallel batch (they move in lockstep, each step on the terrain the last step left); 0: one per 64 cells, so few share a pit", &DropletSettings::batch},
       {"droplet.volume", "0", "m^3", 0, 1e9, {}, "rain water one droplet stands for (rain_volume in metrics; runnel compare sets it to the SPH particle volume); 0: cell³", &DropletSettings::volume},
 };
 // clang-format on

@@ -19,9 +19,8 @@ struct DropletSettings {
   double gravity;
   int lifetime;  // steps
   double initial_water, initial_speed;
-  std::int64_t
-      batch;      // droplets per batch (they see the terrain as at the batch start); 0: cells/64
-  double volume;  // m³ of rain per droplet; 0: cell³
+  std::int64_t batch;  // droplets per batch (moving in lockstep, step by step); 0: cells/64
+  double volume;       // m³ of rain per droplet; 0: cell³
 
   static DropletSettings from(const Parameters& params);
   std::string build_options() const;
