@@ -111,10 +111,8 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
     x_new[i] = p.x;
     y_new[i] = p.y;
     z_new[i] = p.z;
-    vx[i] = v.x;
-    vy[i] = v.y;
-    vz[i] = v.z;
-    // Still a candidate of the continuity pass until the next sort removes it.
+    // Still a candidate of the continuity pass until the next sort removes it (its velocity is
+    // not read again: every later pass skips a dead particle or runs after that sort).
     write_continuity_inputs(i, start, p, dt, rho[i], mid_x, mid_y, mid_z, drift_vx, drift_vy, drift_vz, volume);
     return;
   }
