@@ -162,9 +162,11 @@ __kernel void pipe_erode(__global long* height, const __global float* height_vie
   // Below capacity dissolve, above it deposit (never more than the load); both amounts are ≥ 0, so
   // truncation is the floor. Positive: from the bed into the water.
   // With a layer stack the dissolution is the bed's detachment (docs/layers.md); never the deposition.
-  const float per_quantum = 1.0f / quantum;  // uniform: computed once for all cells
-  const long dissolved = (long)(BED_DETACHMENT(dissolved_fraction * fmax(capacity - s, 0.0f) * per_quantum, k) + u);
-  const long deposited = min(load, (long)(deposited_fraction * fmax(s - capacity, 0.0f) * per_quantum + u));
+  // Divided by the quantum, not multiplied by its reciprocal: a product here would be fused with
+  // the + u into one multiply-add without a layered ground but not with one (the demand passes
+  // through bed_detachment), and a ground of erodibility 1 must change nothing, bit for bit.
+  const long dissolved = (long)(BED_DETACHMENT(dissolved_fraction * fmax(capacity - s, 0.0f) / quantum, k) + u);
+  const long deposited = min(load, (long)(deposited_fraction * fmax(s - capacity, 0.0f) / quantum + u));
   const long exchanged = capacity > s ? dissolved : -deposited;
   height[k] -= exchanged;
   sediment[k] = load + exchanged;
