@@ -82,9 +82,8 @@ TEST(IntegrateOracle, DriftMatchesThePlainCppReferenceOverAPlane) {
     cl::Buffer counters(compute().context(), CL_MEM_READ_WRITE, 8 * sizeof(cl_long));
     compute().queue().enqueueFillBuffer(counters, cl_long{0}, 0, 8 * sizeof(cl_long));
     Kernel k(compute(), sph_program(compute(), c.settings, c.terrain.cell), "drift");
-    store.bind(k,
-               {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth});
-    store.bind(k, {kRho});
+    store.bind(k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAge, kSediment, kContacts, kId, kAx, kAy, kAz,
+                   kDepth});
     store.bind_new(k, {kX, kY, kZ});
     bind_continuity_inputs(store, k);
     terrain.bind(k);

@@ -135,9 +135,8 @@ void SphSolver::complete_step() {
 void SphSolver::drift_and_collide() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   auto& k = drift_;
-  store_.bind(k,
-              {kX, kY, kZ, kVx, kVy, kVz, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth});
-  store_.bind(k, {kRho});
+  store_.bind(
+      k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth});
   store_.bind_new(k, {kX, kY, kZ});
   bind_continuity_inputs(store_, k);
   bind_domain(k);
