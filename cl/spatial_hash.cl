@@ -63,8 +63,8 @@ __kernel void radix_scatter(const __global uint* key_in, const __global uint* va
   }
 }
 
-// Gathers one field into sorted order, as 4-byte words (bit-exact for floats and integers alike).
-// Six fields at a time (the store lends six free buffers during the sort): one launch moves what six
+// Gathers fields into sorted order, as 4-byte words (bit-exact for floats and integers alike),
+// six at a time (the store lends six free buffers during the sort): one launch moves what six
 // would, and on a CPU device each launch costs a wake-up of every worker thread.
 __kernel void reorder_words(const __global uint* perm, const uint n, const __global uint* in0, __global uint* out0,
                             const __global uint* in1, __global uint* out1, const __global uint* in2,

@@ -136,15 +136,15 @@ void SpatialHash::build(ParticleStore& store) {
   // too), six fields a launch through the store's free buffers. A short last group repeats its last
   // field (the same word written twice by the same work-item).
   constexpr int kGroup = 6;
+  static constexpr const char* kIn[kGroup] = {"in0", "in1", "in2", "in3", "in4", "in5"};
+  static constexpr const char* kOut[kGroup] = {"out0", "out1", "out2", "out3", "out4", "out5"};
   static_assert(kGroup <= ParticleStore::kTemporaryCount);
   for (int first = 0; first < kPersistentFieldCount; first += kGroup) {
     reorder_.set("perm", values_[in]).set("n", n);
     for (int g = 0; g < kGroup; ++g) {
       const int f = std::min(first + g, static_cast<int>(kPersistentFieldCount) - 1);
-      const int t = f - first;
-      const std::string slot = std::to_string(g);
-      reorder_.set("in" + slot, store.buffer(static_cast<ParticleField>(f)));
-      reorder_.set("out" + slot, store.temporary(t));
+      reorder_.set(kIn[g], store.buffer(static_cast<ParticleField>(f)));
+      reorder_.set(kOut[g], store.temporary(f - first));
     }
     reorder_.launch(round_up_work(n), "reorder");
     for (int f = first; f < std::min<int>(first + kGroup, kPersistentFieldCount); ++f)
