@@ -123,7 +123,7 @@ double PipeModel::take_step() {
     if (k->has("dt")) k->set("dt", dt);
     if (k->has("quantum")) k->set("quantum", q);
   }
-  flux_kernel_.set("height", terrain.height_fixed()).set("depth", depth).set("flux", flux);
+  flux_kernel_.set("height_view", terrain.height()).set("depth", depth).set("flux", flux);
   flux_kernel_.set("rain_on", rain_on());
   water_kernel_.set("rain_on", rain_on());
   water_kernel_.set("depth", depth).set("flux", flux).set("velocity", velocity);
