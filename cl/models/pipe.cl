@@ -7,8 +7,9 @@
 //                   pipe.manning_n > 0 (not in Mei 2007) the bed friction of the SPH model, implicitly,
 //                   f_X /= 1 + Δt g n² v / d1^(4/3), v = f_X/(l·d1) (d1 at least 1 mm); scale all four by
 //                   K = min(1, d1·l²/(Σf·Δt))   (outflow edges: outside b = d = 0; closed edges: f = 0)
-//   pipe_water:     d2 = d1 + Δt(Σf_in − Σf_out)/l²;  v from the mean flux through the cell
-//   pipe_erode:     C = K_c · max(sin α, sin α_min) · |v|; below capacity dissolve (1 − e^(−K_s·Δt))(C − s),
+//   pipe_water:     d2 = d1 + Δt(Σf_in − Σf_out)/l²;  v from the mean flux through the cell;
+//                   C = min(K_c · max(sin α, sin α_min) · |v|, d2)
+//   pipe_erode:     below capacity dissolve (1 − e^(−K_s·Δt))(C − s),
 //                   above deposit (1 − e^(−K_d·Δt))(s − C) (K_s, K_d rates per second: the exact
 //                   relaxation towards C over the step, whatever Δt); then evaporation d *= e^(−K_e·Δt)
 //                   (the three factors of the step come from the host, in double precision)
@@ -101,8 +102,27 @@ __kernel void pipe_flux(const __global float* height_view, const __global float*
   flux[3 * n + k] = f_b * scale;
 }
 
+// The transport capacity C = K_c · max(sin α, sin α_min) · |v| (m), at most the water's own depth d
+// (thin films move fast). pipe_water computes it while the cell's new velocity is in registers and
+// the loop runs wide on 32-bit values; pipe_erode, whose 64-bit heights and loads keep it 4 wide, reads it.
+// The slope comes from the heights as the step began (the view pipe_erode does not write).
+// Central differences, one-sided at the edges. x and z are written differently on purpose, and the
+// sums of squares as fma: isomorphic x/z pairs are what the SLP vectoriser packs into 2-wide vectors
+// first, and a work-item holding such vectors is not vectorised across cells.
+inline float pipe_capacity(const __global float* height_view, int nx, int ny, int i, int j, int k, float cell,
+                           float vx, float vz, float depth) {
+  const int has_l = i > 0, has_r = i < nx - 1, up = j > 0 ? nx : 0, down = j < ny - 1 ? nx : 0;
+  const float gx = (height_view[k + has_r] - height_view[k - has_l]) / ((float)(has_l + has_r) * cell);
+  const float gz = (height_view[k + down] - height_view[k - up]) * ((up && down ? 0.5f : 1.0f) / cell);
+  const float slope2 = fma(gx, gx, gz * gz);
+  const float sin_slope = sqrt(slope2 / (1.0f + slope2));
+  const float speed = sqrt(fma(vx, vx, vz * vz));  // not hypot: no overflow to guard against, and it is slow on CPUs
+  return fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth);
+}
+
 __kernel void pipe_water(__global float* depth, const __global float* flux, __global float* velocity,
-                         __global float* previous_depth, const int nx, const int ny, const float cell, const float dt,
+                         __global float* previous_depth, const __global float* height_view, __global float* capacity,
+                         const int nx, const int ny, const float cell, const float dt,
                          const __global float* rain_weight, const float rain_on) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
@@ -123,8 +143,10 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
   const float wz = ((in_t + out_b) - (out_t + in_b)) * 0.5f;
   const float mean_depth = 0.5f * (d1 + d2);
   const float per_area = mean_depth > 1e-6f ? 1.0f / (cell * mean_depth) : 0.0f;
-  velocity[k] = wx * per_area;
-  velocity[n + k] = per_area * wz;
+  const float vx = wx * per_area, vz = per_area * wz;
+  velocity[k] = vx;
+  velocity[n + k] = vz;
+  capacity[k] = pipe_capacity(height_view, nx, ny, i, j, k, cell, vx, vz, d2);
 }
 
 #define PIPE_ERODE_STREAM 0x70657264UL      // "perd"
@@ -135,29 +157,15 @@ inline float pipe_random(ulong seed, ulong stream, ulong step, int cells, int k)
   return rng_uniform(seed, stream, step * (ulong)cells + (ulong)k);
 }
 
-__kernel void pipe_erode(__global long* height, const __global float* height_view, __global long* sediment,
-                         __global float* depth, const __global float* velocity, const int nx, const int ny,
-                         const float quantum, const float cell, const float dissolved_fraction,
+__kernel void pipe_erode(__global long* height, __global long* sediment, __global float* depth,
+                         const __global float* capacity_of_cell, const int nx, const int ny, const float quantum,
+                         const float dissolved_fraction,
                          const float deposited_fraction, const float evaporation_factor, const ulong seed,
                          const ulong step_index, const __global float* rock_erodibility,
                          const __global float* sediment_erodibility, const __global long* ground_sediment) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
-  const int j = grid_row(k, nx), i = k - j * nx;
-  // The slope from the heights as the step began (height_view), not from height, which this kernel
-  // changes: no cell reads what another work-item writes.
-  // Central differences, one-sided at the edges. x and z are written differently on purpose, and the
-  // sums of squares as fma: isomorphic x/z pairs are what the SLP vectoriser packs into 2-wide vectors
-  // first, and a work-item holding such vectors is not vectorised across cells.
-  const int has_l = i > 0, has_r = i < nx - 1, up = j > 0 ? nx : 0, down = j < ny - 1 ? nx : 0;
-  const float gx = (height_view[k + has_r] - height_view[k - has_l]) / ((float)(has_l + has_r) * cell);
-  const float gz = (height_view[k + down] - height_view[k - up]) * ((up && down ? 0.5f : 1.0f) / cell);
-  const float slope2 = fma(gx, gx, gz * gz);
-  const float sin_slope = sqrt(slope2 / (1.0f + slope2));
-  const float vx = velocity[k], vz = velocity[n + k];
-  const float speed = sqrt(fma(vx, vx, vz * vz));  // not hypot: no overflow to guard against, and it is slow on CPUs
-  // The water cannot carry more sediment than its own depth (thin films move fast).
-  const float capacity = fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth[k]);  // m
+  const float capacity = capacity_of_cell[k];  // m, from pipe_water
   const long load = sediment[k];
   const float s = (float)load * quantum;
   const float u = pipe_random(seed, PIPE_ERODE_STREAM, step_index, nx * ny, k);

@@ -86,6 +86,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   auto& ctx = compute.context();
   previous_depth_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
   compute.queue().enqueueFillBuffer(previous_depth_, 0.0f, 0, n * sizeof(float));
+  capacity_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
   sediment_next_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_long));
   if (!settings_.semi_lagrangian())
     sent_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
@@ -119,7 +120,8 @@ double PipeModel::take_step() {
              &velocity = state_.buffer(velocity_), &sediment = state_.buffer(sediment_);
   const cl_ulong seed = static_cast<cl_ulong>(params_.integer("run.seed")), step = steps();
   for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) {
-    k->set("nx", nx).set("ny", ny).set("cell", cell);
+    k->set("nx", nx).set("ny", ny);
+    if (k->has("cell")) k->set("cell", cell);
     if (k->has("dt")) k->set("dt", dt);
     if (k->has("quantum")) k->set("quantum", q);
   }
@@ -127,9 +129,10 @@ double PipeModel::take_step() {
   flux_kernel_.set("rain_on", rain_on());
   water_kernel_.set("rain_on", rain_on());
   water_kernel_.set("depth", depth).set("flux", flux).set("velocity", velocity);
-  water_kernel_.set("previous_depth", previous_depth_);
-  erode_kernel_.set("height", terrain.height_fixed()).set("height_view", terrain.height());
-  erode_kernel_.set("sediment", sediment).set("depth", depth).set("velocity", velocity);
+  water_kernel_.set("previous_depth", previous_depth_).set("capacity", capacity_);
+  water_kernel_.set("height_view", terrain.height());
+  erode_kernel_.set("height", terrain.height_fixed()).set("capacity_of_cell", capacity_);
+  erode_kernel_.set("sediment", sediment).set("depth", depth);
   erode_kernel_.set("seed", seed).set("step_index", step);
   // The exact relaxation over the step, whatever Δt (models.md "pipe").
   erode_kernel_
