@@ -100,43 +100,54 @@ inline long erode_brush(volatile __global long* delta, __global uint* changed, i
 }
 
 // Droplet state between steps: (x, z, dir_x, dir_z, speed, water) in cell units; water < 0 marks
-// a droplet that has finished.
-__kernel void droplet_step(const __global float* height, volatile __global long* delta, __global uint* changed,
-                           const int tiles_x, const int nx, const int ny,
-                           const float quantum, const ulong seed, const ulong first_droplet, const uint count,
-                           const int step_index, __global float* state, __global long* load,
-                           volatile __global long* counters, const __global float* erodibility,
-                           const __global float* rain_weight, const float spawn_x, const float spawn_z,
-                           const float spawn_radius) {
+// a droplet that has finished. droplet_spawn places a batch's droplets; the host then orders them
+// by where they fell (row by row), and droplet_step moves them in that order: neighbouring
+// work-items then touch the same rows of the terrain and its deltas, which stay in the cache,
+// where droplets in the order they were drawn touched a random place each. The changes are integer
+// sums, so the order changes nothing in the result.
+__kernel void droplet_spawn(const int nx, const int ny, const ulong seed, const ulong first_droplet, const uint count,
+                            __global float* state, __global long* load, volatile __global long* counters,
+                            const __global float* rain_weight, const float spawn_x, const float spawn_z,
+                            const float spawn_radius) {
   const uint d = get_global_id(0);
   if (d >= count) return;
   __global float* s = state + 6 * d;
-  if (step_index == 0) {
-    const ulong id = first_droplet + d;
-    if (spawn_radius > 0.0f) {  // painted rain (runnel-viewer): uniform on the disc, in cells
-      const float r = spawn_radius * sqrt(rng_uniform(seed, DROPLET_STREAM, 2 * id));
-      const float a = 6.2831853f * rng_uniform(seed, DROPLET_STREAM, 2 * id + 1);
-      s[0] = clamp(spawn_x + r * cos(a), 0.0f, (float)(nx - 1) - 1e-3f);
-      s[1] = clamp(spawn_z + r * sin(a), 0.0f, (float)(ny - 1) - 1e-3f);
-    } else {
-      s[0] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1), (float)(nx - 1) - 1e-3f);
-      s[1] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1), (float)(ny - 1) - 1e-3f);
-    }
-    s[2] = 0.0f;
-    s[3] = 0.0f;
-    s[4] = DROPLET_INITIAL_SPEED;
-    s[5] = DROPLET_INITIAL_WATER;
-    load[d] = 0;
-#if RAIN_MASK
-    // The rain mask: a droplet falls at its place with the probability the mask gives there
-    // (docs/layers.md); one that does not fall finishes at once, having done nothing.
-    const int spawn = (int)(s[1] + 0.5f) * nx + (int)(s[0] + 0.5f);
-    if (rng_uniform(seed, DROPLET_MASK_STREAM, id) >= rain_weight[spawn]) {
-      s[5] = -1.0f;
-      atom_inc(&counters[2]);
-    }
-#endif
+  const ulong id = first_droplet + d;
+  if (spawn_radius > 0.0f) {  // painted rain (runnel-viewer): uniform on the disc, in cells
+    const float r = spawn_radius * sqrt(rng_uniform(seed, DROPLET_STREAM, 2 * id));
+    const float a = 6.2831853f * rng_uniform(seed, DROPLET_STREAM, 2 * id + 1);
+    s[0] = clamp(spawn_x + r * cos(a), 0.0f, (float)(nx - 1) - 1e-3f);
+    s[1] = clamp(spawn_z + r * sin(a), 0.0f, (float)(ny - 1) - 1e-3f);
+  } else {
+    s[0] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1), (float)(nx - 1) - 1e-3f);
+    s[1] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1), (float)(ny - 1) - 1e-3f);
   }
+  s[2] = 0.0f;
+  s[3] = 0.0f;
+  s[4] = DROPLET_INITIAL_SPEED;
+  s[5] = DROPLET_INITIAL_WATER;
+  load[d] = 0;
+#if RAIN_MASK
+  // The rain mask: a droplet falls at its place with the probability the mask gives there
+  // (docs/layers.md); one that does not fall finishes at once, having done nothing.
+  const int spawn = (int)(s[1] + 0.5f) * nx + (int)(s[0] + 0.5f);
+  if (rng_uniform(seed, DROPLET_MASK_STREAM, id) >= rain_weight[spawn]) {
+    s[5] = -1.0f;
+    atom_inc(&counters[2]);
+  }
+#endif
+}
+
+// One step of every droplet of the batch, the droplet order[g] for work-item g.
+__kernel void droplet_step(const __global float* height, volatile __global long* delta, __global uint* changed,
+                           const int tiles_x, const int nx, const int ny, const float quantum, const uint count,
+                           const int step_index, const __global uint* order, __global float* state,
+                           __global long* load, volatile __global long* counters,
+                           const __global float* erodibility) {
+  const uint g = get_global_id(0);
+  if (g >= count) return;
+  const uint d = order[g];
+  __global float* s = state + 6 * d;
   if (s[5] < 0.0f) return;
   float x = s[0], z = s[1], speed = s[4], water = s[5];
   long sediment = load[d];  // quanta of height

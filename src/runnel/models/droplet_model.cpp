@@ -79,6 +79,12 @@ std::size_t state_bytes(const ComputeContext& compute, long long batch) {
   return static_cast<std::size_t>(bytes);
 }
 
+cl::Program& droplet_program(ComputeContext& compute, const DropletSettings& settings,
+                             const Parameters& params) {
+  return compute.program({"cl/common.cl", "cl/models/droplet.cl"},
+                         settings.build_options() + ground_defines(params));
+}
+
 }  // namespace
 
 DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
@@ -86,17 +92,17 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
     : GridModel(compute, params, terrain),
       settings_(DropletSettings::from(params)),
       seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
-      kernel_(compute,
-              compute.program({"cl/common.cl", "cl/models/droplet.cl"},
-                              settings_.build_options() + ground_defines(params)),
-              "droplet_step"),
+      kernel_(compute, droplet_program(compute, settings_, params), "droplet_step"),
+      spawn_kernel_(compute, droplet_program(compute, settings_, params), "droplet_spawn"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 3 * sizeof(cl_long)),
       droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, batch_size())),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
-                    static_cast<std::size_t>(batch_size()) * sizeof(cl_long)) {
+                    static_cast<std::size_t>(batch_size()) * sizeof(cl_long)),
+      droplet_order_(compute.context(), CL_MEM_READ_WRITE,
+                     static_cast<std::size_t>(batch_size()) * sizeof(cl_uint)) {
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
-  kernel_.set("erodibility", bed() ? bed()->erodibility : placeholder_)
-      .set("rain_weight", rain_weight());
+  kernel_.set("erodibility", bed() ? bed()->erodibility : placeholder_);
+  spawn_kernel_.set("rain_weight", rain_weight());
 }
 
 long long DropletModel::batch_size() const {
@@ -136,7 +142,21 @@ void DropletModel::paint(double dt) {
 
 // One batch of `count` droplets; spawn_radius > 0 (cells) rains them on a disc instead of the map.
 void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float spawn_radius) {
+  if (count == 0) return;
   DeviceTerrain& terrain = state_.terrain();
+  spawn_kernel_.set("nx", terrain.nx())
+      .set("ny", terrain.ny())
+      .set("seed", static_cast<cl_ulong>(seed_))
+      .set("first_droplet", static_cast<cl_ulong>(droplets_))
+      .set("count", count)
+      .set("state", droplet_state_)
+      .set("load", droplet_load_)
+      .set("counters", counters_)
+      .set("spawn_x", spawn_x)
+      .set("spawn_z", spawn_z)
+      .set("spawn_radius", spawn_radius)
+      .launch(round_up_work(count));
+  order_by_place(count);
   // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl).
   for (int step = 0; step < settings_.lifetime; ++step) {
     terrain.bind_changes(kernel_);
@@ -144,20 +164,38 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
         .set("nx", terrain.nx())
         .set("ny", terrain.ny())
         .set("quantum", static_cast<float>(terrain.quantum()))
-        .set("seed", static_cast<cl_ulong>(seed_))
-        .set("first_droplet", static_cast<cl_ulong>(droplets_))
         .set("count", count)
         .set("step_index", static_cast<cl_int>(step))
+        .set("order", droplet_order_)
         .set("state", droplet_state_)
         .set("load", droplet_load_)
         .set("counters", counters_)
-        .set("spawn_x", spawn_x)
-        .set("spawn_z", spawn_z)
-        .set("spawn_radius", spawn_radius)
         .launch(round_up_work(count));
     terrain.apply_changed();
   }
   droplets_ += count;
+}
+
+// The order droplet_step moves a batch's droplets in: by the vertex they fell on, row by row (ties
+// in droplet order), so that neighbouring work-items share rows of the terrain in the cache. The
+// result does not depend on it (droplet.cl); the speed does: random places miss the cache at every
+// brush vertex.
+void DropletModel::order_by_place(cl_uint count) {
+  std::vector<cl_float> state(static_cast<std::size_t>(count) * 6);
+  compute_.queue().enqueueReadBuffer(droplet_state_, CL_TRUE, 0, state.size() * sizeof(cl_float),
+                                     state.data());
+  const auto nx = static_cast<std::uint64_t>(state_.terrain().nx());
+  std::vector<std::uint64_t> keyed(count);  // vertex index << 32 | droplet
+  for (cl_uint d = 0; d < count; ++d) {
+    const auto i = static_cast<std::uint64_t>(state[6 * d]),
+               j = static_cast<std::uint64_t>(state[6 * d + 1]);
+    keyed[d] = (j * nx + i) << 32 | d;
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<cl_uint> order(count);
+  for (cl_uint g = 0; g < count; ++g) order[g] = static_cast<cl_uint>(keyed[g] & 0xffffffffu);
+  compute_.queue().enqueueWriteBuffer(droplet_order_, CL_TRUE, 0, order.size() * sizeof(cl_uint),
+                                      order.data());
 }
 
 std::array<cl_long, 3> DropletModel::read_counters() {

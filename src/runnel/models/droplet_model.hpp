@@ -64,12 +64,14 @@ class DropletModel final : public GridModel {
  private:
   std::array<cl_long, 3> read_counters();
   void run_batch(cl_uint count, float spawn_x, float spawn_z, float spawn_radius);
+  void order_by_place(cl_uint count);
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;
-  Kernel kernel_;
+  Kernel kernel_, spawn_kernel_;
   cl::Buffer counters_;  // {droplets out, outflow quanta, droplets the rain mask kept from falling}
   cl::Buffer droplet_state_, droplet_load_;  // per droplet of a batch, between its steps
+  cl::Buffer droplet_order_;                 // the droplets in the order droplet_step moves them
 };
 
 }  // namespace runnel
