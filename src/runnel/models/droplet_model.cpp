@@ -92,8 +92,8 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
     : GridModel(compute, params, terrain),
       settings_(DropletSettings::from(params)),
       seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
-      kernel_(compute, droplet_program(compute, settings_, params), "droplet_step"),
       spawn_kernel_(compute, droplet_program(compute, settings_, params), "droplet_spawn"),
+      step_kernel_(compute, droplet_program(compute, settings_, params), "droplet_step"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 3 * sizeof(cl_long)),
       droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, batch_size())),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
@@ -101,7 +101,7 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       droplet_order_(compute.context(), CL_MEM_READ_WRITE,
                      static_cast<std::size_t>(batch_size()) * sizeof(cl_uint)) {
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
-  kernel_.set("erodibility", bed() ? bed()->erodibility : placeholder_);
+  step_kernel_.set("erodibility", bed() ? bed()->erodibility : placeholder_);
   spawn_kernel_.set("rain_weight", rain_weight());
 }
 
@@ -159,8 +159,8 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
   order_by_place(count);
   // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl).
   for (int step = 0; step < settings_.lifetime; ++step) {
-    terrain.bind_changes(kernel_);
-    kernel_.set("height", terrain.height())
+    terrain.bind_changes(step_kernel_);
+    step_kernel_.set("height", terrain.height())
         .set("nx", terrain.nx())
         .set("ny", terrain.ny())
         .set("quantum", static_cast<float>(terrain.quantum()))

@@ -68,7 +68,7 @@ class DropletModel final : public GridModel {
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;
-  Kernel kernel_, spawn_kernel_;
+  Kernel spawn_kernel_, step_kernel_;
   cl::Buffer counters_;  // {droplets out, outflow quanta, droplets the rain mask kept from falling}
   cl::Buffer droplet_state_, droplet_load_;  // per droplet of a batch, between its steps
   cl::Buffer droplet_order_;                 // the droplets in the order droplet_step moves them
