@@ -52,16 +52,24 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
       water_(state_.field(kSurfaceWaterDepth)),
       sediment_(state_.field(kSedimentSuspended)) {
   const std::size_t n = state_.vertices();
-  out_water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(float));
-  out_sediment_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
+  // Four planes with a zero row before and after each (olsen_plane in olsen.cl).
+  const std::size_t planes = 4 * (n + 2 * static_cast<std::size_t>(terrain.nx));
+  out_water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, planes * sizeof(float));
+  out_sediment_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, planes * sizeof(cl_int));
+  compute.queue().enqueueFillBuffer(out_water_, 0.0f, 0, planes * sizeof(float));
+  compute.queue().enqueueFillBuffer(out_sediment_, cl_int{0}, 0, planes * sizeof(cl_int));
+  level_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, n * sizeof(float));
+  sendable_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, n * sizeof(cl_int));
   const OlsenSettings& s = settings_;
-  const std::string options = settings_defines(s, kOlsenTable) + ground_defines(params);
+  const std::string options = settings_defines(s, kOlsenTable) + ground_defines(params) +
+                              " -DOLSEN_SENDABLE=" + std::to_string(kOlsenSendable) + "L";
   cl::Program& program = compute.program({"cl/common.cl", "cl/models/olsen.cl"}, options);
   dissolve_ = Kernel(compute, program, "olsen_dissolve");
   outflow_ = Kernel(compute, program, "olsen_outflow");
   gather_settle_ = Kernel(compute, program, "olsen_gather_settle");
   bind_detachment(dissolve_, bed(), placeholder_);
-  dissolve_.set("rain_weight", rain_weight());
+  dissolve_.set("rain_weight", rain_weight()).set("level", level_).set("sendable", sendable_);
+  outflow_.set("level", level_).set("sendable", sendable_);
 }
 
 double OlsenModel::take_step() {
@@ -70,12 +78,10 @@ double OlsenModel::take_step() {
   const float q = static_cast<float>(terrain.quantum());
   const std::size_t work = round_up_work(static_cast<std::size_t>(n));
   cl::Buffer &water = state_.buffer(water_), &sediment = state_.buffer(sediment_);
-  for (Kernel* k : {&dissolve_, &outflow_, &gather_settle_}) {
-    k->set("height", terrain.height_fixed())
-        .set("water", water)
-        .set("sediment", sediment)
-        .set("quantum", q);
+  for (Kernel* k : {&dissolve_, &gather_settle_}) {
+    k->set("height", terrain.height_fixed()).set("sediment", sediment).set("quantum", q);
   }
+  for (Kernel* k : {&dissolve_, &outflow_, &gather_settle_}) k->set("water", water);
   dissolve_.set("n", n).set("rain_on", rain_on());
   for (Kernel* k : {&outflow_, &gather_settle_}) {
     k->set("out_water", out_water_).set("out_sediment", out_sediment_).set("nx", nx).set("ny", ny);

@@ -15,6 +15,10 @@ struct OlsenSettings {
   static OlsenSettings from(const Parameters& params);
 };
 
+// The most quanta of a cell's suspended sediment one outflow pass shares among its lower neighbours
+// (olsen.cl: the pass computes in 32 bits); a cell holding more keeps the rest for later passes.
+inline constexpr long long kOlsenSendable = 1LL << 30;
+
 // Erosion_Olsen2004: cellular-automaton hydraulic erosion (Olsen 2004, as used by Fritz 2016), host
 // side of cl/models/olsen.cl. One step is one iteration over every cell; terrain + suspended
 // sediment is conserved exactly (integer quanta, closed edges).
@@ -36,6 +40,7 @@ class OlsenModel final : public GridModel {
   OlsenSettings settings_;
   int water_, sediment_;  // GridState handles
   cl::Buffer out_water_, out_sediment_;
+  cl::Buffer level_, sendable_;  // olsen_dissolve's 32-bit copies for olsen_outflow (olsen.cl)
   Kernel dissolve_, outflow_, gather_settle_;
 };
 

@@ -39,14 +39,15 @@ void iterate(State& st, int nx, int ny, const OlsenSettings& s, double q) {
       }
       const double moved = total > 0 ? std::min(w, a - sum_lower / lower) : 0.0;
       std::int64_t given = 0;
+      const std::int64_t sendable = std::min<std::int64_t>(st.sediment[k], kOlsenSendable);
       for (int d = 0; d < 4; ++d) {
         const double share = total > 0 ? moved * drop[d] / total : 0.0;
         out_water[4 * k + d] = share;
         std::int64_t sent = 0;
         if (w > 0 && share > 0) {
-          sent = std::min(static_cast<std::int64_t>(
-                              std::floor(static_cast<double>(st.sediment[k]) * share / w)),
-                          st.sediment[k] - given);
+          sent = std::min(
+              static_cast<std::int64_t>(std::floor(static_cast<double>(sendable) * share / w)),
+              sendable - given);
         }
         out_sediment[4 * k + d] = sent;
         given += sent;
