@@ -20,6 +20,20 @@ inline float rng_uniform(ulong seed, ulong stream, ulong counter) {
   return (float)(rng_bits(seed, stream, counter) >> 40) * (1.0f / 16777216.0f);
 }
 
+// A pass's numbers per cell under a host-made key (rng.hpp's rng_key): 32-bit arithmetic only.
+inline uint mix32(uint x) {
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  return x ^ (x >> 16);
+}
+
+inline float keyed_uniform(ulong key, uint counter) {
+  const uint bits = mix32(mix32(counter ^ (uint)key) ^ (uint)(key >> 32));
+  return (float)(bits >> 8) * (1.0f / 16777216.0f);
+}
+
 inline int grid_index(int i, int j, int nx) { return j * nx + i; }
 
 // Row of cell k in rows of nx cells, without an integer division (which does not vectorise across

@@ -16,9 +16,9 @@
 //   pipe_send, pipe_receive, pipe_edge_outflow: sediment leaves with the water that leaves,
 //                   s·f_X·Δt/(d1·l²) to each neighbour (upwind: each cell sends, then gathers what its
 //                   neighbours sent it); what leaves the map is booked as outflow
-// Amounts become whole quanta by stochastic rounding (counter-based random numbers of the cell and
-// the step), never by truncation: a step's exchange is often a few quanta, and truncating them would
-// make the result depend on Δt.
+// Amounts become whole quanta by stochastic rounding (counter-based random numbers of the cell under
+// a key the host makes for each step and stream, rng.hpp's keyed_uniform), never by truncation: a
+// step's exchange is often a few quanta, and truncating them would make the result depend on Δt.
 // Fields of several components lie one plane per component on the device (GridState): flux[d·n + k]
 // for the pipes L R T B, velocity[k] and velocity[n + k] for x and z.
 // Compile-time constants (host -D): PIPE_*.
@@ -149,26 +149,18 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
   capacity[k] = pipe_capacity(height_view, nx, ny, i, j, k, cell, vx, vz, d2);
 }
 
-#define PIPE_ERODE_STREAM 0x70657264UL      // "perd"
-#define PIPE_TRANSPORT_STREAM 0x70747273UL  // "ptrs"
-
-// Uniform in [0, 1): one number per cell and step of a stream.
-inline float pipe_random(ulong seed, ulong stream, ulong step, int cells, int k) {
-  return rng_uniform(seed, stream, step * (ulong)cells + (ulong)k);
-}
-
 __kernel void pipe_erode(__global long* height, __global long* sediment, __global float* depth,
                          const __global float* capacity_of_cell, const int nx, const int ny, const float quantum,
                          const float dissolved_fraction,
-                         const float deposited_fraction, const float evaporation_factor, const ulong seed,
-                         const ulong step_index, const __global float* rock_erodibility,
-                         const __global float* sediment_erodibility, const __global long* ground_sediment) {
+                         const float deposited_fraction, const float evaporation_factor, const ulong key,
+                         const __global float* rock_erodibility, const __global float* sediment_erodibility,
+                         const __global long* ground_sediment, __global int* sendable) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const float capacity = capacity_of_cell[k];  // m, from pipe_water
   const long load = sediment[k];
   const float s = (float)load * quantum;
-  const float u = pipe_random(seed, PIPE_ERODE_STREAM, step_index, nx * ny, k);
+  const float u = keyed_uniform(key, (uint)k);  // the step's key for the erosion stream (host)
   // Below capacity dissolve, above it deposit (never more than the load); both amounts are ≥ 0, so
   // truncation is the floor. Positive: from the bed into the water.
   // With a layer stack the dissolution is the bed's detachment (docs/layers.md); never the deposition.
@@ -180,6 +172,7 @@ __kernel void pipe_erode(__global long* height, __global long* sediment, __globa
   const long exchanged = capacity > s ? dissolved : -deposited;
   height[k] -= exchanged;
   sediment[k] = load + exchanged;
+  sendable[k] = (int)min(load + exchanged, PIPE_SENDABLE);
   depth[k] *= evaporation_factor;
 }
 
@@ -187,44 +180,48 @@ __kernel void pipe_erode(__global long* height, __global long* sediment, __globa
 // water it had, f·share (together at most 1), split by systematic sampling with one random u per
 // cell and step, so each pipe carries s·f·share in expectation and all four together never more
 // than s. Stored one plane per direction (L R T B: sent[d·n + k]); pipe_receive then moves them, and
-// pipe_edge_outflow books what left the map.
-__kernel void pipe_send(const __global long* sediment, const __global float* flux, const __global float* previous_depth,
-                        __global long* sent, const int nx, const int ny, const float cell, const float dt,
-                        const ulong seed, const ulong step_index) {
+// pipe_edge_outflow books what left the map. 32-bit loads, stores and random numbers only, so the
+// loop runs 16 cells wide: s is pipe_erode's copy of the load capped at PIPE_SENDABLE quanta (host
+// -D, 2^30: kPipeSendable, over a kilometre of sediment in a cell at the default quantum); a cell
+// holding more sends shares of that and keeps the rest for later steps.
+__kernel void pipe_send(const __global int* sendable, const __global float* flux, const __global float* previous_depth,
+                        __global int* sent, const int nx, const int ny, const float cell, const float dt,
+                        const ulong key) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   // share = Δt / (d1·l²): the fraction of the cell's water one unit of flux carries away in a step.
   const float volume = previous_depth[k] * cell * cell;
   const float share = volume > 0.0f ? dt / volume : 0.0f;
-  const float u = pipe_random(seed, PIPE_TRANSPORT_STREAM, step_index, n, k);
-  const float s = (float)sediment[k];
+  const float u = keyed_uniform(key, (uint)k);  // the step's key for the transport stream (host)
+  const float s = (float)sendable[k];
   // Cumulative shares up to and including pipe d, capped at the whole load; the pipe sends the
   // difference of the sampled amounts at its two ends. Every amount is ≥ 0, so truncation is the floor.
   const float c1 = flux[0 * n + k] * share, c2 = c1 + flux[1 * n + k] * share;
   const float c3 = c2 + flux[2 * n + k] * share, c4 = c3 + flux[3 * n + k] * share;
-  const long at0 = (long)u, at1 = (long)(s * fmin(1.0f, c1) + u), at2 = (long)(s * fmin(1.0f, c2) + u);
-  const long at3 = (long)(s * fmin(1.0f, c3) + u), at4 = (long)(s * fmin(1.0f, c4) + u);
+  // At most s·(1 + 2^-23) + 1 < 2^31.
+  const int at0 = (int)u, at1 = (int)(s * fmin(1.0f, c1) + u), at2 = (int)(s * fmin(1.0f, c2) + u);
+  const int at3 = (int)(s * fmin(1.0f, c3) + u), at4 = (int)(s * fmin(1.0f, c4) + u);
   sent[0 * n + k] = at1 - at0;
   sent[1 * n + k] = at2 - at1;
   sent[2 * n + k] = at3 - at2;
   sent[3 * n + k] = at4 - at3;
 }
 
-__kernel void pipe_receive(const __global long* sediment, __global long* sediment_next, const __global long* sent,
+__kernel void pipe_receive(const __global long* sediment, __global long* sediment_next, const __global int* sent,
                            const int nx, const int ny) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
   // The neighbours' sediment towards this cell comes through their pipe d ^ 1; nothing from outside.
-  const long in = (i > 0 ? sent[1 * n + k - 1] : 0) + (i < nx - 1 ? sent[0 * n + k + 1] : 0) +
-                  (j > 0 ? sent[3 * n + k - nx] : 0) + (j < ny - 1 ? sent[2 * n + k + nx] : 0);
-  const long out = sent[0 * n + k] + sent[1 * n + k] + sent[2 * n + k] + sent[3 * n + k];
+  const long in = (long)(i > 0 ? sent[1 * n + k - 1] : 0) + (long)(i < nx - 1 ? sent[0 * n + k + 1] : 0) +
+                  (long)(j > 0 ? sent[3 * n + k - nx] : 0) + (long)(j < ny - 1 ? sent[2 * n + k + nx] : 0);
+  const long out = (long)sent[0 * n + k] + (long)sent[1 * n + k] + (long)sent[2 * n + k] + (long)sent[3 * n + k];
   sediment_next[k] = sediment[k] - out + in;
 }
 
 // What the border cells sent out of the map, one work-item per border face: left and right columns,
 // then top and bottom rows. An integer sum, so the order of the atomics does not matter.
-__kernel void pipe_edge_outflow(const __global long* sent, const int nx, const int ny,
+__kernel void pipe_edge_outflow(const __global int* sent, const int nx, const int ny,
                                 volatile __global long* outflow) {
   const int f = get_global_id(0), n = nx * ny;
   if (f >= 2 * (nx + ny)) return;

@@ -93,20 +93,56 @@ TEST(Rng, DeviceDrawsTheSameBitsAsTheHost) {
   const std::size_t n = 4096;
   cl::Buffer bits(compute.context(), CL_MEM_WRITE_ONLY, n * sizeof(cl_ulong));
   cl::Buffer uniform(compute.context(), CL_MEM_WRITE_ONLY, n * sizeof(float));
-  const cl_ulong seed = 0xDEADBEEF12345ULL, stream = 77;
-  probe.set("bits", bits).set("uniform", uniform).set("seed", seed).set("stream", stream);
-  probe.launch(n);
+  cl::Buffer keyed(compute.context(), CL_MEM_WRITE_ONLY, n * sizeof(float));
+  const cl_ulong seed = 0xDEADBEEF12345ULL, stream = 77, key = rng_key(seed, stream, 3);
+  probe.set("bits", bits)
+      .set("uniform", uniform)
+      .set("keyed", keyed)
+      .set("seed", seed)
+      .set("stream", stream);
+  probe.set("key", key).launch(n);
   std::vector<cl_ulong> b(n);
-  std::vector<float> u(n);
+  std::vector<float> u(n), v(n);
   compute.queue().enqueueReadBuffer(bits, CL_TRUE, 0, n * sizeof(cl_ulong), b.data());
   compute.queue().enqueueReadBuffer(uniform, CL_TRUE, 0, n * sizeof(float), u.data());
-  double mean = 0;
+  compute.queue().enqueueReadBuffer(keyed, CL_TRUE, 0, n * sizeof(float), v.data());
+  double mean = 0, keyed_mean = 0;
   for (std::size_t k = 0; k < n; ++k) {
     ASSERT_EQ(b[k], rng_bits(seed, stream, k));
     ASSERT_EQ(u[k], rng_uniform(seed, stream, k));
+    ASSERT_EQ(v[k], keyed_uniform(key, static_cast<std::uint32_t>(k)));
     mean += u[k];
+    keyed_mean += v[k];
   }
   EXPECT_NEAR(mean / n, 0.5, 0.02);  // 4096 uniforms: standard error 0.0045
+  EXPECT_NEAR(keyed_mean / n, 0.5, 0.02);
+}
+
+// The keyed numbers of consecutive cells are uncorrelated and evenly spread: lag-1 correlation and
+// a chi-square test over 64 bins of 2^16 draws (63 degrees of freedom; 110 is the 0.9999 quantile),
+// for a few keys.
+TEST(Rng, KeyedNumbersOfNeighbouringCellsAreIndependentAndUniform) {
+  for (std::uint64_t pass : {0ULL, 1ULL, 12345ULL}) {
+    const std::uint64_t key = rng_key(1, 0x70747273ULL, pass);
+    const std::uint32_t n = 1u << 16;
+    std::vector<int> bins(64, 0);
+    double sum = 0, sum2 = 0, lag = 0, previous = keyed_uniform(key, 0);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const double u = keyed_uniform(key, k);
+      ++bins[static_cast<int>(u * 64)];
+      sum += u;
+      sum2 += u * u;
+      if (k > 0) lag += (u - 0.5) * (previous - 0.5);
+      previous = u;
+    }
+    const double variance = sum2 / n - (sum / n) * (sum / n);
+    EXPECT_NEAR(variance, 1.0 / 12, 0.002) << "pass " << pass;
+    EXPECT_LT(std::fabs(lag / (n - 1) / variance), 0.02)
+        << "lag-1 correlation, pass " << pass;  // ±4σ
+    double chi2 = 0;
+    for (int c : bins) chi2 += (c - n / 64.0) * (c - n / 64.0) / (n / 64.0);
+    EXPECT_LT(chi2, 110) << "pass " << pass;
+  }
 }
 
 }  // namespace

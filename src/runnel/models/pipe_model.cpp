@@ -11,6 +11,7 @@
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/rng.hpp"
 #include "runnel/core/settings_table.hpp"
 
 namespace runnel {
@@ -54,7 +55,8 @@ PipeSettings PipeSettings::from(const Parameters& p) {
 std::string PipeSettings::build_options() const {
   return settings_defines(*this, kPipeTable) + " -DPIPE_CLOSED=" + (closed() ? "1" : "0") +
          float_define("PIPE_GRAVITY_N2", gravity * manning_n * manning_n) +
-         " -DPIPE_FRICTION_ON=" + (manning_n > 0 ? "1" : "0");
+         " -DPIPE_FRICTION_ON=" + (manning_n > 0 ? "1" : "0") +
+         " -DPIPE_SENDABLE=" + std::to_string(kPipeSendable) + "L";
 }
 
 const ModelInfo& PipeModel::model_info() {
@@ -88,8 +90,9 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   compute.queue().enqueueFillBuffer(previous_depth_, 0.0f, 0, n * sizeof(float));
   capacity_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
   sediment_next_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_long));
+  sendable_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_int));
   if (!settings_.semi_lagrangian())
-    sent_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(cl_long));
+    sent_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(cl_int));
   stats_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * kStatBlocks * sizeof(float));
   outflow_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   lost_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
@@ -108,6 +111,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   flux_kernel_.set("rain_weight", rain_weight());
   water_kernel_.set("rain_weight", rain_weight());
   bind_detachment(erode_kernel_, bed(), placeholder_);
+  erode_kernel_.set("sendable", sendable_);
 }
 
 double PipeModel::take_step() {
@@ -133,7 +137,7 @@ double PipeModel::take_step() {
   water_kernel_.set("height_view", terrain.height());
   erode_kernel_.set("height", terrain.height_fixed()).set("capacity_of_cell", capacity_);
   erode_kernel_.set("sediment", sediment).set("depth", depth);
-  erode_kernel_.set("seed", seed).set("step_index", step);
+  erode_kernel_.set("key", static_cast<cl_ulong>(rng_key(seed, kPipeErodeStream, step)));
   // The exact relaxation over the step, whatever Δt (models.md "pipe").
   erode_kernel_
       .set("dissolved_fraction", static_cast<float>(-std::expm1(-settings_.dissolve * dt_)))
@@ -161,14 +165,14 @@ void PipeModel::transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& ve
     advect_kernel_.set("lost", lost_).launch(work);
     return;
   }
-  send_kernel_.set("sediment", sediment).set("flux", flux).set("previous_depth", previous_depth_);
+  send_kernel_.set("sendable", sendable_).set("flux", flux).set("previous_depth", previous_depth_);
   send_kernel_.set("sent", sent_)
       .set("nx", nx)
       .set("ny", ny)
       .set("cell", state_.terrain().cell())
       .set("dt", dt);
-  send_kernel_.set("seed", static_cast<cl_ulong>(params_.integer("run.seed")))
-      .set("step_index", steps());
+  const auto seed = static_cast<std::uint64_t>(params_.integer("run.seed"));
+  send_kernel_.set("key", static_cast<cl_ulong>(rng_key(seed, kPipeTransportStream, steps())));
   send_kernel_.launch(work);
   receive_kernel_.set("sediment", sediment).set("sediment_next", sediment_next_).set("sent", sent_);
   receive_kernel_.set("nx", nx).set("ny", ny).launch(work);

@@ -1,11 +1,19 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "runnel/models/grid_model.hpp"
 
 namespace runnel {
+
+// The random streams of the pipe's stochastic rounding (rng.hpp: one key per step and stream).
+inline constexpr std::uint64_t kPipeErodeStream = 0x70657264ULL;      // "perd"
+inline constexpr std::uint64_t kPipeTransportStream = 0x70747273ULL;  // "ptrs"
+// The most quanta of a cell's suspended sediment one transport step shares among its pipes
+// (pipe.cl's pipe_send computes in 32 bits); a cell holding more keeps the rest for later steps.
+inline constexpr long long kPipeSendable = 1LL << 30;
 
 struct PipeSettings {
   // The pipe.* parameters (defaults, units, meaning: the table in pipe_model.cpp).
@@ -63,6 +71,7 @@ class PipeModel final : public GridModel {
   int depth_, flux_, velocity_, sediment_;  // GridState handles
   void transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& velocity, float dt);
   cl::Buffer previous_depth_, capacity_, sediment_next_, sent_, stats_, outflow_, lost_;
+  cl::Buffer sendable_;  // pipe_erode's 32-bit copy of the sediment for pipe_send (pipe.cl)
   Kernel flux_kernel_, water_kernel_, erode_kernel_, send_kernel_, receive_kernel_,
       edge_outflow_kernel_, advect_kernel_, stats_kernel_;
 };

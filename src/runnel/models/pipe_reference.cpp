@@ -10,15 +10,14 @@ namespace runnel::pipe_reference {
 namespace {
 
 constexpr int kDi[4] = {-1, 1, 0, 0}, kDj[4] = {0, 0, -1, 1};  // L R T B
-constexpr std::uint64_t kErodeStream = 0x70657264ULL, kTransportStream = 0x70747273ULL;
-
-double random(std::uint64_t seed, std::uint64_t stream, std::uint64_t step, std::size_t cells,
-              std::size_t k) {
-  return rng_uniform(seed, stream, step * cells + k);
+double random(std::uint64_t seed, std::uint64_t stream, std::uint64_t step, std::size_t k) {
+  return keyed_uniform(rng_key(seed, stream, step), static_cast<std::uint32_t>(k));
 }
 
-// What a cell with `sediment` sends through pipe d (cl/models/pipe.cl's pipe_send).
-std::int64_t sent(std::int64_t sediment, const double* flux4, double share, double u, int d) {
+// What a cell with `sediment` sends through pipe d (cl/models/pipe.cl's pipe_send, which shares at
+// most kPipeSendable quanta of it).
+std::int64_t sent(std::int64_t held, const double* flux4, double share, double u, int d) {
+  const std::int64_t sediment = std::min<std::int64_t>(held, kPipeSendable);
   double before = 0;
   for (int e = 0; e < d; ++e) before += flux4[e] * share;
   const double upto = std::min(1.0, before + flux4[d] * share);
@@ -102,7 +101,7 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
       const double capacity =
           std::min(s.capacity * std::max(sin_slope, s.min_tilt) * speed, st.depth[k]);
       const double carried = static_cast<double>(st.sediment[k]) * q;
-      const double u = random(seed, kErodeStream, step_index, n, k);
+      const double u = random(seed, kPipeErodeStream, step_index, k);
       if (capacity > carried) {
         const auto amount = static_cast<std::int64_t>(
             std::floor(-std::expm1(-s.dissolve * dt) * (capacity - carried) / q + u));
@@ -123,7 +122,7 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
   std::vector<double> share(n), u(n);
   for (std::size_t k = 0; k < n; ++k) {
     share[k] = d1[k] > 0 ? dt / (d1[k] * l * l) : 0.0;
-    u[k] = random(seed, kTransportStream, step_index, n, k);
+    u[k] = random(seed, kPipeTransportStream, step_index, k);
   }
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
