@@ -13,7 +13,7 @@
 // of zeros before and after the map (olsen_plane), so the gather reads its neighbours' outflows
 // without a condition: beyond the top or bottom edge it reads the zero rows, beyond the left or right
 // edge the last or first cell of the next row, whose outflow across the map's edge is always 0.
-// olsen_outflow reads and writes 32-bit values only, so that PoCL runs it 16 cells at a time (a
+// olsen_outflow reads and writes 32-bit values only, so that PoCL runs it 8 or 16 cells at a time (a
 // 64-bit load or store anywhere in a loop makes it 4 wide): olsen_dissolve leaves it each cell's level
 // a as a float (the same expression it would evaluate) and the cell's sediment as at most
 // OLSEN_SENDABLE quanta (host -D, 2^30: kOlsenSendable), and the sediment outflows are 32-bit. A
@@ -22,12 +22,12 @@
 // Compile-time constants (host -D): OLSEN_RAIN, OLSEN_SOLUBILITY, OLSEN_EVAPORATION, OLSEN_CAPACITY (m
 // or fractions, per iteration).
 
-// With a layer stack the dissolved amount is the bed's detachment (its loose sediment first, then its
-// rock, each at its own erodibility), and with a rain mask the rain is scaled by the vertex's weight
-// (docs/layers.md).
 // Cell k's place in the outflow planes of direction d (the host allocates 4 (n + 2 nx) and zeroes them).
 inline int olsen_plane(int d, int k, int nx, int n) { return d * (n + 2 * nx) + nx + k; }
 
+// With a layer stack the dissolved amount is the bed's detachment (its loose sediment first, then its
+// rock, each at its own erodibility), and with a rain mask the rain is scaled by the vertex's weight
+// (docs/layers.md).
 __kernel void olsen_dissolve(__global long* height, __global float* water, __global long* sediment, const int n,
                              const float quantum, const __global float* rock_erodibility,
                              const __global float* sediment_erodibility, const __global long* ground_sediment,
@@ -80,11 +80,13 @@ __kernel void olsen_outflow(const __global float* level, const __global float* w
   const int lower = 1 + (a_l < a) + (a_r < a) + (a_t < a) + (a_b < a);
   const float moved = total > 0.0f ? fmin(w, a - sum_lower / (float)lower) : 0.0f;
   const int s = sendable[k];
+  const int l = olsen_plane(0, k, nx, n), r = olsen_plane(1, k, nx, n);
+  const int t = olsen_plane(2, k, nx, n), b = olsen_plane(3, k, nx, n);
   int given = 0;
-  olsen_send(drop_l, total, moved, w, s, &given, out_water + olsen_plane(0, k, nx, n), out_sediment + olsen_plane(0, k, nx, n));
-  olsen_send(drop_r, total, moved, w, s, &given, out_water + olsen_plane(1, k, nx, n), out_sediment + olsen_plane(1, k, nx, n));
-  olsen_send(drop_t, total, moved, w, s, &given, out_water + olsen_plane(2, k, nx, n), out_sediment + olsen_plane(2, k, nx, n));
-  olsen_send(drop_b, total, moved, w, s, &given, out_water + olsen_plane(3, k, nx, n), out_sediment + olsen_plane(3, k, nx, n));
+  olsen_send(drop_l, total, moved, w, s, &given, out_water + l, out_sediment + l);
+  olsen_send(drop_r, total, moved, w, s, &given, out_water + r, out_sediment + r);
+  olsen_send(drop_t, total, moved, w, s, &given, out_water + t, out_sediment + t);
+  olsen_send(drop_b, total, moved, w, s, &given, out_water + b, out_sediment + b);
 }
 
 __kernel void olsen_gather_settle(__global long* height, __global float* water, __global long* sediment,

@@ -181,9 +181,9 @@ __kernel void pipe_erode(__global long* height, __global long* sediment, __globa
 // cell and step, so each pipe carries s·f·share in expectation and all four together never more
 // than s. Stored one plane per direction (L R T B: sent[d·n + k]); pipe_receive then moves them, and
 // pipe_edge_outflow books what left the map. 32-bit loads, stores and random numbers only, so the
-// loop runs 16 cells wide: s is pipe_erode's copy of the load capped at PIPE_SENDABLE quanta (host
-// -D, 2^30: kPipeSendable, over a kilometre of sediment in a cell at the default quantum); a cell
-// holding more sends shares of that and keeps the rest for later steps.
+// loop runs 8 or 16 cells wide, not 4: s is pipe_erode's copy of the load capped at PIPE_SENDABLE
+// quanta (host -D, 2^30: kPipeSendable, over a kilometre of sediment in a cell at the default
+// quantum); a cell holding more sends shares of that and keeps the rest for later steps.
 __kernel void pipe_send(const __global int* sendable, const __global float* flux, const __global float* previous_depth,
                         __global int* sent, const int nx, const int ny, const float cell, const float dt,
                         const ulong key) {

@@ -26,8 +26,8 @@ inline float rng_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t
 // Numbers for every cell of a grid in one pass (the pipe model's stochastic rounding): the pass's
 // (seed, stream, step) is mixed once on the host into a 64-bit key, and each cell's number is two
 // rounds of a 32-bit bijective mix (Wellons' lowbias32) of its index under the key's halves. All
-// 32-bit arithmetic, so a kernel over cells stays 16 wide where three 64-bit splitmix rounds a cell
-// made it 4 wide; distinct cells of one pass always get distinct bits.
+// 32-bit arithmetic, so a kernel over cells runs 8 or 16 wide where three 64-bit splitmix rounds a
+// cell kept it 4 wide; distinct cells of one pass always get distinct bits.
 inline std::uint64_t rng_key(std::uint64_t seed, std::uint64_t stream, std::uint64_t pass) {
   return rng_bits(seed, stream, pass);
 }
