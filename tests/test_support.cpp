@@ -110,4 +110,12 @@ QuantaComparison compare_quanta(const std::vector<std::int64_t>& device,
   return c;
 }
 
+Heightmap rough_terrain(int nx, int ny, float relief, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> height(0.0f, relief);
+  Heightmap rough(nx, ny, 1.0);
+  for (float& h : rough.h) h = height(rng);
+  return rough;
+}
+
 }  // namespace runnel::test

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/core/heightmap.hpp"
 
 namespace runnel::test {
 
@@ -64,5 +65,9 @@ struct QuantaComparison {
 QuantaComparison compare_quanta(const std::vector<std::int64_t>& device,
                                 const std::vector<std::int64_t>& reference,
                                 const std::vector<std::int64_t>& before);
+
+// A terrain of independent uniform heights in [0, relief) m on 1 m cells: every cell a pit or a
+// peak, so an oracle comparison exercises every neighbour relation of the grid models' kernels.
+Heightmap rough_terrain(int nx, int ny, float relief, unsigned seed);
 
 }  // namespace runnel::test

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <numeric>
-#include <random>
 
 #include "runnel/models/olsen_model.hpp"
 #include "runnel/models/olsen_reference.hpp"
@@ -88,10 +87,7 @@ TEST(OlsenModel, IsDeterministic) {
 // Three iterations on a random rough terrain against the plain C++ oracle (olsen_reference).
 TEST(OlsenModel, IterationsMatchThePlainCppReference) {
   const int nx = 21, ny = 17;
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> relief(0.0f, 0.3f);
-  Heightmap rough(nx, ny, 1.0);
-  for (float& h : rough.h) h = relief(rng);
+  const Heightmap rough = test::rough_terrain(nx, ny, 0.3f, 3);
   Parameters p;
   p.set("olsen.solubility", 0.05);  // enough erosion per iteration to test the sediment paths
   OlsenModel model(compute(), p, rough);

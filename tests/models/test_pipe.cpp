@@ -3,8 +3,6 @@
 // terrain under heavy rain, conserving terrain + sediment + outflow exactly, deterministic.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include <cmath>
 #include <numeric>
 
@@ -102,14 +100,31 @@ TEST(PipeModel, SemiLagrangianReportsItsLossExactly) {
   EXPECT_DOUBLE_EQ(m.lost, model.lost_quanta() * model.state().terrain().volume_quantum());
 }
 
+// The oracle's state at the model's start (its terrain; no water, flux or sediment), and both
+// stepped side by side, the oracle with the model's Δt and step index.
+pipe_reference::State oracle_start(PipeModel& model) {
+  const std::size_t n = model.state().vertices();
+  return {model.state().terrain().download_fixed(), std::vector<std::int64_t>(n, 0),
+          std::vector<double>(n, 0.0), std::vector<double>(4 * n, 0.0),
+          std::vector<double>(2 * n, 0.0)};
+}
+
+void step_beside_oracle(PipeModel& model, pipe_reference::State& ref, const Parameters& p,
+                        int steps) {
+  const DeviceTerrain& terrain = model.state().terrain();
+  const auto seed = static_cast<std::uint64_t>(p.integer("run.seed"));
+  for (int k = 0; k < steps; ++k) {
+    pipe_reference::step(ref, terrain.nx(), terrain.ny(), terrain.cell(), terrain.quantum(),
+                         PipeSettings::from(p), model.dt(), seed, model.steps());
+    model.step();
+  }
+}
+
 // Five adaptive steps on a random rough terrain against the plain C++ oracle (pipe_reference),
 // with outflow edges and Manning friction (the defaults) and with closed edges.
 TEST(PipeModel, StepsMatchThePlainCppReference) {
   const int nx = 19, ny = 15;
-  std::mt19937 rng(12);
-  std::uniform_real_distribution<float> relief(0.0f, 1.0f);
-  Heightmap rough(nx, ny, 1.0);
-  for (float& h : rough.h) h = relief(rng);
+  const Heightmap rough = test::rough_terrain(nx, ny, 1.0f, 12);
   for (const char* edges : {"outflow", "closed"}) {
     Parameters p;
     p.set("pipe.edges", std::string(edges));
@@ -117,17 +132,9 @@ TEST(PipeModel, StepsMatchThePlainCppReference) {
     PipeModel model(compute(), p, rough);
     DeviceTerrain& terrain = model.state().terrain();
     const std::size_t n = rough.size();
-    pipe_reference::State ref{terrain.download_fixed(), std::vector<std::int64_t>(n, 0),
-                              std::vector<double>(n, 0.0), std::vector<double>(4 * n, 0.0),
-                              std::vector<double>(2 * n, 0.0)};
+    pipe_reference::State ref = oracle_start(model);
     const auto before = ref.height;
-    const auto seed = static_cast<std::uint64_t>(p.integer("run.seed"));
-    for (int k = 0; k < 5; ++k) {
-      const double dt = model.dt();
-      pipe_reference::step(ref, nx, ny, rough.cell, terrain.quantum(), PipeSettings::from(p), dt,
-                           seed, model.steps());
-      model.step();
-    }
+    step_beside_oracle(model, ref, p, 5);
     const auto h = test::compare_quanta(terrain.download_fixed(), ref.height, before);
     EXPECT_GT(h.changed, static_cast<std::int64_t>(n / 2)) << edges;
     EXPECT_LE(h.worst, 2) << edges << ": stochastic rounding may tip a quantum either way";
@@ -165,10 +172,7 @@ TEST(PipeModel, StepsMatchThePlainCppReference) {
 // be off by up to 2^31 quanta), and the volume stays exact.
 TEST(PipeModel, FollowsTheOracleWhenACellHoldsMoreSedimentThanOneStepShares) {
   const int nx = 19, ny = 15;
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> relief(0.0f, 1.0f);
-  Heightmap rough(nx, ny, 1.0);
-  for (float& h : rough.h) h = relief(rng);
+  const Heightmap rough = test::rough_terrain(nx, ny, 1.0f, 5);
   Parameters p;
   p.set("erosion.height_quantum", 1e-11, "test");
   p.set("pipe.rain", 0.2, "test");
@@ -176,16 +180,9 @@ TEST(PipeModel, FollowsTheOracleWhenACellHoldsMoreSedimentThanOneStepShares) {
   PipeModel model(compute(), p, rough);
   DeviceTerrain& terrain = model.state().terrain();
   const std::size_t n = rough.size();
-  pipe_reference::State ref{terrain.download_fixed(), std::vector<std::int64_t>(n, 0),
-                            std::vector<double>(n, 0.0), std::vector<double>(4 * n, 0.0),
-                            std::vector<double>(2 * n, 0.0)};
+  pipe_reference::State ref = oracle_start(model);
   const long long total = std::accumulate(ref.height.begin(), ref.height.end(), 0LL);
-  const auto seed = static_cast<std::uint64_t>(p.integer("run.seed"));
-  for (int k = 0; k < 5; ++k) {
-    pipe_reference::step(ref, nx, ny, rough.cell, terrain.quantum(), PipeSettings::from(p),
-                         model.dt(), seed, model.steps());
-    model.step();
-  }
+  step_beside_oracle(model, ref, p, 5);
   const auto sediment = model.state().download_int64(kSedimentSuspended);
   const auto fixed = terrain.download_fixed();
   EXPECT_EQ(std::accumulate(fixed.begin(), fixed.end(), 0LL) +
