@@ -173,6 +173,23 @@ TEST(DamagedCheckpoint, FlippedBytesAreRefusedOrChangeNothing) {
   std::printf("flipped bytes: %d refused, %d harmless\n", refused, harmless);
 }
 
+// A checkpoint in which a dataset's chunk dimension reads as 0 (fuzz.checkpoint's finding of
+// 2026-12-03, kept as it was found): libhdf5 1.10.8 divides by it in H5Dopen2 and the process died
+// of SIGFPE. The read now runs in a child first, and the file is refused in one line, exit code 2.
+TEST(DamagedCheckpoint, AChunkDimensionOfZeroIsRefusedNotACrash) {
+  const std::string path = test::source_dir() + "/tests/io/data/chunk_dimension_zero.h5";
+  try {
+    read_checkpoint(path);
+    FAIL() << "read a damaged checkpoint";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kUsage) << e.what();
+    EXPECT_NE(std::string(e.what()).find("damaged"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+  const auto r = test::run_cli({"info", path});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+}
+
 // A local heap (a group's names) whose free list loops back on itself: libhdf5 1.10 follows such
 // a list without end, allocating until memory runs out (found by fuzz.checkpoint). The reader
 // walks every heap's list first and refuses the file in one line.

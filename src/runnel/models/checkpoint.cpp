@@ -9,6 +9,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/io/crash_isolated_read.hpp"
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/models/fields.hpp"
 #include "runnel/terrain/terrain_io.hpp"
@@ -268,7 +269,20 @@ std::string checkpoint_run_id(const std::string& path) {
   }
 }
 
+namespace {
+CheckpointData read_checkpoint_contents(const std::string& path);
+}
+
+// libhdf5 1.10.8 crashes on some damaged files instead of reporting them (SIGFPE in H5Dopen2 on a
+// chunk dimension of 0, found by fuzz.checkpoint), so the whole read runs once in a child first.
 CheckpointData read_checkpoint(const std::string& path) {
+  refuse_if_reading_crashes(path, [&] { read_checkpoint_contents(path); });
+  return read_checkpoint_contents(path);
+}
+
+namespace {
+
+CheckpointData read_checkpoint_contents(const std::string& path) {
   const H5File f = H5File::open_read(path);
   if (!f.exists("/terrain") && !f.exists("/particles")) {
     throw input_error(path + ": not a runnel checkpoint (no /terrain or /particles)");
@@ -357,5 +371,7 @@ CheckpointData read_checkpoint(const std::string& path) {
   }
   return d;
 }
+
+}  // namespace
 
 }  // namespace runnel
