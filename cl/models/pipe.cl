@@ -29,7 +29,7 @@
 
 // Water level of a neighbour inside the map, d + Δt·r + b (what pipe_flux compares levels with). b is
 // the terrain's float view (refreshed after every step), not the 64-bit fixed-point height: with
-// 32-bit loads alone the loop over cells is vectorised 16 wide on AVX-512, not 4.
+// 32-bit loads alone the loop over cells is vectorised 8 wide (ymm) on AVX-512, not 4.
 inline float pipe_level(const __global float* height_view, const __global float* depth,
                         const __global float* rain_weight, int m, float dt, float rain_on) {
   return height_view[m] + depth[m] + dt * (PIPE_RAIN * rain_on * RAIN_WEIGHT(rain_weight, m));
