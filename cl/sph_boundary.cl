@@ -129,19 +129,20 @@ inline void find_tile_candidates(TileItem t, Grid grid, const __global uint* cel
 }
 
 // A tile's candidate sequence is every image of every neighbourhood candidate, row by row. This
-// visits the work-item's share of chunk [base, base + SPH_CHUNK): `slot_` its place in the chunk,
-// `j_` the sorted index of the particle, `image_` the image it is seen as. Each work-item copies
-// whole rows (work-item q the rows q, q + tile size, ...): a row is one contiguous run, and no
-// work-item walks rows it does not copy. Usage: TILE_SLOTS_BEGIN(nb, images, base, item) {...}
-// TILE_SLOTS_END, `item` the work-item's TileItem.
-#define TILE_SLOTS_BEGIN(nb, im, base, item)                                                       \
+// visits the work-item's share of chunk [base, base + SPH_CHUNK) one row at a time: `image_` the
+// image the row's candidates are seen as, the row's slots of the chunk [first_slot_, end_slot_)
+// (empty for a row outside the chunk), and slot k holding the particle of sorted index k + j0_.
+// Each work-item copies whole rows (work-item q the rows q, q + tile size, ...): a row is one
+// contiguous run, and no work-item walks rows it does not copy. The copy of a row of image 0 (the
+// candidates themselves: every row of a tile away from the tank walls) is then a loop between two
+// contiguous ranges, which the vectoriser widens.
+// Usage: TILE_ROWS_BEGIN(nb, images, base, item) {...} TILE_ROWS_END, `item` the work-item's TileItem.
+#define TILE_ROWS_BEGIN(nb, im, base, item)                                                        \
   for (uint q_ = (item).lane; q_ < (im).count * (nb).rows; q_ += (item).size) {                    \
     const uint image_ = (im).image[q_ / (nb).rows], r_ = q_ % (nb).rows;                         \
     const uint row_start_ = (q_ / (nb).rows) * (nb).total + (nb).start[r_];                      \
-    const uint lo_ = max(row_start_, (base)), hi_ = min(row_start_ + (nb).count[r_], (base) + SPH_CHUNK); \
-    for (uint s_ = lo_; s_ < hi_; ++s_) {                                                        \
-      const uint slot_ = s_ - (base);                                                            \
-      const uint j_ = (nb).begin[r_] + (s_ - row_start_);
-#define TILE_SLOTS_END \
-  }                    \
-  }
+    const uint lo_ = max(row_start_, (base));                                                    \
+    const uint hi_ = max(lo_, min(row_start_ + (nb).count[r_], (base) + SPH_CHUNK));            \
+    const uint first_slot_ = lo_ - (base), end_slot_ = hi_ - (base);                             \
+    const uint j0_ = (base) + (nb).begin[r_] - row_start_;
+#define TILE_ROWS_END }

@@ -40,19 +40,31 @@ inline void add_pair_continuity(float* drho, float* ghost_drho, float* shepard, 
 
 // One work-group per tile (spatial_hash.cl), as in sph_forces.cl: the tile's particles share their
 // cell's candidates and their images across the tank walls within reach.
+// The fields the candidates are copied from are `restrict`: only read here, and so the compiler
+// may widen the copy without checking them against the local arrays.
 __kernel void sph_continuity(
-    const __global float* x, const __global float* y, const __global float* z, const __global float* mid_x,
-    const __global float* mid_y, const __global float* mid_z, const __global float* drift_vx,
-    const __global float* drift_vy, const __global float* drift_vz, const __global float* volume,
-    const __global float* rho, const float dt, const float ox, const float oy, const float oz, const float inv_cell,
+    const __global float* x, const __global float* y, const __global float* z, const __global float* restrict mid_x,
+    const __global float* restrict mid_y, const __global float* restrict mid_z, const __global float* restrict drift_vx,
+    const __global float* restrict drift_vy, const __global float* restrict drift_vz, const __global float* restrict volume,
+    const __global float* restrict rho, const float dt, const float ox, const float oy, const float oz, const float inv_cell,
     const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
     const __global uint* tile_first, const uint tile_offset, const __global float* terrain_height,
     const __global float* terrain_normal,
     const int tnx, const int tny, const float tcell, const float domain_x, const float domain_z,
     __global float* drho, __global float* rho_new) {
-  __local float cx[SPH_CHUNK], cy[SPH_CHUNK], cz[SPH_CHUNK];  // midpoints
-  __local float cvx[SPH_CHUNK], cvy[SPH_CHUNK], cvz[SPH_CHUNK], crho[SPH_CHUNK], cvol[SPH_CHUNK];
-  __local float cghost[SPH_CHUNK];
+  // The candidates' fields in one local array: the compiler then knows they do not overlap, and
+  // the copy of a row vectorises (with separate arrays it needed run-time overlap checks, which
+  // failed on PoCL and sent every row through the scalar loop).
+  __local float cand[9][SPH_CHUNK];
+  __local float* const cx = cand[0];  // midpoints
+  __local float* const cy = cand[1];
+  __local float* const cz = cand[2];
+  __local float* const cvx = cand[3];
+  __local float* const cvy = cand[4];
+  __local float* const cvz = cand[5];
+  __local float* const crho = cand[6];
+  __local float* const cvol = cand[7];
+  __local float* const cghost = cand[8];
   __local uint cj[SPH_CHUNK];
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const TileItem t = tile_item(tile_first, tile_offset, x, y, z, grid, cell_end);  // x(n): the sort's cells
@@ -67,20 +79,38 @@ __kernel void sph_continuity(
   float drho_i = 0.0f, drho_ghosts = 0.0f, shepard = 0.0f;  // shepard: Σ_{j≠i} V_j W_ij, ghosts included
   const uint total = nb.total * images.count;
   for (uint base = 0; base < total; base += SPH_CHUNK) {
-    TILE_SLOTS_BEGIN(nb, images, base, t)
-    const float3 mid = image_position(image_, (float3)(mid_x[j_], mid_y[j_], mid_z[j_]), domain_x, domain_z);
-    const float3 v = image_velocity(image_, (float3)(drift_vx[j_], drift_vy[j_], drift_vz[j_]));
-    cx[slot_] = mid.x;
-    cy[slot_] = mid.y;
-    cz[slot_] = mid.z;
-    cvx[slot_] = v.x;
-    cvy[slot_] = v.y;
-    cvz[slot_] = v.z;
-    crho[slot_] = rho[j_];
-    cvol[slot_] = volume[j_];
-    cghost[slot_] = image_ == 0 ? 0.0f : 1.0f;
-    cj[slot_] = image_ == 0 ? j_ : EMPTY_CELL;
-    TILE_SLOTS_END
+    TILE_ROWS_BEGIN(nb, images, base, t)
+    if (image_ == 0) {
+      for (uint k = first_slot_; k < end_slot_; ++k) {
+        cx[k] = mid_x[k + j0_];
+        cy[k] = mid_y[k + j0_];
+        cz[k] = mid_z[k + j0_];
+        cvx[k] = drift_vx[k + j0_];
+        cvy[k] = drift_vy[k + j0_];
+        cvz[k] = drift_vz[k + j0_];
+        crho[k] = rho[k + j0_];
+        cvol[k] = volume[k + j0_];
+        cghost[k] = 0.0f;
+        cj[k] = k + j0_;
+      }
+    } else {
+      for (uint k = first_slot_; k < end_slot_; ++k) {
+        const uint j = k + j0_;
+        const float3 mid = image_position(image_, (float3)(mid_x[j], mid_y[j], mid_z[j]), domain_x, domain_z);
+        const float3 v = image_velocity(image_, (float3)(drift_vx[j], drift_vy[j], drift_vz[j]));
+        cx[k] = mid.x;
+        cy[k] = mid.y;
+        cz[k] = mid.z;
+        cvx[k] = v.x;
+        cvy[k] = v.y;
+        cvz[k] = v.z;
+        crho[k] = rho[j];
+        cvol[k] = volume[j];
+        cghost[k] = 1.0f;
+        cj[k] = EMPTY_CELL;
+      }
+    }
+    TILE_ROWS_END
     const uint length = chunk_length(total, base);
     for (uint k = chunk_candidates(total, base) + t.lane; k < length; k += t.size) {  // padding
       cx[k] = cy[k] = cz[k] = FAR_AWAY;

@@ -102,17 +102,32 @@ inline void add_pair_force(ForceSums* s, float dx, float dy, float dz, float dvx
 
 // One work-group per tile (spatial_hash.cl): the tile's particles share their cell's candidates,
 // and the candidates' images across the tank walls within reach.
+// The fields the candidates are copied from are `restrict`: only read here, and so the compiler
+// may widen the copy without checking them against the local arrays.
 __kernel void sph_forces(
-    const __global float* x, const __global float* y, const __global float* z, const __global float* vx,
-    const __global float* vy, const __global float* vz, const __global float* rho, const float ox, const float oy,
+    const __global float* restrict x, const __global float* restrict y, const __global float* restrict z, const __global float* restrict vx,
+    const __global float* restrict vy, const __global float* restrict vz, const __global float* restrict rho, const float ox, const float oy,
     const float oz, const float inv_cell, const int gx, const int gy, const int gz, const __global uint* cell_start,
     const __global uint* cell_end, const __global uint* tile_first, const uint tile_offset,
-    const __global float* pressure, const __global float* p_over_rho2, const __global float* volume,
+    const __global float* restrict pressure, const __global float* restrict p_over_rho2, const __global float* restrict volume,
     const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
     const float tcell, const float domain_x, const float domain_z, __global float* ax, __global float* ay,
     __global float* az) {
-  __local float cx[SPH_CHUNK], cy[SPH_CHUNK], cz[SPH_CHUNK], cvx[SPH_CHUNK], cvy[SPH_CHUNK], cvz[SPH_CHUNK];
-  __local float crho[SPH_CHUNK], cpres[SPH_CHUNK], cterm[SPH_CHUNK], cvol[SPH_CHUNK], cghost[SPH_CHUNK];
+  // The candidates' fields in one local array: the compiler then knows they do not overlap, and
+  // the copy of a row vectorises (with separate arrays it needed run-time overlap checks, which
+  // failed on PoCL and sent every row through the scalar loop).
+  __local float cand[11][SPH_CHUNK];
+  __local float* const cx = cand[0];
+  __local float* const cy = cand[1];
+  __local float* const cz = cand[2];
+  __local float* const cvx = cand[3];
+  __local float* const cvy = cand[4];
+  __local float* const cvz = cand[5];
+  __local float* const crho = cand[6];
+  __local float* const cpres = cand[7];
+  __local float* const cterm = cand[8];
+  __local float* const cvol = cand[9];
+  __local float* const cghost = cand[10];
   __local uint cj[SPH_CHUNK];
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const TileItem t = tile_item(tile_first, tile_offset, x, y, z, grid, cell_end);
@@ -129,22 +144,42 @@ __kernel void sph_forces(
   ForceSums sum = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
   const uint total = nb.total * images.count;
   for (uint base = 0; base < total; base += SPH_CHUNK) {
-    TILE_SLOTS_BEGIN(nb, images, base, t)
-    const float3 p = image_position(image_, (float3)(x[j_], y[j_], z[j_]), domain_x, domain_z);
-    const float3 v = image_velocity(image_, (float3)(vx[j_], vy[j_], vz[j_]));
-    cx[slot_] = p.x;
-    cy[slot_] = p.y;
-    cz[slot_] = p.z;
-    cvx[slot_] = v.x;
-    cvy[slot_] = v.y;
-    cvz[slot_] = v.z;
-    crho[slot_] = rho[j_];
-    cpres[slot_] = pressure[j_];
-    cterm[slot_] = p_over_rho2[j_];
-    cvol[slot_] = volume[j_];
-    cghost[slot_] = image_ == 0 ? 0.0f : 1.0f;
-    cj[slot_] = image_ == 0 ? j_ : EMPTY_CELL;
-    TILE_SLOTS_END
+    TILE_ROWS_BEGIN(nb, images, base, t)
+    if (image_ == 0) {
+      for (uint k = first_slot_; k < end_slot_; ++k) {
+        cx[k] = x[k + j0_];
+        cy[k] = y[k + j0_];
+        cz[k] = z[k + j0_];
+        cvx[k] = vx[k + j0_];
+        cvy[k] = vy[k + j0_];
+        cvz[k] = vz[k + j0_];
+        crho[k] = rho[k + j0_];
+        cpres[k] = pressure[k + j0_];
+        cterm[k] = p_over_rho2[k + j0_];
+        cvol[k] = volume[k + j0_];
+        cghost[k] = 0.0f;
+        cj[k] = k + j0_;
+      }
+    } else {
+      for (uint k = first_slot_; k < end_slot_; ++k) {
+        const uint j = k + j0_;
+        const float3 p = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+        const float3 v = image_velocity(image_, (float3)(vx[j], vy[j], vz[j]));
+        cx[k] = p.x;
+        cy[k] = p.y;
+        cz[k] = p.z;
+        cvx[k] = v.x;
+        cvy[k] = v.y;
+        cvz[k] = v.z;
+        crho[k] = rho[j];
+        cpres[k] = pressure[j];
+        cterm[k] = p_over_rho2[j];
+        cvol[k] = volume[j];
+        cghost[k] = 1.0f;
+        cj[k] = EMPTY_CELL;
+      }
+    }
+    TILE_ROWS_END
     const uint length = chunk_length(total, base);
     for (uint k = chunk_candidates(total, base) + t.lane; k < length; k += t.size) {  // padding
       cx[k] = cy[k] = cz[k] = FAR_AWAY;
