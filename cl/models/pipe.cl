@@ -8,10 +8,10 @@
 //                   f_X /= 1 + Δt g n² v / d1^(4/3), v = f_X/(l·d1) (d1 at least 1 mm); scale all four by
 //                   K = min(1, d1·l²/(Σf·Δt))   (outflow edges: outside b = d = 0; closed edges: f = 0)
 //   pipe_water:     d2 = d1 + Δt(Σf_in − Σf_out)/l²;  v from the mean flux through the cell;
-//                   C = min(K_c · max(sin α, sin α_min) · |v|, d2)
+//                   C = min(K_c · max(sin α, sin α_min) · |v|, d2); then evaporation d = d2·e^(−K_e·Δt)
 //   pipe_erode:     below capacity dissolve (1 − e^(−K_s·Δt))(C − s),
 //                   above deposit (1 − e^(−K_d·Δt))(s − C) (K_s, K_d rates per second: the exact
-//                   relaxation towards C over the step, whatever Δt); then evaporation d *= e^(−K_e·Δt)
+//                   relaxation towards C over the step, whatever Δt)
 //                   (the three factors of the step come from the host, in double precision)
 //   pipe_send, pipe_receive, pipe_edge_outflow: sediment leaves with the water that leaves,
 //                   s·f_X·Δt/(d1·l²) to each neighbour (upwind: each cell sends, then gathers what its
@@ -120,10 +120,13 @@ inline float pipe_capacity(const __global float* height_view, int nx, int ny, in
   return fmin(PIPE_CAPACITY * fmax(sin_slope, PIPE_MIN_TILT) * speed, depth);
 }
 
+// The speed the next step's CFL limit counts (pipe_stats) is written here too, where the velocity
+// and the fluxes are in registers: pipe_stats then reads two planes instead of eight.
 __kernel void pipe_water(__global float* depth, const __global float* flux, __global float* velocity,
                          __global float* previous_depth, const __global float* height_view, __global float* capacity,
                          const int nx, const int ny, const float cell, const float dt,
-                         const __global float* rain_weight, const float rain_on) {
+                         const __global float* rain_weight, const float rain_on, const float evaporation_factor,
+                         __global float* cfl_speed2) {
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
@@ -135,7 +138,8 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
   const float d1 = depth[k] + dt * (PIPE_RAIN * rain_on * RAIN_WEIGHT(rain_weight, k));  // the same d1 the flux pass used
   const float d2 = fmax(0.0f, d1 + dt * (in_total - out_total) / (cell * cell));
   previous_depth[k] = d1;
-  depth[k] = d2;
+  const float d_evaporated = d2 * evaporation_factor;
+  depth[k] = d_evaporated;
   // Mean flux through the cell in x (from the left in, out to the right, ...) over the mean depth.
   // x and z are written differently on purpose (see pipe_erode): isomorphic pairs get packed by the
   // SLP vectoriser, and then the loop over cells is not vectorised.
@@ -147,12 +151,16 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
   velocity[k] = vx;
   velocity[n + k] = vz;
   capacity[k] = pipe_capacity(height_view, nx, ny, i, j, k, cell, vx, vz, d2);
+  // The CFL limit counts the speed of water at least PIPE_CFL_DEPTH deep whose outflow did not
+  // drain it (a cell that pipe_flux scaled down to empty moves its last film at any speed).
+  const int limited = out_total * dt >= 0.999f * d1 * cell * cell;
+  const float v2 = vx * vx + vz * vz;
+  cfl_speed2[k] = d_evaporated >= PIPE_CFL_DEPTH && !limited ? v2 : 0.0f * v2;  // NaN stays NaN
 }
 
-__kernel void pipe_erode(__global long* height, __global long* sediment, __global float* depth,
+__kernel void pipe_erode(__global long* height, __global long* sediment,
                          const __global float* capacity_of_cell, const int nx, const int ny, const float quantum,
-                         const float dissolved_fraction,
-                         const float deposited_fraction, const float evaporation_factor, const ulong key,
+                         const float dissolved_fraction, const float deposited_fraction, const ulong key,
                          const __global float* rock_erodibility, const __global float* sediment_erodibility,
                          const __global long* ground_sediment, __global int* sendable) {
   const int k = get_global_id(0), n = nx * ny;
@@ -173,7 +181,6 @@ __kernel void pipe_erode(__global long* height, __global long* sediment, __globa
   height[k] -= exchanged;
   sediment[k] = load + exchanged;
   sendable[k] = (int)min(load + exchanged, PIPE_SENDABLE);
-  depth[k] *= evaporation_factor;
 }
 
 // pipe_send: the sediment each cell sends through its four pipes: their outflows' shares of the
@@ -262,9 +269,8 @@ __kernel void pipe_advect(const __global long* sediment, __global long* sediment
 // some of its water): a limited cell's 'velocity' is its whole volume leaving in one step, about
 // l/Δt whatever Δt, so counting it shrinks the step by the CFL factor every step; the limit itself
 // keeps such cells non-negative, and the wave speed sqrt(g·d) still bounds the step.
-__kernel void pipe_stats(const __global float* depth, const __global float* velocity, const __global float* flux,
-                         const __global float* previous_depth, const int n, const int chunk, const float cell,
-                         const float dt, __global float* stats) {
+__kernel void pipe_stats(const __global float* depth, const __global float* cfl_speed2, const int n,
+                         const int chunk, __global float* stats) {
   const int b = get_global_id(0);
   // Maxima of the bits: a non-negative float orders as its bits do, and NaN's bits lie above
   // infinity's, so a NaN reaches the host (which stops the run) without a test per cell; the sign
@@ -272,13 +278,8 @@ __kernel void pipe_stats(const __global float* depth, const __global float* velo
   // vectoriser knows; fmax with NaN selects is not.
   uint dmax = 0u, vmax2 = 0u;
   for (int k = b * chunk; k < min(n, (b + 1) * chunk); ++k) {
-    const float vx = velocity[k], vz = velocity[n + k];
-    const float out = (flux[0 * n + k] + flux[1 * n + k] + flux[2 * n + k] + flux[3 * n + k]) * dt;
-    const int limited = out >= 0.999f * previous_depth[k] * cell * cell;
-    const float v2 = vx * vx + vz * vz;
-    const float counted = depth[k] >= PIPE_CFL_DEPTH && !limited ? v2 : 0.0f * v2;  // NaN stays NaN
     dmax = max(dmax, as_uint(depth[k]) & 0x7fffffffu);
-    vmax2 = max(vmax2, as_uint(counted) & 0x7fffffffu);
+    vmax2 = max(vmax2, as_uint(cfl_speed2[k]) & 0x7fffffffu);
   }
   stats[2 * b] = as_float(dmax);
   stats[2 * b + 1] = sqrt(as_float(vmax2));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/models/fields.hpp"
 #include "runnel/models/pipe_model.hpp"
@@ -205,53 +206,130 @@ namespace runnel {
 namespace {
 
 // pipe_stats against a host computation of what the time step needs: the largest depth and the
-// largest speed where the water counts (deep enough, flux limit not acting), per block; a NaN
-// anywhere in the depth or in a velocity (counted or not) reaches the host; a −0 is not a maximum.
+// largest counted speed (pipe_water's cfl_speed2) per block; a NaN in either reaches the host; a −0
+// is not a maximum.
 TEST(PipeModel, StatsKernelFindsTheMaximaAndLetsANaNThrough) {
   const int n = 300, blocks = 3, chunk = 100;
-  const float cell = 2.0f, dt = 0.01f;
   cl::Program& program = compute().program({"cl/common.cl", "cl/models/pipe.cl"},
                                            PipeSettings::from(Parameters()).build_options());
   Kernel stats(compute(), program, "pipe_stats");
-  std::vector<float> depth(n, 0.05f), velocity(2 * n, 0.0f), flux(4 * n, 0.0f), previous(n, 0.05f);
+  std::vector<float> depth(n), speed2(n);
   for (int k = 0; k < n; ++k) {
     depth[k] = 0.02f + 0.001f * static_cast<float>(k % 37);
-    velocity[k] = 0.1f * static_cast<float>(k % 11);
-    velocity[n + k] = -0.05f * static_cast<float>(k % 7);
+    speed2[k] = 0.01f * static_cast<float>(k % 11);
   }
   depth[5] = -0.0f;
-  depth[150] = 0.005f;  // too thin to count: its large speed must not
-  velocity[150] = 50.0f;
-  flux[0 * n + 160] = 1e3f;  // the limit acts here: its speed must not count either
-  velocity[160] = 40.0f;
-  depth[250] = std::nanf("");        // block 2's depth
-  velocity[n + 60] = std::nanf("");  // block 0's velocity, in a counted cell
+  depth[250] = std::nanf("");  // block 2's depth
+  speed2[60] = std::nanf("");  // block 0's speed
+  speed2[130] = -0.0f;
   const auto upload = [&](const std::vector<float>& v) {
     return cl::Buffer(compute().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
                       v.size() * sizeof(float), const_cast<float*>(v.data()));
   };
-  cl::Buffer d = upload(depth), v = upload(velocity), f = upload(flux), p = upload(previous),
+  cl::Buffer d = upload(depth), v = upload(speed2),
              out(compute().context(), CL_MEM_READ_WRITE, 2 * blocks * sizeof(float));
-  stats.set("depth", d).set("velocity", v).set("flux", f).set("previous_depth", p);
-  stats.set("n", n).set("chunk", chunk).set("cell", cell).set("dt", dt).set("stats", out);
+  stats.set("depth", d).set("cfl_speed2", v).set("n", n).set("chunk", chunk).set("stats", out);
   stats.launch(blocks);
   std::vector<float> got(2 * blocks);
   compute().queue().enqueueReadBuffer(out, CL_TRUE, 0, got.size() * sizeof(float), got.data());
-  EXPECT_TRUE(std::isnan(got[1])) << "block 0: the NaN velocity";
+  EXPECT_TRUE(std::isnan(got[1])) << "block 0: the NaN speed";
   EXPECT_TRUE(std::isnan(got[4])) << "block 2: the NaN depth";
   // Block 1 (cells 100..199) on the host.
-  float dmax = 0, vmax = 0;
+  float dmax = 0, v2max = 0;
   for (int k = 100; k < 200; ++k) {
     dmax = std::max(dmax, depth[k]);
-    const float out_flux = (flux[k] + flux[n + k] + flux[2 * n + k] + flux[3 * n + k]) * dt;
-    const bool counted = depth[k] >= 0.01f && out_flux < 0.999f * previous[k] * cell * cell;
-    if (counted) vmax = std::max(vmax, std::hypot(velocity[k], velocity[n + k]));
+    v2max = std::max(v2max, speed2[k]);
   }
   EXPECT_EQ(got[2], dmax);
-  EXPECT_FLOAT_EQ(got[3], vmax);
-  EXPECT_LT(got[3], 40.0f) << "neither the thin cell nor the limited one counts";
+  EXPECT_FLOAT_EQ(got[3], std::sqrt(v2max));
   EXPECT_FALSE(std::signbit(got[0])) << "a −0 depth is not the maximum of block 0";
   EXPECT_GT(got[0], 0.02f);
+}
+
+// pipe_water leaves the speed² the next step's CFL limit counts: only where the water left after
+// evaporation is at least pipe.cfl_depth deep and the outflow did not drain the cell (the flux
+// limit K acted); a NaN passes through. Checked against the rule applied on the host to the depth,
+// velocity and d1 the kernel wrote.
+TEST(PipeModel, WaterPassCountsTheSpeedOfDeepUndrainedCellsOnly) {
+  const int nx = 8, ny = 6, n = nx * ny;
+  const float cell = 2.0f, dt = 0.01f, evaporation = 0.9f;
+  const PipeSettings settings = PipeSettings::from(Parameters());
+  cl::Program& program =
+      compute().program({"cl/common.cl", "cl/models/pipe.cl"}, settings.build_options());
+  Kernel water(compute(), program, "pipe_water");
+  std::vector<float> depth(n), flux(4 * n), height(n, 0.0f), rain(n, 1.0f);
+  for (int k = 0; k < n; ++k) {
+    depth[k] =
+        0.005f + 0.004f * static_cast<float>(k % 9);  // some below cfl_depth after evaporation
+    for (int d = 0; d < 4; ++d) flux[d * n + k] = 0.02f * static_cast<float>((k * 7 + d * 3) % 5);
+  }
+  // Cell 20's outflow takes all its water (the limit K acted) while cell 19 pours into it: deep
+  // after the step, but its speed is its volume leaving in one step and must not count.
+  depth[20] = 0.02f;
+  for (int d = 0; d < 4; ++d) flux[d * n + 20] = d == 1 ? depth[20] * cell * cell / dt : 0.0f;
+  flux[1 * n + 19] = 10.0f;
+  flux[2 * n + 33] = std::nanf("");  // cell 33 (and the cell it flows into) carry a NaN
+  const auto upload = [&](const std::vector<float>& v) {
+    return cl::Buffer(compute().context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                      v.size() * sizeof(float), const_cast<float*>(v.data()));
+  };
+  cl::Buffer d = upload(depth), f = upload(flux), h = upload(height), r = upload(rain);
+  cl::Buffer velocity(compute().context(), CL_MEM_READ_WRITE, 2 * n * sizeof(float)),
+      previous(compute().context(), CL_MEM_READ_WRITE, n * sizeof(float)),
+      capacity(compute().context(), CL_MEM_READ_WRITE, n * sizeof(float)),
+      speed2(compute().context(), CL_MEM_READ_WRITE, n * sizeof(float));
+  water.set("depth", d).set("flux", f).set("velocity", velocity).set("previous_depth", previous);
+  water.set("height_view", h)
+      .set("capacity", capacity)
+      .set("nx", nx)
+      .set("ny", ny)
+      .set("cell", cell);
+  water.set("dt", dt)
+      .set("rain_weight", r)
+      .set("rain_on", 0.0f)
+      .set("evaporation_factor", evaporation);
+  water.set("cfl_speed2", speed2).launch(round_up_work(n));
+  const auto download = [&](cl::Buffer& b, std::size_t count) {
+    std::vector<float> v(count);
+    compute().queue().enqueueReadBuffer(b, CL_TRUE, 0, count * sizeof(float), v.data());
+    return v;
+  };
+  const auto left = download(d, n), v = download(velocity, 2 * n), d1 = download(previous, n),
+             got = download(speed2, n);
+  int counted = 0, thin = 0;
+  for (int k = 0; k < n; ++k) {
+    const float out = flux[k] + flux[n + k] + flux[2 * n + k] + flux[3 * n + k];
+    if (std::isnan(out) || std::isnan(v[k]) || std::isnan(v[n + k])) {
+      EXPECT_TRUE(std::isnan(got[k])) << "cell " << k;
+      continue;
+    }
+    // The depth left is d2 = d1 + Δt(Σin − Σout)/l², evaporated.
+    const int i = k % nx, j = k / nx;
+    const float in = (i > 0 ? flux[n + k - 1] : 0.0f) + (i < nx - 1 ? flux[k + 1] : 0.0f) +
+                     (j > 0 ? flux[3 * n + k - nx] : 0.0f) +
+                     (j < ny - 1 ? flux[2 * n + k + nx] : 0.0f);
+    if (!std::isnan(in)) {
+      EXPECT_FLOAT_EQ(left[k],
+                      std::max(0.0f, d1[k] + dt * (in - out) / (cell * cell)) * evaporation)
+          << "cell " << k;
+    }
+    const bool drained = out * dt >= 0.999f * d1[k] * cell * cell;
+    const bool deep = left[k] >= static_cast<float>(settings.cfl_depth);
+    const float v2 = v[k] * v[k] + v[n + k] * v[n + k];
+    if (deep && !drained) {
+      EXPECT_FLOAT_EQ(got[k], v2) << "cell " << k;
+      ++counted;
+    } else {
+      EXPECT_EQ(got[k], 0.0f) << "cell " << k;
+      thin += deep ? 0 : 1;
+    }
+  }
+  EXPECT_GT(counted, 5) << "the case has counted cells";
+  EXPECT_GT(thin, 5) << "and thin ones";
+  const float out20 = flux[20] + flux[n + 20] + flux[2 * n + 20] + flux[3 * n + 20];
+  EXPECT_GE(out20 * dt, 0.999f * d1[20] * cell * cell) << "cell 20 is drained";
+  EXPECT_GE(left[20], static_cast<float>(settings.cfl_depth)) << "and deep";
+  EXPECT_EQ(got[20], 0.0f);
 }
 
 }  // namespace

@@ -89,6 +89,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   previous_depth_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
   compute.queue().enqueueFillBuffer(previous_depth_, 0.0f, 0, n * sizeof(float));
   capacity_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
+  cfl_speed2_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(float));
   sediment_next_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_long));
   sendable_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_int));
   if (!settings_.semi_lagrangian())
@@ -134,15 +135,17 @@ double PipeModel::take_step() {
   water_kernel_.set("rain_on", rain_on());
   water_kernel_.set("depth", depth).set("flux", flux).set("velocity", velocity);
   water_kernel_.set("previous_depth", previous_depth_).set("capacity", capacity_);
+  water_kernel_.set("cfl_speed2", cfl_speed2_);
+  water_kernel_.set("evaporation_factor",
+                    static_cast<float>(std::exp(-settings_.evaporation * dt_)));
   water_kernel_.set("height_view", terrain.height());
   erode_kernel_.set("height", terrain.height_fixed()).set("capacity_of_cell", capacity_);
-  erode_kernel_.set("sediment", sediment).set("depth", depth);
+  erode_kernel_.set("sediment", sediment);
   erode_kernel_.set("key", static_cast<cl_ulong>(rng_key(seed, kPipeErodeStream, step)));
   // The exact relaxation over the step, whatever Δt (models.md "pipe").
   erode_kernel_
       .set("dissolved_fraction", static_cast<float>(-std::expm1(-settings_.dissolve * dt_)))
-      .set("deposited_fraction", static_cast<float>(-std::expm1(-settings_.deposit * dt_)))
-      .set("evaporation_factor", static_cast<float>(std::exp(-settings_.evaporation * dt_)));
+      .set("deposited_fraction", static_cast<float>(-std::expm1(-settings_.deposit * dt_)));
   for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) k->launch(work);
   transport(sediment, flux, velocity, dt);
   std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment
@@ -185,15 +188,11 @@ void PipeModel::transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& ve
 void PipeModel::choose_next_dt() {
   const int n = static_cast<int>(state_.vertices());
   const int chunk = (n + kStatBlocks - 1) / kStatBlocks;
-  // The flux and d1 of the step just taken (dt_ is still its length).
+  // The depth and the speeds the CFL limit counts, as pipe_water left them in the step just taken.
   stats_kernel_.set("depth", state_.buffer(depth_))
-      .set("velocity", state_.buffer(velocity_))
-      .set("flux", state_.buffer(flux_))
-      .set("previous_depth", previous_depth_)
+      .set("cfl_speed2", cfl_speed2_)
       .set("n", n)
       .set("chunk", chunk)
-      .set("cell", state_.terrain().cell())
-      .set("dt", static_cast<float>(dt_))
       .set("stats", stats_)
       .launch(kStatBlocks);
   std::vector<float> stats(2 * kStatBlocks);

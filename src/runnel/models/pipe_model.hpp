@@ -70,7 +70,8 @@ class PipeModel final : public GridModel {
   double dt_ = 0;
   int depth_, flux_, velocity_, sediment_;  // GridState handles
   void transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& velocity, float dt);
-  cl::Buffer previous_depth_, capacity_, sediment_next_, sent_, stats_, outflow_, lost_;
+  cl::Buffer previous_depth_, capacity_, cfl_speed2_, sediment_next_, sent_, stats_, outflow_,
+      lost_;
   cl::Buffer sendable_;  // pipe_erode's 32-bit copy of the sediment for pipe_send (pipe.cl)
   Kernel flux_kernel_, water_kernel_, erode_kernel_, send_kernel_, receive_kernel_,
       edge_outflow_kernel_, advect_kernel_, stats_kernel_;
