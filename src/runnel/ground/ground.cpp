@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "runnel/compute/buffer_bytes.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/ground/ground_settings.hpp"
@@ -198,6 +199,12 @@ MaterialTally Ground::tally() {
 
 JsonObject Ground::report() {
   return ground_summary(strata_, terrain_.download_fixed(), sediment(), terrain_.volume_quantum());
+}
+
+double Ground::device_bytes() const {
+  return buffer_bytes({&contacts_, &previous_, &mask_, &material_erodibility_, &material_talus_,
+                       &exposed_, &bed_.erodibility, &bed_.rock_erodibility,
+                       &bed_.sediment_erodibility, &bed_.sediment, &bed_.talus});
 }
 
 std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& params,

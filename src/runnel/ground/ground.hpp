@@ -40,6 +40,8 @@ class Ground {
   std::vector<float> rock_erodibility();
   // The per-vertex fields the models' kernels read, refreshed by update().
   const BedFields& bed() const { return bed_; }
+  // What the stack holds on the device (buffer_bytes).
+  double device_bytes() const;
 
   const Strata& strata() const { return strata_; }
   double quantum() const { return terrain_.quantum(); }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runnel/compute/buffer_bytes.hpp"
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
@@ -103,6 +104,10 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
   step_kernel_.set("erodibility", bed() ? bed()->erodibility : placeholder_);
   spawn_kernel_.set("rain_weight", rain_weight());
+}
+
+double DropletModel::scratch_bytes() const {
+  return buffer_bytes({&counters_, &droplet_state_, &droplet_load_, &droplet_order_});
 }
 
 long long DropletModel::batch_size() const {

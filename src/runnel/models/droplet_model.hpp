@@ -60,6 +60,7 @@ class DropletModel final : public GridModel {
   void paint(double dt) override;
   std::vector<std::pair<std::string, std::int64_t>> counters() override;
   void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
+  double scratch_bytes() const override;
 
  private:
   std::array<cl_long, 3> read_counters();

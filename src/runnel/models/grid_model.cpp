@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "runnel/compute/buffer_bytes.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
 #include "runnel/core/version.hpp"
@@ -24,6 +25,11 @@ GridModel::GridModel(ComputeContext& compute, const Parameters& params, const He
   rain_weight_ = rain_weight_buffer(compute, params, weights);
   for (float w : weights) rained_vertices_ += w;
   if (runnel::has_rain_mask(params)) rain_mask_ = RainMask(weights);
+}
+
+double GridModel::device_bytes() const {
+  return state_.device_bytes() + buffer_bytes({&placeholder_, &rain_weight_}) +
+         (ground_ ? ground_->device_bytes() : 0.0) + scratch_bytes();
 }
 
 double GridModel::step() {

@@ -35,7 +35,9 @@ class GridModel : public Model {
   std::string status() override;
   double step_work() override { return static_cast<double>(state_.vertices()); }
   const char* work_unit() const override { return "cell_steps"; }
-  double device_bytes() const override { return state_.device_bytes(); }
+  // The state's fields and the terrain, the ground's layers, the rain weights and the model's own
+  // buffers (scratch_bytes()).
+  double device_bytes() const override;
 
   GridState& state() { return state_; }
   Ground* ground() final { return ground_.get(); }
@@ -65,6 +67,8 @@ class GridModel : public Model {
   // Integer counters an exact restart needs, by name.
   virtual std::vector<std::pair<std::string, std::int64_t>> counters() { return {}; }
   virtual void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>&) {}
+  // Device bytes of the model's own buffers beyond the state's fields (buffer_bytes).
+  virtual double scratch_bytes() const { return 0.0; }
   // The length of the next step where the model chooses it (pipe), saved for an exact restart.
   virtual double next_dt() const { return 1.0; }
   virtual void restore_next_dt(double) {}

@@ -3,6 +3,7 @@
 
 #include "runnel/ground/ground_settings.hpp"
 
+#include "runnel/compute/buffer_bytes.hpp"
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/parameter_groups.hpp"
@@ -70,6 +71,10 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
   bind_detachment(dissolve_, bed(), placeholder_);
   dissolve_.set("rain_weight", rain_weight()).set("level", level_).set("sendable", sendable_);
   outflow_.set("level", level_).set("sendable", sendable_);
+}
+
+double OlsenModel::scratch_bytes() const {
+  return buffer_bytes({&out_water_, &out_sediment_, &level_, &sendable_});
 }
 
 double OlsenModel::take_step() {

@@ -35,6 +35,7 @@ class OlsenModel final : public GridModel {
 
  protected:
   double take_step() override;
+  double scratch_bytes() const override;
 
  private:
   OlsenSettings settings_;

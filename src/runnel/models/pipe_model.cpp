@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "runnel/compute/buffer_bytes.hpp"
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
@@ -113,6 +114,11 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   water_kernel_.set("rain_weight", rain_weight());
   bind_detachment(erode_kernel_, bed(), placeholder_);
   erode_kernel_.set("sendable", sendable_);
+}
+
+double PipeModel::scratch_bytes() const {
+  return buffer_bytes({&previous_depth_, &capacity_, &cfl_speed2_, &sediment_next_, &sent_, &stats_,
+                       &outflow_, &lost_, &sendable_});
 }
 
 double PipeModel::take_step() {

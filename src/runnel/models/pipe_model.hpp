@@ -63,6 +63,7 @@ class PipeModel final : public GridModel {
   void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
   double next_dt() const override { return dt_; }
   void restore_next_dt(double dt) override { dt_ = dt; }
+  double scratch_bytes() const override;
 
  private:
   void choose_next_dt();

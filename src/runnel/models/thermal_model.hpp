@@ -18,6 +18,7 @@ class ThermalModel final : public GridModel {
 
  protected:
   double take_step() override;
+  double scratch_bytes() const override { return relaxation_.device_bytes(); }
 
  private:
   ThermalSettings settings_;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runnel/compute/buffer_bytes.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/parameter_groups.hpp"
 #include "runnel/core/settings_table.hpp"
@@ -50,6 +51,10 @@ ThermalRelaxation::ThermalRelaxation(ComputeContext& compute, DeviceTerrain& ter
   bind_detachment(outflow_kernel_, bed, placeholder_);
   outflow_kernel_.set("talus_field", bed ? bed->talus : placeholder_);
   gather_kernel_ = Kernel(compute, program, "thermal_gather");
+}
+
+double ThermalRelaxation::device_bytes() const {
+  return buffer_bytes({&outflow_, &placeholder_});
 }
 
 void ThermalRelaxation::relax() {

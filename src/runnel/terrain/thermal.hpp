@@ -29,6 +29,8 @@ class ThermalRelaxation {
   ThermalRelaxation(ComputeContext& compute, DeviceTerrain& terrain,
                     const ThermalSettings& settings, const BedFields* bed = nullptr);
   void relax();
+  // What its buffers hold on the device (the four outflow planes).
+  double device_bytes() const;
 
  private:
   DeviceTerrain& terrain_;
