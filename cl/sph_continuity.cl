@@ -43,10 +43,11 @@ inline void add_pair_continuity(float* drho, float* ghost_drho, float* shepard, 
 // The fields the candidates are copied from are `restrict`: only read here, and so the compiler
 // may widen the copy without checking them against the local arrays.
 __kernel void sph_continuity(
-    const __global float* x, const __global float* y, const __global float* z, const __global float* restrict mid_x,
-    const __global float* restrict mid_y, const __global float* restrict mid_z, const __global float* restrict drift_vx,
-    const __global float* restrict drift_vy, const __global float* restrict drift_vz, const __global float* restrict volume,
-    const __global float* restrict rho, const float dt, const float ox, const float oy, const float oz, const float inv_cell,
+    const __global float* x, const __global float* y, const __global float* z,
+    const __global float* restrict mid_x, const __global float* restrict mid_y, const __global float* restrict mid_z,
+    const __global float* restrict drift_vx, const __global float* restrict drift_vy,
+    const __global float* restrict drift_vz, const __global float* restrict volume, const __global float* restrict rho,
+    const float dt, const float ox, const float oy, const float oz, const float inv_cell,
     const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
     const __global uint* tile_first, const uint tile_offset, const __global float* terrain_height,
     const __global float* terrain_normal,

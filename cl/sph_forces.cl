@@ -105,11 +105,12 @@ inline void add_pair_force(ForceSums* s, float dx, float dy, float dz, float dvx
 // The fields the candidates are copied from are `restrict`: only read here, and so the compiler
 // may widen the copy without checking them against the local arrays.
 __kernel void sph_forces(
-    const __global float* restrict x, const __global float* restrict y, const __global float* restrict z, const __global float* restrict vx,
-    const __global float* restrict vy, const __global float* restrict vz, const __global float* restrict rho, const float ox, const float oy,
-    const float oz, const float inv_cell, const int gx, const int gy, const int gz, const __global uint* cell_start,
-    const __global uint* cell_end, const __global uint* tile_first, const uint tile_offset,
-    const __global float* restrict pressure, const __global float* restrict p_over_rho2, const __global float* restrict volume,
+    const __global float* restrict x, const __global float* restrict y, const __global float* restrict z,
+    const __global float* restrict vx, const __global float* restrict vy, const __global float* restrict vz,
+    const __global float* restrict rho, const float ox, const float oy, const float oz, const float inv_cell,
+    const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
+    const __global uint* tile_first, const uint tile_offset, const __global float* restrict pressure,
+    const __global float* restrict p_over_rho2, const __global float* restrict volume,
     const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
     const float tcell, const float domain_x, const float domain_z, __global float* ax, __global float* ay,
     __global float* az) {
