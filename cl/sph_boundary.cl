@@ -135,7 +135,8 @@ inline void find_tile_candidates(TileItem t, Grid grid, const __global uint* cel
 // Each work-item copies whole rows (work-item q the rows q, q + tile size, ...): a row is one
 // contiguous run, and no work-item walks rows it does not copy. The copy of a row of image 0 (the
 // candidates themselves: every row of a tile away from the tank walls) is then a loop between two
-// contiguous ranges, which the vectoriser widens.
+// contiguous ranges, which the vectoriser widens; the passes keep it apart from the copy of the wall
+// images, since one loop with the image arithmetic in it (even with image 0) stays scalar.
 // Usage: TILE_ROWS_BEGIN(nb, images, base, item) {...} TILE_ROWS_END, `item` the work-item's TileItem.
 #define TILE_ROWS_BEGIN(nb, im, base, item)                                                        \
   for (uint q_ = (item).lane; q_ < (im).count * (nb).rows; q_ += (item).size) {                    \

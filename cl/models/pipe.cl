@@ -151,8 +151,11 @@ __kernel void pipe_water(__global float* depth, const __global float* flux, __gl
   velocity[k] = vx;
   velocity[n + k] = vz;
   capacity[k] = pipe_capacity(height_view, nx, ny, i, j, k, cell, vx, vz, d2);
-  // The CFL limit counts the speed of water at least PIPE_CFL_DEPTH deep whose outflow did not
-  // drain it (a cell that pipe_flux scaled down to empty moves its last film at any speed).
+  // The CFL limit counts a speed only where the water is at least PIPE_CFL_DEPTH deep and the flux
+  // limit K did not act (the cell kept some of its water): a limited cell's 'velocity' is its whole
+  // volume leaving in one step, about l/Δt whatever Δt, so counting it shrinks the step by the CFL
+  // factor every step; the limit itself keeps such cells non-negative, and the wave speed sqrt(g·d)
+  // still bounds the step.
   const int limited = out_total * dt >= 0.999f * d1 * cell * cell;
   const float v2 = vx * vx + vz * vz;
   cfl_speed2[k] = d_evaporated >= PIPE_CFL_DEPTH && !limited ? v2 : 0.0f * v2;  // NaN stays NaN
@@ -264,11 +267,8 @@ __kernel void pipe_advect(const __global long* sediment, __global long* sediment
   if (change != 0) atom_add(lost, change);
 }
 
-// Largest depth and speed per block of cells, for the adaptive time step. A speed counts only
-// where the water is at least PIPE_CFL_DEPTH deep and the flux limit K did not act (the cell kept
-// some of its water): a limited cell's 'velocity' is its whole volume leaving in one step, about
-// l/Δt whatever Δt, so counting it shrinks the step by the CFL factor every step; the limit itself
-// keeps such cells non-negative, and the wave speed sqrt(g·d) still bounds the step.
+// Largest depth and counted speed (pipe_water's cfl_speed2) per block of cells, for the adaptive
+// time step.
 __kernel void pipe_stats(const __global float* depth, const __global float* cfl_speed2, const int n,
                          const int chunk, __global float* stats) {
   const int b = get_global_id(0);

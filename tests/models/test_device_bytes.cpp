@@ -36,18 +36,26 @@ Parameters parameters(const std::string& model) {
   return p;
 }
 
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;  // GCC
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;  // clang (build-asan)
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
 class DeviceBytes : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(DeviceBytes, TheMemoryFigureCoversWhatTheModelTakes) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer's shadow memory and quarantine make resident memory no measure "
-                  "of buffers";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  GTEST_SKIP() << "AddressSanitizer's shadow memory and quarantine make resident memory no measure "
-                  "of buffers";
-#endif
-#endif
+  if (kAddressSanitizer) {
+    GTEST_SKIP()
+        << "AddressSanitizer's shadow memory and quarantine make resident memory no measure "
+           "of buffers";
+  }
   if (compute().info().type != "CPU")
     GTEST_SKIP() << "buffers are host memory only on a CPU device";
   const std::string name = GetParam();
