@@ -14,9 +14,10 @@
 //   stream power spent on the bed:   ω = τ |u_t|     (W/m²; ρ0 g q S in steady flow)
 //   detachment capacity:             D_c = K_ω (ω − ω_c)⁺ / ρ_b          (m/s of bed)
 //   transport capacity: k_T ω per unit width, as a concentration of the water,
-//                       c_T = min(k_T ρ0 g S / ρ_b, c_max)    (its steady-flow value: S = sin α
-//                       of the bed; a unit of water's capacity is set by the slope, which no
-//                       particle size or depth estimate can bias)
+//                       c_T = min(k_T ρ0 g S / ρ_b, c_max)    (its steady-flow value: S the sine
+//                       of the bed's slope along the flow, 0 where the water climbs; a unit of
+//                       water's capacity is set by the slope, which no particle size or depth
+//                       estimate can bias)
 //   c = s / V the particle's load per water volume;
 //   c < c_T: detachment  E = D_c (1 − c/c_T),   uptake ΔV = E (V/D) dt, at most (c_T − c) V
 //   c > c_T: deposition  E = w_s (c − c_T),     drop   ΔV = E (V/D) dt, at most (c − c_T) V
@@ -111,10 +112,14 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
 #endif
 #if EROSION_MODEL == 0
   const float3 vel = (float3)(vx[i], vy[i], vz[i]);
-  const float speed = length(vel - dot(vel, s.normal) * s.normal);
+  const float3 along_bed = vel - dot(vel, s.normal) * s.normal;
+  const float speed = length(along_bed);
   const float tau = EROSION_RHO_G_N2 * speed * speed / cbrt(water_depth);  // Pa
   const float excess = fmax(tau * speed - EROSION_CRITICAL_POWER, 0.0f);    // W/m²
-  const float sin_slope = sqrt(fmax(0.0f, 1.0f - s.normal.y * s.normal.y));
+  // The bed's slope along the flow, the S of ω = ρ0 g q S: the height the water loses per metre of
+  // its path. Water climbing out of a hollow has none, so it drops its load there instead of
+  // deepening the hollow; across a slope it has less than the steepest descent.
+  const float sin_slope = speed > 0.0f ? fmax(0.0f, -along_bed.y / speed) : 0.0f;
   const float capacity =
       morphological_factor * fmin(EROSION_TRANSPORT_SLOPE * sin_slope, EROSION_MAX_CONCENTRATION);
   const float area = EROSION_PARTICLE_VOLUME / water_depth;  // the bed under this water, m²

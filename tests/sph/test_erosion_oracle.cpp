@@ -93,5 +93,72 @@ TEST(ErosionOracle, ExchangeMatchesThePlainCppReference) {
   }
 }
 
+// The transport capacity counts the bed's slope along the flow (docs/erosion.md): on a 20° plane,
+// water running straight down detaches at the slope's full capacity, water running across the slope
+// or climbing it has none, so it detaches nothing and drops what it carries. (Counting the plane's
+// steepness whatever the direction, water climbing out of a hollow went on digging it.)
+TEST(ErosionLaw, WaterThatClimbsOrCrossesTheSlopeDropsItsLoadAndDetachesNothing) {
+  const double slope = 20.0, speed = 2.0;
+  const Heightmap plane =
+      generate_terrain("plane", 41, 41, 1.0, 1, {{"slope", slope}});  // rises to +x
+  Parameters p;
+  p.set("erosion.erodibility", 0.05);
+  const SphSettings sph = SphSettings::from(p, 0.5, 5.0);
+  SphSolver solver(compute(), sph, plane, 40.0);
+  const ErosionSettings settings = ErosionSettings::from(p, sph, plane.cell);
+  const double Q = solver.terrain().volume_quantum(), volume = std::pow(sph.spacing, 3);
+  const double capacity_down = std::min(settings.transport * sph.rho0 * sph.gravity /
+                                            settings.bed_density * std::sin(slope * M_PI / 180),
+                                        settings.max_concentration);
+  const double a = slope * M_PI / 180;
+  struct Case {
+    const char* name;
+    double ux, uz;  // direction of the velocity, along the bed
+  };
+  // Down the plane is −x; across it ±z; up it +x.
+  const Case cases[] = {{"down", -1, 0}, {"across", 0, 1}, {"up", 1, 0}};
+  const int per_case = 200;
+  HostParticles host;
+  std::vector<float> depth;
+  for (const Case& c : cases) {
+    for (int k = 0; k < 2 * per_case; ++k) {
+      const double x = 10 + (k % 20), z = 10 + (k / 20) % 20;
+      const double D = 0.3, lift = (sph.contact_radius + 0.5 * D) / std::cos(a);
+      // Along the bed: the x direction climbs at the plane's angle.
+      const double vx = speed * c.ux * std::cos(a), vy = speed * c.ux * std::sin(a),
+                   vz = speed * c.uz;
+      host.push(float(x), float(surface_height(plane, x, z) + lift), float(z), float(vx), float(vy),
+                float(vz), float(sph.rho0), 10.0f);
+      host.f[kAge].back() = 1.0f;
+      // Half empty, half carrying half the capacity the plane has straight down.
+      host.sediment.back() =
+          k % 2 ? static_cast<std::int32_t>(0.5 * capacity_down * volume / Q) : 0;
+      host.id.back() = static_cast<std::uint32_t>(host.size() - 1);
+      depth.push_back(float(D));
+    }
+  }
+  solver.add(host);
+  compute().queue().enqueueWriteBuffer(solver.particles().buffer(kDepth), CL_TRUE, 0,
+                                       depth.size() * 4, depth.data());
+  Erosion erosion(compute(), settings, solver, 3);
+  erosion.exchange(solver, 0.02);
+  const HostParticles after = solver.particles().download();
+  for (std::size_t c = 0; c < std::size(cases); ++c) {
+    std::int64_t taken_by_empty = 0, change_of_loaded = 0;
+    for (int k = 0; k < 2 * per_case; ++k) {
+      const std::size_t i = c * 2 * per_case + k;
+      (k % 2 ? change_of_loaded : taken_by_empty) += after.sediment[i] - host.sediment[i];
+    }
+    const std::string name = cases[c].name;
+    if (name == "down") {
+      EXPECT_GT(taken_by_empty, 0) << "water running down the plane detaches";
+      EXPECT_GT(change_of_loaded, 0) << "below the capacity it keeps detaching";
+    } else {
+      EXPECT_EQ(taken_by_empty, 0) << name << ": no slope along the flow, no detachment";
+      EXPECT_LT(change_of_loaded, 0) << name << ": the load settles";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace runnel

@@ -106,12 +106,12 @@ Exchange exchange(const HostParticles& p, const std::vector<float>& depth, const
     }
     const double v[3] = {p.f[kVx][i], p.f[kVy][i], p.f[kVz][i]};
     const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
-    const double speed = std::sqrt(std::pow(v[0] - vn * n[0], 2) + std::pow(v[1] - vn * n[1], 2) +
-                                   std::pow(v[2] - vn * n[2], 2));
+    const double along[3] = {v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]};
+    const double speed = std::sqrt(along[0] * along[0] + along[1] * along[1] + along[2] * along[2]);
     const double tau =
         sph.rho0 * sph.gravity * sph.manning_n * sph.manning_n * speed * speed / std::cbrt(D);
     const double excess = std::max(tau * speed - e.critical_power, 0.0);
-    const double sin_slope = std::sqrt(std::max(0.0, 1 - n[1] * n[1]));
+    const double sin_slope = speed > 0 ? std::max(0.0, -along[1] / speed) : 0.0;  // along the flow
     const double capacity =
         mf * std::min(e.transport * sph.rho0 * sph.gravity / e.bed_density * sin_slope,
                       e.max_concentration);
