@@ -7,6 +7,8 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameters.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/terrain_io.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 #include "test_support.hpp"
 
@@ -79,6 +81,27 @@ TEST(Parameters, BadScenariosNameTheKey) {
             std::string::npos);
   EXPECT_NE(error_of([&] { apply_overrides(p, {"terrain.size=1.5"}); }).find("integer"),
             std::string::npos);
+}
+
+// A scenario's terrain.cell is the cell of a file that carries none (NPY, a foreign PNG); an ASC's
+// own cell wins unless terrain.cell_from_file is false. (An NPY terrain used to come in at 1 m
+// whatever the scenario said.)
+TEST(Parameters, TerrainCellAppliesToFilesThatCarryNone) {
+  test::ScratchDir dir;
+  const Heightmap hills = generate_terrain("fbm", 17, 17, 83.0, 3, {});
+  write_terrain(dir.path("t.npy"), hills);
+  write_terrain(dir.path("t.asc"), hills);
+  for (const char* file : {"t.npy", "t.asc"}) {
+    for (const bool from_file : {true, false}) {
+      Parameters p;
+      p.set("terrain.file", dir.path(file));
+      p.set("terrain.cell", 2.5);
+      p.set("terrain.cell_from_file", from_file);
+      const bool carries_cell = std::string(file) == "t.asc";
+      EXPECT_EQ(load_terrain(p).cell, carries_cell && from_file ? 83.0 : 2.5)
+          << file << ", cell_from_file " << from_file;
+    }
+  }
 }
 
 TEST(Parameters, EveryKeyIsDeclaredOnce) {

@@ -32,7 +32,7 @@ std::vector<ParamSpec> assemble() {
       {"terrain.generator", T::kString, "\"fbm\"", "", 0, 0, generator_names(), "generator used when terrain.file and terrain.graph are empty; its own parameters go in [terrain.set] (docs/generators.md)"},
       {"terrain.graph", T::kString, "\"\"", "", 0, 0, {}, "a terrain graph (TOML: generators, filters, input files; docs/generators.md), relative to the scenario file; used when terrain.file is empty"},
       {"terrain.size", T::kInteger, "257", "vertices", 2, 32768, {}, "generated terrain: vertices per side"},
-      {"terrain.cell", T::kReal, "1.0", "m", 1e-6, 1e6, {}, "cell size (vertex spacing); for files, overrides the file's own when terrain.cell_from_file is false"},
+      {"terrain.cell", T::kReal, "1.0", "m", 1e-6, 1e6, {}, "cell size (vertex spacing); for files, the cell of a file that carries none (NPY, a foreign PNG), and of every file when terrain.cell_from_file is false"},
       {"terrain.cell_from_file", T::kBool, "true", "", 0, 0, {}, "take the cell size from the terrain file when it has one (ASC, runnel PNG)"},
       {"terrain.seed", T::kInteger, "1", "1", 0, 9.2e18, {}, "generator seed"},
       {"terrain.nodata", T::kString, "\"fill\"", "", 0, 0, {"fill", "refuse"}, "NODATA cells in an ASCII grid: fill from neighbours, or refuse the file"},

@@ -30,7 +30,7 @@ T byteswap_value(T v) {
 
 }  // namespace
 
-Heightmap read_npy(const std::string& path) {
+Heightmap read_npy(const std::string& path, double cell_if_none) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw input_error(path + ": cannot open for reading");
   const std::streamoff file_size = in.tellg();
@@ -123,7 +123,7 @@ Heightmap read_npy(const std::string& path) {
   const bool swap = (byte_order == '>' && std::endian::native == std::endian::little) ||
                     (byte_order == '<' && std::endian::native == std::endian::big);
 
-  Heightmap terrain(static_cast<int>(nx), static_cast<int>(ny), 1.0);
+  Heightmap terrain(static_cast<int>(nx), static_cast<int>(ny), cell_if_none);
   for (long long k = 0; k < nx * ny; ++k) {
     double v = 0.0;
     if (item_size == 4) {

@@ -152,7 +152,8 @@ std::string check_chunks(std::FILE* f) {
 
 }  // namespace
 
-Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& range) {
+Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& range,
+                     double cell_if_none) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw input_error(path + ": cannot open for reading");
   unsigned char signature[8] = {0};
@@ -193,7 +194,7 @@ Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& 
     hi = numbers[1];
   }
   check_height_range(path, {lo, hi});
-  double cell = 1.0;
+  double cell = cell_if_none;
   if (header.has_cell) {
     if (!parse_numbers(header.cell_text, numbers) || numbers.size() != 1 ||
         !(numbers[0] >= kMinCell && numbers[0] <= kMaxCell)) {

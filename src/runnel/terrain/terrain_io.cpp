@@ -37,10 +37,10 @@ Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
       terrain = read_asc(path, options.nodata);
       break;
     case TerrainFormat::kPng:
-      terrain = read_png16(path, options.png_range);
+      terrain = read_png16(path, options.png_range, options.cell_if_none);
       break;
     case TerrainFormat::kNpy:
-      terrain = read_npy(path);
+      terrain = read_npy(path, options.cell_if_none);
       break;
     case TerrainFormat::kGeoTiff:
     case TerrainFormat::kGdal:

@@ -23,6 +23,7 @@ struct ReadOptions {
   NodataPolicy nodata = NodataPolicy::kFill;
   std::optional<HeightRange> png_range;  // overrides the range stored in a runnel PNG
   std::optional<double> cell;  // overrides the cell size (NPY and PNG carry none of their own)
+  double cell_if_none = 1.0;   // the cell size of a file that carries none (NPY, a foreign PNG)
 };
 
 struct WriteOptions {
@@ -61,10 +62,11 @@ void write_terrain(const std::string& path, const Heightmap& terrain,
 // The individual formats.
 Heightmap read_asc(const std::string& path, NodataPolicy nodata);
 void write_asc(const std::string& path, const Heightmap& terrain);
-Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& range);
+Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& range,
+                     double cell_if_none = 1.0);
 void write_png16(const std::string& path, const Heightmap& terrain,
                  const std::optional<HeightRange>& range);
-Heightmap read_npy(const std::string& path);
+Heightmap read_npy(const std::string& path, double cell_if_none = 1.0);
 void write_npy(const std::string& path, const Heightmap& terrain);
 // Any raster GDAL reads, band 1, with its CRS (which must be projected in metres), geotransform
 // (north-up, square pixels) and NODATA value; GeoTIFF out, float32, DEFLATE-compressed.

@@ -15,7 +15,12 @@ Heightmap load_terrain(const Parameters& params) {
     ReadOptions options;
     options.nodata =
         params.text("terrain.nodata") == "refuse" ? NodataPolicy::kRefuse : NodataPolicy::kFill;
-    if (!params.boolean("terrain.cell_from_file")) options.cell = params.real("terrain.cell");
+    // terrain.cell is the cell of a file that carries none of its own, or of every file when
+    // terrain.cell_from_file is false.
+    if (params.boolean("terrain.cell_from_file"))
+      options.cell_if_none = params.real("terrain.cell");
+    else
+      options.cell = params.real("terrain.cell");
     Heightmap terrain = read_terrain(file, options);
     return terrain;
   }
