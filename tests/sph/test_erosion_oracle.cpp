@@ -98,7 +98,7 @@ TEST(ErosionOracle, ExchangeMatchesThePlainCppReference) {
 // or climbing it has none, so it detaches nothing and drops what it carries. (Counting the plane's
 // steepness whatever the direction, water climbing out of a hollow went on digging it.)
 TEST(ErosionLaw, WaterThatClimbsOrCrossesTheSlopeDropsItsLoadAndDetachesNothing) {
-  const double slope = 20.0, speed = 2.0;
+  const double slope = 20.0, a = slope * M_PI / 180, speed = 2.0;
   const Heightmap plane =
       generate_terrain("plane", 41, 41, 1.0, 1, {{"slope", slope}});  // rises to +x
   Parameters p;
@@ -107,10 +107,9 @@ TEST(ErosionLaw, WaterThatClimbsOrCrossesTheSlopeDropsItsLoadAndDetachesNothing)
   SphSolver solver(compute(), sph, plane, 40.0);
   const ErosionSettings settings = ErosionSettings::from(p, sph, plane.cell);
   const double Q = solver.terrain().volume_quantum(), volume = std::pow(sph.spacing, 3);
-  const double capacity_down = std::min(settings.transport * sph.rho0 * sph.gravity /
-                                            settings.bed_density * std::sin(slope * M_PI / 180),
-                                        settings.max_concentration);
-  const double a = slope * M_PI / 180;
+  const double capacity_down =
+      std::min(settings.transport * sph.rho0 * sph.gravity / settings.bed_density * std::sin(a),
+               settings.max_concentration);
   struct Case {
     const char* name;
     double ux, uz;  // direction of the velocity, along the bed
