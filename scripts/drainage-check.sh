@@ -11,10 +11,12 @@ runnel=./build/runnel
 scenario=data/scenarios/default.toml
 mkdir -p "$out"
 # The ridged terrains: one within the talus angle (relief 8 %, five octaves), one far rougher than a
-# 2 m grid holds (the generator's defaults: 16 % of its edges steeper than the 40° talus angle).
+# 2 m grid holds (the generator's 8 octaves at the default's 12 % relief: 16 % of its edges steeper
+# than the 40° talus angle).
 "$runnel" generate ridged --size 129 --cell 2 --seed 7 --set relief=0.08 --set hurst=1.0 --set octaves=5 \
   -o "$out/ridged.npy" >/dev/null
 "$runnel" generate ridged --size 129 --cell 2 --seed 7 --set relief=0.12 -o "$out/ridged_rough.npy" >/dev/null
+names=(fbm_seed7 fbm_seed11 ridged ridged_rough jacksboro)  # the order of the table
 declare -A terrain=(
   [fbm_seed7]=""                       # the default scenario itself
   [fbm_seed11]="--set terrain.seed=11" # other hills from the same generator
@@ -22,12 +24,12 @@ declare -A terrain=(
   [ridged_rough]="--terrain $out/ridged_rough.npy"
   [jacksboro]="--terrain data/terrains/jacksboro_crop_scaled.asc" # a real DEM's valleys, scaled 1:41.5
 )
-for name in fbm_seed7 fbm_seed11 ridged ridged_rough jacksboro; do
+for name in "${names[@]}"; do
   # shellcheck disable=SC2086  # the options are words on purpose
   "$runnel" compare "$scenario" --models sph,pipe ${terrain[$name]} --out "$out/$name" --quiet
 done
 printf '%-13s %-5s %9s %9s %8s %7s %12s %7s\n' terrain model eroded deposited ρ_sp ρ_flow depressions shortλ
-for name in fbm_seed7 fbm_seed11 ridged ridged_rough jacksboro; do
+for name in "${names[@]}"; do
   /usr/bin/python3 - "$out/$name/metrics.csv" "$name" <<'PY'
 import csv, sys
 for r in csv.DictReader(open(sys.argv[1])):

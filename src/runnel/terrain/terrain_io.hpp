@@ -22,8 +22,8 @@ struct HeightRange {
 struct ReadOptions {
   NodataPolicy nodata = NodataPolicy::kFill;
   std::optional<HeightRange> png_range;  // overrides the range stored in a runnel PNG
-  std::optional<double> cell;  // overrides the cell size (NPY and PNG carry none of their own)
-  double cell_if_none = 1.0;   // the cell size of a file that carries none (NPY, a foreign PNG)
+  std::optional<double> cell;            // overrides the cell size, a file's own included
+  double cell_if_none = 1.0;  // the cell size of a file that carries none (NPY, a foreign PNG)
 };
 
 struct WriteOptions {
