@@ -135,6 +135,51 @@ TEST(TerrainMetrics, DepressionsAndPeaksAreCountedOncePerBasinAndSummit) {
   EXPECT_EQ(local_peaks(generate_terrain("cone", 65, 65, 1.0, 1, {{"radius", 0.4}})), 1);
 }
 
+// The vertices strictly lower than all 8 neighbours, counted the plain way: where no two
+// neighbouring vertices share a height, every closed depression has one such bottom.
+long long strict_minima(const Heightmap& t) {
+  long long count = 0;
+  for (int j = 1; j + 1 < t.ny; ++j) {
+    for (int i = 1; i + 1 < t.nx; ++i) {
+      bool lowest = true;
+      for (int dj = -1; dj <= 1; ++dj) {
+        for (int di = -1; di <= 1; ++di)
+          lowest &= (di == 0 && dj == 0) || t.at(i, j) < t.at(i + di, j + dj);
+      }
+      count += lowest;
+    }
+  }
+  return count;
+}
+
+TEST(TerrainMetrics, FlatBottomedHollowsAndFlatTopsCountOnceAsOnDemsQuantisedToWholeMetres) {
+  // Without ties, the count is the plain count of strict minima.
+  const Heightmap hills = generate_terrain("fbm", 65, 65, 1.0, 3, {{"relief", 0.2}});
+  EXPECT_GT(strict_minima(hills), 3);
+  EXPECT_EQ(closed_depressions(hills), strict_minima(hills));
+  // A DEM quantised to whole metres: on a tilted plane, a hollow whose floor is flat over 3 × 3
+  // vertices, a hill whose top is, a flat shelf on the slope, and a flat hollow on the border.
+  Heightmap dem = generate_terrain("plane", 41, 41, 1.0, 1, {{"slope", 10.0}});
+  for (int j = 0; j < 41; ++j) {
+    for (int i = 0; i < 41; ++i) dem.at(i, j) += 0.07f * float(j);  // no two neighbours level
+  }
+  auto block = [&](int i0, int j0, float height) {
+    for (int j = j0; j < j0 + 3; ++j) {
+      for (int i = i0; i < i0 + 3; ++i) dem.at(i, j) = height;
+    }
+  };
+  block(10, 10, dem.at(10, 10) - 5.0f);  // the hollow
+  block(25, 25, dem.at(27, 27) + 5.0f);  // the hill
+  block(10, 28, dem.at(11, 29));         // the shelf: higher ground on one side, lower on the other
+  block(0, 20, dem.at(0, 20) - 5.0f);    // the hollow that opens onto the border
+  EXPECT_EQ(strict_minima(dem), 0);      // the plain count sees no hollow at all
+  EXPECT_EQ(closed_depressions(dem), 1);
+  EXPECT_EQ(local_peaks(dem), 1);
+  // The hollow's floor lowered by a few micrometres at one vertex: still one depression.
+  dem.at(11, 11) -= 1e-5f;
+  EXPECT_EQ(closed_depressions(dem), 1);
+}
+
 TEST(TerrainMetrics, ShortWavelengthShareSeparatesSpikesFromValleys) {
   // Δh a broad valley (a wavelength of 16 cells): almost nothing under 4 cells. Δh a checkerboard
   // (2 cells): almost everything.

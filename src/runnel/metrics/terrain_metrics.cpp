@@ -316,31 +316,55 @@ double stream_power_correlation(const Heightmap& before, const Heightmap& after)
 }
 
 namespace {
-// Interior vertices whose height compares `beyond` every one of their 8 neighbours.
+// The plateaus (8-connected sets of vertices of one height; most are single vertices) that lie off
+// the border and whose every outside neighbour their height compares `beyond`. A DEM quantised to
+// whole metres has flat-bottomed hollows and flat tops: counted by vertices, such a hollow is no
+// depression until erosion tilts its floor by a micrometre, and then it is a new one.
 template <typename Beyond>
-long long extremes(const Heightmap& t, Beyond beyond) {
+long long extreme_plateaus(const Heightmap& t, Beyond beyond) {
+  std::vector<char> seen(t.size(), 0);
+  std::vector<std::size_t> stack;
   long long count = 0;
-  for (int j = 1; j + 1 < t.ny; ++j) {
-    for (int i = 1; i + 1 < t.nx; ++i) {
-      bool all = true;
-      for (int dj = -1; dj <= 1 && all; ++dj) {
-        for (int di = -1; di <= 1 && all; ++di) {
-          if ((di || dj) && !beyond(t.at(i, j), t.at(i + di, j + dj))) all = false;
+  for (std::size_t start = 0; start < t.size(); ++start) {
+    if (seen[start]) continue;
+    const float level = t.h[start];
+    bool extreme = true;
+    seen[start] = 1;
+    stack.assign(1, start);
+    while (!stack.empty()) {  // the whole plateau is visited, whatever it turns out to be
+      const std::size_t k = stack.back();
+      stack.pop_back();
+      const int i = static_cast<int>(k % t.nx), j = static_cast<int>(k / t.nx);
+      if (i == 0 || j == 0 || i + 1 == t.nx || j + 1 == t.ny)
+        extreme = false;  // drains off the map
+      for (int dj = -1; dj <= 1; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          const int ni = i + di, nj = j + dj;
+          if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= t.nx || nj >= t.ny) continue;
+          const std::size_t n = static_cast<std::size_t>(nj) * t.nx + ni;
+          if (t.h[n] == level) {
+            if (!seen[n]) {
+              seen[n] = 1;
+              stack.push_back(n);
+            }
+          } else if (!beyond(level, t.h[n])) {
+            extreme = false;
+          }
         }
       }
-      count += all;
     }
+    count += extreme;
   }
   return count;
 }
 }  // namespace
 
 long long closed_depressions(const Heightmap& t) {
-  return extremes(t, [](float h, float other) { return h < other; });
+  return extreme_plateaus(t, [](float h, float other) { return h < other; });
 }
 
 long long local_peaks(const Heightmap& t) {
-  return extremes(t, [](float h, float other) { return h > other; });
+  return extreme_plateaus(t, [](float h, float other) { return h > other; });
 }
 
 double short_wavelength_share(const Heightmap& before, const Heightmap& after, double cells) {

@@ -53,8 +53,8 @@ double erosion_flow_correlation(const Heightmap& before, const Heightmap& after,
 // running water grows with discharge and slope (models.md).
 double stream_power_correlation(const Heightmap& before, const Heightmap& after);
 
-// Interior vertices strictly lower (higher) than all 8 neighbours: the bottoms of closed
-// depressions (the tops of local peaks).
+// The bottoms of closed depressions (the tops of local peaks): plateaus of one height (most are
+// single vertices), off the border, strictly lower (higher) than every vertex around them.
 long long closed_depressions(const Heightmap& t);
 long long local_peaks(const Heightmap& t);
 
