@@ -157,8 +157,9 @@ TEST(TerrainMetrics, FlatBottomedHollowsAndFlatTopsCountOnceAsOnDemsQuantisedToW
   const Heightmap hills = generate_terrain("fbm", 65, 65, 1.0, 3, {{"relief", 0.2}});
   EXPECT_GT(strict_minima(hills), 3);
   EXPECT_EQ(closed_depressions(hills), strict_minima(hills));
-  // A DEM quantised to whole metres: on a tilted plane, a hollow whose floor is flat over 3 × 3
-  // vertices, a hill whose top is, a flat shelf on the slope, and a flat hollow on the border.
+  // The flats of a DEM stored in whole metres, on a tilted plane: a hollow whose floor is level
+  // over 3 × 3 vertices, a hill whose top is, a level shelf on the slope, a level hollow on the
+  // border.
   Heightmap dem = generate_terrain("plane", 41, 41, 1.0, 1, {{"slope", 10.0}});
   for (int j = 0; j < 41; ++j) {
     for (int i = 0; i < 41; ++i) dem.at(i, j) += 0.07f * float(j);  // no two neighbours level
