@@ -38,6 +38,8 @@ class GridNeighbours {
       if (a >= 0 && b >= 0 && a < nx_ && b < ny_) f(b * nx_ + a, d);
     }
   }
+  // Whether k lies on the grid's border (some of its neighbours are off the grid).
+  bool on_edge(std::int32_t k) const { return on_edge_[k] != 0; }
   // k's neighbour in direction d (which must lie on the grid).
   std::int32_t neighbour(std::int32_t k, int d) const { return k + offset_[d]; }
   double length(int d) const { return length_[d]; }

@@ -322,36 +322,28 @@ namespace {
 // depression until erosion tilts its floor by a micrometre, and then it is a new one.
 template <typename Beyond>
 long long extreme_plateaus(const Heightmap& t, Beyond beyond) {
+  const GridNeighbours around(t.nx, t.ny);
   std::vector<char> seen(t.size(), 0);
-  std::vector<std::size_t> stack;
+  std::vector<std::int32_t> stack;
   long long count = 0;
-  for (std::size_t start = 0; start < t.size(); ++start) {
+  for (std::int32_t start = 0; start < static_cast<std::int32_t>(t.size()); ++start) {
     if (seen[start]) continue;
     const float level = t.h[start];
     bool extreme = true;
     seen[start] = 1;
     stack.assign(1, start);
     while (!stack.empty()) {  // the whole plateau is visited, whatever it turns out to be
-      const std::size_t k = stack.back();
+      const std::int32_t k = stack.back();
       stack.pop_back();
-      const int i = static_cast<int>(k % t.nx), j = static_cast<int>(k / t.nx);
-      if (i == 0 || j == 0 || i + 1 == t.nx || j + 1 == t.ny)
-        extreme = false;  // drains off the map
-      for (int dj = -1; dj <= 1; ++dj) {
-        for (int di = -1; di <= 1; ++di) {
-          const int ni = i + di, nj = j + dj;
-          if ((di == 0 && dj == 0) || ni < 0 || nj < 0 || ni >= t.nx || nj >= t.ny) continue;
-          const std::size_t n = static_cast<std::size_t>(nj) * t.nx + ni;
-          if (t.h[n] == level) {
-            if (!seen[n]) {
-              seen[n] = 1;
-              stack.push_back(n);
-            }
-          } else if (!beyond(level, t.h[n])) {
-            extreme = false;
-          }
+      if (around.on_edge(k)) extreme = false;  // drains off the map
+      around.visit(k, [&](std::int32_t n, int) {
+        if (t.h[n] != level) {
+          extreme = extreme && beyond(level, t.h[n]);
+        } else if (!seen[n]) {
+          seen[n] = 1;
+          stack.push_back(n);
         }
-      }
+      });
     }
     count += extreme;
   }
