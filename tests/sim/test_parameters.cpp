@@ -63,6 +63,11 @@ TEST(Parameters, BadScenariosNameTheKey) {
   EXPECT_NE(
       error_of([] { parse_scenario("[terrain]\ncell = -1.0\n", "s.toml"); }).find("terrain.cell"),
       std::string::npos);
+  // The range carries the unit, and a dimensionless one ("1") reads as no unit at all.
+  EXPECT_NE(error_of([] { parse_scenario("[terrain]\ncell = 0\n", "s.toml"); }).find("] m"),
+            std::string::npos);
+  const std::string cfl = error_of([] { parse_scenario("[sph]\ncfl = 0\n", "s.toml"); });
+  EXPECT_EQ(cfl.substr(cfl.size() - 1), "]") << cfl;
   EXPECT_NE(error_of([] {
               parse_scenario("[terrain]\ngenerator = \"volcano\"\n", "s.toml");
             }).find("volcano"),
