@@ -38,19 +38,20 @@ CLI::Validator cell_size() {
 void add_output_flags(CLI::App& cmd, OutputFlags& flags) {
   cmd.add_option(
          "--checkpoint-every", flags.checkpoint_every,
-         "write DIR/checkpoints/step_XXXXXXXX.h5 every N steps (final.h5 is always written)")
+         "write DIR/checkpoints/step_XXXXXXXX.h5 every N steps; 0 (the default): none (final.h5 "
+         "is always written)")
       ->check(at_least(0));
   cmd.add_option("--keep-checkpoints", flags.keep_checkpoints, "keep the newest K checkpoints")
       ->check(at_least(1))
       ->capture_default_str();
   cmd.add_option("--series-every", flags.series_every,
                  "append the heightmap to DIR/series.h5 every N steps (series.xmf indexes it for "
-                 "ParaView)")
+                 "ParaView); 0 (the default): no series")
       ->check(at_least(0));
   cmd.add_option(
          "--particles-every", flags.particles_every,
          "SPH: snapshot the particles (position, velocity, density, sediment, age, id) into "
-         "DIR/series.h5 every N steps")
+         "DIR/series.h5 every N steps; 0 (the default): none")
       ->check(at_least(0));
   cmd.add_flag("--overwrite", flags.overwrite,
                "replace checkpoints of another run found in DIR/checkpoints (refused otherwise)");
