@@ -28,13 +28,14 @@ for name in "${names[@]}"; do
   # shellcheck disable=SC2086  # the options are words on purpose
   "$runnel" compare "$scenario" --models sph,pipe ${terrain[$name]} --out "$out/$name" --quiet
 done
-printf '%-13s %-5s %9s %9s %8s %7s %12s %7s\n' terrain model eroded deposited ρ_sp ρ_flow depressions shortλ
+printf '%-13s %-5s %9s %9s %8s %7s %12s %7s %7s\n' terrain model eroded deposited ρ_sp ρ_flow depressions shortλ roughen
 for name in "${names[@]}"; do
   /usr/bin/python3 - "$out/$name/metrics.csv" "$name" <<'PY'
 import csv, sys
 for r in csv.DictReader(open(sys.argv[1])):
     print(f"{sys.argv[2]:13s} {r['model']:5s} {float(r['eroded_volume_m3']):9.0f} {float(r['deposited_volume_m3']):9.0f}"
           f" {float(r['stream_power_correlation']):+8.3f} {float(r['erosion_flow_correlation']):+7.3f}"
-          f" {r['closed_depressions']:>5s}/{r['closed_depressions_initial']:<6s} {float(r['short_wavelength_dh_share']):7.3f}")
+          f" {r['closed_depressions']:>5s}/{r['closed_depressions_initial']:<6s} {float(r['short_wavelength_dh_share']):7.3f}"
+          f" {float(r['short_wavelength_power_ratio']):7.3f}")
 PY
 done

@@ -196,5 +196,30 @@ TEST(TerrainMetrics, ShortWavelengthShareSeparatesSpikesFromValleys) {
   EXPECT_GT(short_wavelength_share(before, noise), 0.98);
 }
 
+TEST(TerrainMetrics, ShortWavelengthPowerRatioTellsSmoothingFromRoughening) {
+  // A tilted valley of 16 cells with a checkerboard of spikes on it. Removing the spikes (what a
+  // talus relaxation does to a terrain too rough for its grid) puts all of Δh at short wavelengths,
+  // so the Δh share reads it like roughening; the terrain's own short-wavelength power falls to
+  // nothing. Doubling the spikes quadruples it.
+  const int n = 64;
+  Heightmap spiky(n, n, 1.0), smooth = spiky, rougher = spiky;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const double valley = 0.3 * j + 4.0 * std::sin(2 * M_PI * i / 16.0);
+      const double spike = ((i + j) % 2) ? 0.5 : -0.5;
+      smooth.at(i, j) = static_cast<float>(valley);
+      spiky.at(i, j) = static_cast<float>(valley + spike);
+      rougher.at(i, j) = static_cast<float>(valley + 2 * spike);
+    }
+  }
+  EXPECT_GT(short_wavelength_share(spiky, smooth), 0.98);
+  EXPECT_LT(short_wavelength_power_ratio(spiky, smooth), 0.01);
+  EXPECT_NEAR(short_wavelength_power_ratio(spiky, rougher), 4.0, 0.1);
+  EXPECT_GT(short_wavelength_power_ratio(smooth, spiky), 100.0);
+  EXPECT_DOUBLE_EQ(short_wavelength_power_ratio(spiky, spiky), 1.0);
+  EXPECT_TRUE(std::isnan(short_wavelength_power_ratio(Heightmap(n, n, 1.0), spiky)))
+      << "a flat initial terrain has no short-wavelength power to compare with";
+}
+
 }  // namespace
 }  // namespace runnel::metrics

@@ -140,8 +140,8 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
       "| model | class | steps | time | rain m³ | eroded m³ | deposited m³ | outflow m³ | balance "
       "(rel) | hypsometric integral | erosion score | mean slope ° | drainage density 1/m | "
       "concavity θ | spectral slope | erosion–flow ρ | stream-power ρ | depressions | short-λ "
-      "share |\n";
-  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "share | short-λ power after/before |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ModelResult& r : results) {
     md += "| [" + r.model + "](" + r.folder + "/metrics.json) | " + r.class_name + " | " +
           std::to_string(r.steps) + " | " + format("%.4g", r.time) +
@@ -160,7 +160,8 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
           format("%.3f", metric(r, "erosion_flow_correlation")) + " | " +
           format("%.3f", metric(r, "stream_power_correlation")) + " | " +
           format("%.0f", metric(r, "closed_depressions")) + " | " +
-          format("%.3f", metric(r, "short_wavelength_dh_share")) + " |\n";
+          format("%.3f", metric(r, "short_wavelength_dh_share")) + " | " +
+          format("%.3f", metric(r, "short_wavelength_power_ratio")) + " |\n";
   }
   if (!results.empty() && results.front().strata) {
     const Strata& strata = *results.front().strata;

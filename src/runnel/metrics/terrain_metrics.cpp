@@ -359,29 +359,54 @@ long long local_peaks(const Heightmap& t) {
   return extreme_plateaus(t, [](float h, float other) { return h > other; });
 }
 
-double short_wavelength_share(const Heightmap& before, const Heightmap& after, double cells) {
-  const int nx = after.nx, ny = after.ny;
+namespace {
+
+struct SpectralPower {
+  double short_waves = 0, total = 0;
+};
+
+// The power of a field over the grid (Hann-windowed, its mean removed, zero-padded to powers of
+// two) beyond 1/cells cycles per sample, and in all.
+template <typename Field>
+SpectralPower short_wavelength_power(int nx, int ny, double cells, Field field) {
   double mean = 0;
-  for (std::size_t k = 0; k < after.size(); ++k) mean += double(after.h[k]) - before.h[k];
-  mean /= static_cast<double>(after.size());
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) mean += field(i, j);
+  mean /= static_cast<double>(nx) * ny;
   const std::size_t px = next_power_of_two(nx), pz = next_power_of_two(ny);
   std::vector<std::complex<double>> grid(px * pz);
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const double dh = double(after.at(i, j)) - before.at(i, j) - mean;
-      grid[static_cast<std::size_t>(j) * px + i] = dh * hann(i, nx) * hann(j, ny);
-    }
-  }
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      grid[static_cast<std::size_t>(j) * px + i] = (field(i, j) - mean) * hann(i, nx) * hann(j, ny);
   fft2(grid, px, pz);
-  double total = 0, short_waves = 0;
+  SpectralPower power;
   for (std::size_t j = 0; j < pz; ++j) {
     for (std::size_t i = 0; i < px; ++i) {
-      const double power = std::norm(grid[j * px + i]);
-      total += power;
-      if (std::hypot(frequency(i, px), frequency(j, pz)) > 1.0 / cells) short_waves += power;
+      const double p = std::norm(grid[j * px + i]);
+      power.total += p;
+      if (std::hypot(frequency(i, px), frequency(j, pz)) > 1.0 / cells) power.short_waves += p;
     }
   }
-  return total > 0 ? short_waves / total : 0.0;
+  return power;
+}
+
+}  // namespace
+
+double short_wavelength_share(const Heightmap& before, const Heightmap& after, double cells) {
+  const SpectralPower dh = short_wavelength_power(after.nx, after.ny, cells, [&](int i, int j) {
+    return double(after.at(i, j)) - before.at(i, j);
+  });
+  return dh.total > 0 ? dh.short_waves / dh.total : 0.0;
+}
+
+double short_wavelength_power_ratio(const Heightmap& before, const Heightmap& after, double cells) {
+  auto short_power = [&](const Heightmap& t) {
+    return short_wavelength_power(t.nx, t.ny, cells,
+                                  [&](int i, int j) { return double(t.at(i, j)); })
+        .short_waves;
+  };
+  const double initial = short_power(before);
+  return initial > 0 ? short_power(after) / initial : NAN;
 }
 
 std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
@@ -410,7 +435,8 @@ std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightma
           {"closed_depressions_initial", static_cast<double>(closed_depressions(before))},
           {"local_peaks", static_cast<double>(local_peaks(after))},
           {"local_peaks_initial", static_cast<double>(local_peaks(before))},
-          {"short_wavelength_dh_share", short_wavelength_share(before, after)}};
+          {"short_wavelength_dh_share", short_wavelength_share(before, after)},
+          {"short_wavelength_power_ratio", short_wavelength_power_ratio(before, after)}};
 }
 
 JsonObject terrain_metrics_json(const std::vector<std::pair<std::string, double>>& values,

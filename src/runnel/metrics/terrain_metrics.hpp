@@ -63,6 +63,13 @@ long long local_peaks(const Heightmap& t);
 // spikes live there, carved valleys do not.
 double short_wavelength_share(const Heightmap& before, const Heightmap& after, double cells = 4.0);
 
+// The terrain's own power at wavelengths under `cells` cells after, over before (each Hann-windowed
+// and mean-removed): above 1 the model roughened the terrain, below 1 it smoothed it. The share of
+// Δh above cannot tell the two apart: talus collapsing a rough terrain's spikes puts most of its Δh
+// at short wavelengths too. NaN when the initial terrain has no such power.
+double short_wavelength_power_ratio(const Heightmap& before, const Heightmap& after,
+                                    double cells = 4.0);
+
 // Every scalar metric above for a terrain (and its initial state), by name, in a fixed order (the
 // columns of runnel compare's metrics.csv).
 std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightmap& before,
