@@ -205,6 +205,7 @@ TEST(CliModels, CompareWritesTableFigureAndReportWithOneRainBudget) {
   column("hypsometric_integral");
   column("spectral_slope");
   column("erosion_flow_correlation");
+  const std::size_t roughening = column("short_wavelength_power_ratio");
   // The budget: 300 particles/s of (1 m)³ (half the 2 m cell) for 2 s.
   const double budget = 300.0 * 1.0 * 2.0;
   const char* models[] = {"sph", "droplet", "pipe", "olsen", "thermal"};
@@ -219,6 +220,12 @@ TEST(CliModels, CompareWritesTableFigureAndReportWithOneRainBudget) {
     else
       EXPECT_NEAR(v, budget, 0.03 * budget) << rows[k][0] << " receives the same rain";
     EXPECT_TRUE(std::filesystem::exists(dir.path("cmp/" + rows[k][0] + "/metrics.json")));
+    const double ratio = std::stod(rows[k][roughening]);
+    EXPECT_TRUE(std::isfinite(ratio) && ratio > 0) << rows[k][0];
+    // Talus only moves height from a vertex to its lower neighbours: it smooths (0.40 here).
+    if (rows[k][0] == "thermal") {
+      EXPECT_LT(ratio, 1.0);
+    }
   }
   const std::string png = test::read_text(dir.path("cmp/compare.png"));
   ASSERT_GT(png.size(), 1000u);
@@ -229,6 +236,7 @@ TEST(CliModels, CompareWritesTableFigureAndReportWithOneRainBudget) {
   for (const char* m : models)
     EXPECT_NE(report.find(std::string("| [") + m + "]"), std::string::npos) << m;
   EXPECT_NE(report.find("- pipe: pipe.rain = "), std::string::npos) << "how pipe got its rain";
+  EXPECT_NE(report.find("short-λ power after/before"), std::string::npos);
 }
 
 TEST(CliModels, CompareRefusesBadModelListsBeforeWritingAnything) {
