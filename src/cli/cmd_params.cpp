@@ -18,9 +18,8 @@ void add_params_command(CLI::App& app) {
       return;
     }
     for (auto& p : parameter_table()) {
-      std::cout << p.key << " = " << p.default_value
-                << (p.unit.empty() || p.unit == "1" ? "" : " [" + p.unit + "]") << "\n    "
-                << p.help << "\n";
+      std::cout << p.key << " = " << p.default_value << (p.has_unit() ? " [" + p.unit + "]" : "")
+                << "\n    " << p.help << "\n";
     }
   });
 }

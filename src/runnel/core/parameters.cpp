@@ -87,7 +87,7 @@ ParamValue validated_value(const ParamSpec& spec_ref, const ParamValue& value_in
     if (!std::isfinite(v) || v < spec->min_value || v > spec->max_value) {
       throw input_error(where + ": " + to_text(value) + " is outside the valid range [" +
                         format_number(spec->min_value) + ", " + format_number(spec->max_value) +
-                        "]" + (spec->unit.empty() || spec->unit == "1" ? "" : " " + spec->unit));
+                        "]" + (spec->has_unit() ? " " + spec->unit : ""));
     }
   }
   if (spec->type == ParamType::kString && !spec->choices.empty()) {

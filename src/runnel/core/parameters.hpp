@@ -22,6 +22,9 @@ struct ParamSpec {
   double max_value;
   std::vector<std::string> choices;  // allowed values for strings; empty = any
   std::string help;
+
+  // Whether a value of this parameter is written with a unit (text and dimensionless ones are not).
+  bool has_unit() const { return !unit.empty() && unit != "1"; }
 };
 
 // The whole table, grouped by the key's first component.
