@@ -236,6 +236,33 @@ double frequency(std::size_t i, std::size_t n) {
   return (i <= n / 2 ? double(i) : double(i) - n) / n;
 }
 
+namespace {
+
+// The transform of a centred field over the grid, Hann-windowed and zero-padded to powers of two
+// (Perron et al. 2008); the window removes the jump between opposite borders that a periodic
+// transform would read as short waves.
+struct Spectrum {
+  std::size_t px, pz;
+  std::vector<std::complex<double>> bins;
+  double power(std::size_t i, std::size_t j) const { return std::norm(bins[j * px + i]); }
+  double wavenumber(std::size_t i, std::size_t j) const {  // cycles per sample
+    return std::hypot(frequency(i, px), frequency(j, pz));
+  }
+};
+
+template <typename Field>
+Spectrum windowed_spectrum(int nx, int ny, Field centred) {
+  Spectrum s{next_power_of_two(nx), next_power_of_two(ny), {}};
+  s.bins.resize(s.px * s.pz);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      s.bins[static_cast<std::size_t>(j) * s.px + i] = centred(i, j) * hann(i, nx) * hann(j, ny);
+  fft2(s.bins, s.px, s.pz);
+  return s;
+}
+
+}  // namespace
+
 double spectral_slope(const Heightmap& t) {
   // Detrend: remove the least-squares plane.
   const int nx = t.nx, ny = t.ny;
@@ -251,26 +278,19 @@ double spectral_slope(const Heightmap& t) {
   const double mx = sx / n, mz = sz / n, mh = sh / n;
   const double bx = (sxh / n - mx * mh) / (sxx / n - mx * mx),
                bz = (szh / n - mz * mh) / (szz / n - mz * mz);
-  const std::size_t px = next_power_of_two(nx), pz = next_power_of_two(ny);
-  std::vector<std::complex<double>> grid(px * pz);
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      grid[static_cast<std::size_t>(j) * px + i] =
-          (t.at(i, j) - (mh + bx * (i - mx) + bz * (j - mz))) * hann(i, nx) * hann(j, ny);
-    }
-  }
-  fft2(grid, px, pz);
+  const Spectrum spectrum = windowed_spectrum(
+      nx, ny, [&](int i, int j) { return t.at(i, j) - (mh + bx * (i - mx) + bz * (j - mz)); });
   // Radial average in log-spaced bins of the wavenumber, between 2 cycles per map and Nyquist/2.
   const int bins = 24;
   std::vector<double> sum(bins, 0), count(bins, 0);
-  const double k_min = 2.0 / std::max(px, pz), k_max = 0.25;  // cycles per sample
-  for (std::size_t j = 0; j < pz; ++j) {
-    for (std::size_t i = 0; i < px; ++i) {
-      const double k = std::hypot(frequency(i, px), frequency(j, pz));
+  const double k_min = 2.0 / std::max(spectrum.px, spectrum.pz), k_max = 0.25;  // cycles per sample
+  for (std::size_t j = 0; j < spectrum.pz; ++j) {
+    for (std::size_t i = 0; i < spectrum.px; ++i) {
+      const double k = spectrum.wavenumber(i, j);
       if (k < k_min || k > k_max) continue;
       const int b = std::min(
           bins - 1, static_cast<int>(bins * std::log(k / k_min) / std::log(k_max / k_min)));
-      sum[b] += std::norm(grid[j * px + i]);
+      sum[b] += spectrum.power(i, j);
       count[b] += 1;
     }
   }
@@ -365,26 +385,22 @@ struct SpectralPower {
   double short_waves = 0, total = 0;
 };
 
-// The power of a field over the grid (Hann-windowed, its mean removed, zero-padded to powers of
-// two) beyond 1/cells cycles per sample, and in all.
+// The power of a field over the grid (its mean removed, through windowed_spectrum) beyond
+// 1/cells cycles per sample, and in all.
 template <typename Field>
 SpectralPower short_wavelength_power(int nx, int ny, double cells, Field field) {
   double mean = 0;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) mean += field(i, j);
   mean /= static_cast<double>(nx) * ny;
-  const std::size_t px = next_power_of_two(nx), pz = next_power_of_two(ny);
-  std::vector<std::complex<double>> grid(px * pz);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      grid[static_cast<std::size_t>(j) * px + i] = (field(i, j) - mean) * hann(i, nx) * hann(j, ny);
-  fft2(grid, px, pz);
+  const Spectrum spectrum =
+      windowed_spectrum(nx, ny, [&](int i, int j) { return field(i, j) - mean; });
   SpectralPower power;
-  for (std::size_t j = 0; j < pz; ++j) {
-    for (std::size_t i = 0; i < px; ++i) {
-      const double p = std::norm(grid[j * px + i]);
+  for (std::size_t j = 0; j < spectrum.pz; ++j) {
+    for (std::size_t i = 0; i < spectrum.px; ++i) {
+      const double p = spectrum.power(i, j);
       power.total += p;
-      if (std::hypot(frequency(i, px), frequency(j, pz)) > 1.0 / cells) power.short_waves += p;
+      if (spectrum.wavenumber(i, j) > 1.0 / cells) power.short_waves += p;
     }
   }
   return power;
