@@ -7,6 +7,7 @@
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/terrain/terrain_source.hpp"
 #include "runnel/validation/stream_power_validation.hpp"
 #include "runnel/validation/validation.hpp"
 
@@ -14,21 +15,21 @@ namespace runnel::cli {
 
 void add_validate_command(CLI::App& app) {
   struct Options {
-    std::string which, out, device;
+    std::string which, out, device, terrain;
     int resolution = 0;
     double settle = 0;
     std::vector<std::string> sets;
   };
   auto opt = std::make_shared<Options>();
-  auto* cmd =
-      app.add_subcommand("validate",
-                         "Run an SPH reference case and compare it with its reference: "
-                         "hydrostatic (pressure = rho0 g d), dambreak (Koshizuka & Oka 1996) or "
-                         "droplet (bounce, slide and rest of a lone drop against their analytic "
-                         "values) or erosion-convergence (the eroded volume against the time step, "
-                         "the particle size and the spawn height), or stream-power (the "
-                         "stream-power model against its analytic steady states: a 1-D channel, a "
-                         "2-D grid's slope-area relation, the diffusion hillslope)");
+  auto* cmd = app.add_subcommand(
+      "validate",
+      "Run an SPH reference case and compare it with its reference: "
+      "hydrostatic (pressure = rho0 g d), dambreak (Koshizuka & Oka 1996) or "
+      "droplet (bounce, slide and rest of a lone drop against their analytic "
+      "values) or erosion-convergence (the eroded volume against the time step, "
+      "the particle size, the spawn height and the speed of sound), or stream-power (the "
+      "stream-power model against its analytic steady states: a 1-D channel, a "
+      "2-D grid's slope-area relation, the diffusion hillslope)");
   cmd->add_option("case", opt->which,
                   "hydrostatic, dambreak, droplet, erosion-convergence or stream-power")
       ->required()
@@ -42,8 +43,13 @@ void add_validate_command(CLI::App& app) {
       "--settle", opt->settle,
       "hydrostatic: seconds the column settles before the last quarter is averaged "
       "(default 50 sqrt(H/g), 10 s); erosion-convergence: seconds of rain (default 20)");
+  cmd->add_option("--terrain", opt->terrain,
+                  "erosion-convergence: the terrain to rain on (.asc, .png, .npy, .tif or another "
+                  "raster GDAL reads; "
+                  "default: 65 x 65 fBm hills with 2 m cells; --set terrain.cell=... for a file "
+                  "without one); the storm scales with its cell size (60,000 mm/h on 2 m cells)");
   cmd->add_option("--out", opt->out, "folder for pressure.csv / front.csv (created)");
-  cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
+  cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->callback([opt, cmd] {
     ValidationOptions v;
@@ -55,6 +61,16 @@ void add_validate_command(CLI::App& app) {
     if (cmd->count("--settle") && !(opt->settle > 0 && opt->settle <= 1e4))
       throw input_error("--settle: must be more than 0 and at most 10000 s");
     v.settle_time = opt->settle;
+    if (cmd->count("--terrain")) {
+      if (opt->which != "erosion-convergence")
+        throw input_error("--terrain: only erosion-convergence rains on a terrain");
+      if (cmd->count("--resolution"))
+        throw input_error("--resolution: not with --terrain (the file sets the terrain's size)");
+      // As `runnel run --terrain` reads it: --set terrain.cell=... gives a .png or .npy its cell.
+      v.params.set("terrain.file", opt->terrain, "--terrain");
+      v.terrain = load_terrain(v.params);
+      v.terrain_name = std::filesystem::path(opt->terrain).filename().string();
+    }
     apply_overrides(v.params, opt->sets);
     if (!opt->out.empty()) {
       std::error_code ec;

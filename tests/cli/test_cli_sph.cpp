@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "runnel/terrain/terrain_io.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -57,6 +58,25 @@ TEST(CliSph, ValidateHydrostaticWritesPressureCsv) {
   EXPECT_GT(std::filesystem::file_size(dir.path("hs/pressure.png")), 1000u);
 }
 
+TEST(CliSph, ValidateErosionConvergenceRainsOnTheGivenTerrainWithAStormScaledToItsCell) {
+  // A tilted plane of 4 m cells: twice the default hills' cell, so twice their 60,000 mm/h.
+  ScratchDir dir;
+  Heightmap plane(17, 17, 4.0);
+  for (int j = 0; j < plane.ny; ++j)
+    for (int i = 0; i < plane.nx; ++i) plane.at(i, j) = static_cast<float>(0.3 * (plane.nx - i));
+  write_terrain(dir.path("plane.asc"), plane);
+  const auto r = run_cli(
+      {"validate", "erosion-convergence", "--terrain", dir.path("plane.asc"), "--settle", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"terrain\": \"plane.asc 17x17, 4 m cells\""), std::string::npos) << r.out;
+  EXPECT_DOUBLE_EQ(json_number(r.out, "rain_intensity_mm_per_h"), 120000.0) << r.out;
+  EXPECT_GT(json_number(r.out, "particles"), 0) << r.out;
+  // Six runs: base, half_cfl, half_spacing, the two spawn heights, double_c0; the last with
+  // twice the base run's speed of sound (derived from the plane's relief).
+  EXPECT_NE(r.out.find("\"variant\": \"double_c0\""), std::string::npos) << r.out;
+  EXPECT_GT(json_number(r.out, "base_c0_m_per_s"), 0) << r.out;
+}
+
 TEST(CliSph, BenchPrintsThroughputAndKernelTimes) {
   const auto r = run_cli({"bench", "sph", "--particles", "4000", "--steps", "3"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -80,13 +100,16 @@ TEST(CliSph, BenchDropletPrintsItsThroughput) {
 }
 
 TEST(CliSph, BadValidateAndBenchArgumentsExitWithTwo) {
-  for (std::vector<std::string> args :
-       std::vector<std::vector<std::string>>{{"validate", "tsunami"},
-                                             {"validate", "dambreak", "--resolution", "-3"},
-                                             {"validate", "dambreak", "--set", "sph.bogus=1"},
-                                             {"validate", "dambreak", "--set", "sph.cfl=7"},
-                                             {"bench", "sph", "--particles", "2"},
-                                             {"bench", "sph", "--device", "no-such-device"}}) {
+  for (std::vector<std::string> args : std::vector<std::vector<std::string>>{
+           {"validate", "tsunami"},
+           {"validate", "dambreak", "--resolution", "-3"},
+           {"validate", "dambreak", "--set", "sph.bogus=1"},
+           {"validate", "dambreak", "--set", "sph.cfl=7"},
+           {"validate", "dambreak", "--terrain", "a.asc"},
+           {"validate", "erosion-convergence", "--terrain", "/no/such/terrain.asc"},
+           {"validate", "erosion-convergence", "--terrain", "a.asc", "--resolution", "33"},
+           {"bench", "sph", "--particles", "2"},
+           {"bench", "sph", "--device", "no-such-device"}}) {
     const auto r = run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args[1] << ": " << r.err;
     EXPECT_FALSE(r.err.empty());

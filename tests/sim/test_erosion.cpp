@@ -58,7 +58,7 @@ TEST(Erosion, AnEvaporatingLoadSpreadsOverItsFootprint) {
   EXPECT_EQ(sim.mass_balance().residual_quanta, drop.sediment[0]);
 }
 
-TEST(Erosion, EroddedVolumeDoesNotMoveWithTimeStepParticleSizeOrSpawnHeight) {
+TEST(Erosion, ErodedVolumeDoesNotMoveWithTimeStepParticleSizeSpawnHeightOrSoundSpeed) {
   // A small storm on a 33 × 33 fBm (validate erosion-convergence at a small size).
   ValidationOptions options;
   options.resolution = 33;
@@ -69,6 +69,7 @@ TEST(Erosion, EroddedVolumeDoesNotMoveWithTimeStepParticleSizeOrSpawnHeight) {
   EXPECT_LT(test::json_number(json, "half_spacing_change"), 0.25) << json;
   EXPECT_GT(test::json_number(json, "half_spacing_dh_correlation"), 0.7) << json;
   EXPECT_LT(test::json_number(json, "spawn_height_change"), 0.20) << json;
+  EXPECT_LT(test::json_number(json, "double_c0_change"), 0.10) << json;
 }
 
 TEST(Erosion, OnHillsErosionFollowsTheWaterAndLeavesTheSurfaceSmooth) {

@@ -49,6 +49,7 @@ class SphModel final : public Model {
   HostParticles particles() { return sim_->solver().particles().download(); }
   std::uint64_t drops_spawned() { return sim_->rain().spawned(); }
   double particle_spacing() const { return sim_->solver().settings().spacing; }
+  double sound_speed() const { return sim_->solver().settings().c0; }
   double volume_quantum() { return sim_->solver().terrain().volume_quantum(); }
   const RainSettings& rain() { return sim_->rain().settings(); }
 

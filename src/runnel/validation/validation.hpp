@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "runnel/compute/context.hpp"
+#include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
 
@@ -11,11 +12,13 @@ namespace runnel {
 
 // The SPH reference cases (physics.md §5): `runnel validate CASE`.
 struct ValidationOptions {
-  int resolution = 0;      // particles across the case's length scale; 0: the case's default
-  std::string out_dir;     // where CSVs go; empty: none
-  Parameters params;       // sph.* overrides (--set)
-  bool progress = false;   // progress lines on stderr
-  double settle_time = 0;  // s, hydrostatic: how long the column settles; 0: the case's default
+  int resolution = 0;        // particles across the case's length scale; 0: the case's default
+  std::string out_dir;       // where CSVs go; empty: none
+  Parameters params;         // sph.* overrides (--set)
+  bool progress = false;     // progress lines on stderr
+  double settle_time = 0;    // s, hydrostatic: how long the column settles; 0: the case's default
+  Heightmap terrain;         // erosion-convergence: the terrain; empty: fBm hills
+  std::string terrain_name;  // how the summary names `terrain` (its file)
 };
 
 struct ValidationResult {
@@ -37,8 +40,9 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
 ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOptions& options);
 
 // Erosion against numerical knobs: half the time step, half the particle size (same rain volume),
-// spawn heights of 0.5 and 2 spacings, each against the base run (resolution: terrain vertices per
-// side, default 65; settle_time: the simulated seconds, default 20).
+// spawn heights of 0.5 and 2 spacings, twice the speed of sound, each against the base run
+// (resolution: vertices per side of the fBm hills, default 65, unless `terrain` is given;
+// settle_time: the simulated seconds, default 20).
 ValidationResult validate_erosion_convergence(ComputeContext& compute,
                                               const ValidationOptions& options);
 
