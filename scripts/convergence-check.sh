@@ -4,7 +4,8 @@
 # erosion-convergence` (the eroded volume against half the time step, half the particle size, spawn
 # heights of 0.5 and 2 spacings and twice the speed of sound) on the default's fBm hills and on
 # two 65 x 65 terrains with the same 2 m cells: ridged hills, and the middle of the Jacksboro DEM
-# crop. Not part of the test suite: 4-10 minutes a terrain on 2 cores.
+# crop, with each run's peak Mach number and density compression. Not part of the test suite:
+# 4-10 minutes a terrain on 2 cores (11 minutes for the three at a quiet hour).
 # Usage: scripts/convergence-check.sh [OUT]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,12 +24,12 @@ for name in "${names[@]}"; do
   # shellcheck disable=SC2086  # the options are words on purpose
   "$runnel" validate erosion-convergence ${terrain[$name]} >"$out/$name.json"
 done
-printf '%-12s %-13s %10s %8s %8s\n' terrain variant eroded_m3 change dh_corr
+printf '%-12s %-13s %10s %8s %8s %9s %9s\n' terrain variant eroded_m3 change dh_corr peak_Ma peak_Δρ/ρ0
 for name in "${names[@]}"; do
   /usr/bin/python3 - "$out/$name.json" "$name" <<'PY'
 import json, sys
 for r in json.load(open(sys.argv[1]))["details"]["runs"]:
     print(f"{sys.argv[2]:12s} {r['variant']:13s} {r['eroded_m3']:10.1f} {100 * r['relative_change']:7.2f}%"
-          f" {r['dh_correlation_with_base']:8.3f}")
+          f" {r['dh_correlation_with_base']:8.3f} {r['peak_mach']:9.3f} {100 * r['peak_compression']:8.1f}%")
 PY
 done

@@ -70,6 +70,15 @@ TEST(Erosion, ErodedVolumeDoesNotMoveWithTimeStepParticleSizeSpawnHeightOrSoundS
   EXPECT_GT(test::json_number(json, "half_spacing_dh_correlation"), 0.7) << json;
   EXPECT_LT(test::json_number(json, "spawn_height_change"), 0.20) << json;
   EXPECT_LT(test::json_number(json, "double_c0_change"), 0.10) << json;
+  // The fluid's compressibility, watched over every step: the stiffer fluid halves the peak Mach
+  // number (the speeds themselves do not move with c0), and its density peaks fall with it (they
+  // scale as v/c0, as an impact's do; a flow's or a standing column's would scale as 1/c0²).
+  const double mach = test::json_number(json, "base_peak_mach");
+  EXPECT_GT(mach, 0.0) << json;
+  EXPECT_NEAR(test::json_number(json, "double_c0_peak_mach") / mach, 0.5, 0.1) << json;
+  EXPECT_LT(test::json_number(json, "double_c0_peak_compression"),
+            0.75 * test::json_number(json, "base_peak_compression"))
+      << json;
 }
 
 TEST(Erosion, OnHillsErosionFollowsTheWaterAndLeavesTheSurfaceSmooth) {

@@ -13,15 +13,19 @@ const char* clock_suffix(ModelClock clock) {
   return clock == ModelClock::kSeconds ? " s" : clock == ModelClock::kYears ? " yr" : "";
 }
 
-void Model::advance(double dt) {
+void Model::advance(double dt, const std::function<void()>& after_step) {
   if (!(dt > 0)) return;
+  auto one_step = [&] {
+    step();
+    if (after_step) after_step();
+  };
   if (info().clock == ModelClock::kIterations) {
-    for (long long k = std::llround(dt); k > 0; --k) step();
+    for (long long k = std::llround(dt); k > 0; --k) one_step();
     return;
   }
   // A relative tolerance, so that a clock summed from many steps still lands on the target.
   const double target = time() + dt;
-  while (time() < target - 1e-12 * std::max(1.0, std::fabs(target))) step();
+  while (time() < target - 1e-12 * std::max(1.0, std::fabs(target))) one_step();
 }
 
 }  // namespace runnel

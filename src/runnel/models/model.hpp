@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,8 +49,9 @@ class Model {
   virtual double step() = 0;
   // Advances the clock by `dt` (s or iterations): steps until the clock reaches time() + dt.
   // Iteration models take round(dt) whole steps; seconds models never step past the target by
-  // more than their last step. dt = 0 changes nothing.
-  void advance(double dt);
+  // more than their last step. dt = 0 changes nothing. `after_step`, if given, runs after each
+  // step (a validation watching the state as it goes).
+  void advance(double dt, const std::function<void()>& after_step = {});
 
   virtual double time() const = 0;
   virtual std::uint64_t steps() const = 0;

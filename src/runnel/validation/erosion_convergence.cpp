@@ -28,6 +28,8 @@ namespace {
 struct ErosionRun {
   double eroded = 0;       // m³
   double sound_speed = 0;  // m/s, the c0 the run used
+  // The weakly compressible fluid's own check, over every step: the largest |v|/c0 and ρ/ρ0 − 1.
+  double peak_mach = 0, peak_compression = 0;
   Heightmap before, after;
   long long spawned = 0, steps = 0;
   double wall_seconds = 0;
@@ -37,8 +39,13 @@ ErosionRun run_rain(ComputeContext& compute, const Parameters& params, const Hei
                     double sim_time) {
   const auto start = std::chrono::steady_clock::now();
   SphModel model(compute, params, terrain);
-  model.advance(sim_time);
   ErosionRun r;
+  const SphSolver& solver = model.simulation().solver();
+  model.advance(sim_time, [&] {
+    const SphHealth& h = solver.health();
+    r.peak_mach = std::max(r.peak_mach, h.v_max / solver.settings().c0);
+    r.peak_compression = std::max(r.peak_compression, h.rho_max / solver.settings().rho0 - 1.0);
+  });
   r.before = model.initial_terrain();
   r.after = model.terrain();
   r.eroded = model.mass_balance().eroded;
@@ -174,6 +181,8 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
                         .add("eroded_m3", runs[k].eroded)
                         .add("relative_change", k == 0 ? 0.0 : change(k))
                         .add("dh_correlation_with_base", k == 0 ? 1.0 : correlation_with_base(k))
+                        .add("peak_mach", runs[k].peak_mach)
+                        .add("peak_compression", runs[k].peak_compression)
                         .add("particles_spawned", runs[k].spawned)
                         .add("steps", runs[k].steps)
                         .add("wall_seconds", runs[k].wall_seconds));
@@ -195,6 +204,10 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
       .add("spawn_height_target", 0.20)
       .add("base_c0_m_per_s", runs[0].sound_speed)
       .add("double_c0_change", c0_change)
+      .add("base_peak_mach", runs[0].peak_mach)
+      .add("base_peak_compression", runs[0].peak_compression)
+      .add("double_c0_peak_mach", runs[5].peak_mach)
+      .add("double_c0_peak_compression", runs[5].peak_compression)
       .add("double_c0_target", 0.10)
       .add("score", "relative_error is the worst criterion as a fraction of its tolerance");
   return r;
