@@ -61,6 +61,7 @@ void add_validate_command(CLI::App& app) {
     if (cmd->count("--settle") && !(opt->settle > 0 && opt->settle <= 1e4))
       throw input_error("--settle: must be more than 0 and at most 10000 s");
     v.settle_time = opt->settle;
+    apply_overrides(v.params, opt->sets);
     if (cmd->count("--terrain")) {
       if (opt->which != "erosion-convergence")
         throw input_error("--terrain: only erosion-convergence rains on a terrain");
@@ -71,7 +72,6 @@ void add_validate_command(CLI::App& app) {
       v.terrain = load_terrain(v.params);
       v.terrain_name = std::filesystem::path(opt->terrain).filename().string();
     }
-    apply_overrides(v.params, opt->sets);
     if (!opt->out.empty()) {
       std::error_code ec;
       std::filesystem::create_directories(opt->out, ec);

@@ -75,6 +75,14 @@ TEST(CliSph, ValidateErosionConvergenceRainsOnTheGivenTerrainWithAStormScaledToI
   // twice the base run's speed of sound (derived from the plane's relief).
   EXPECT_NE(r.out.find("\"variant\": \"double_c0\""), std::string::npos) << r.out;
   EXPECT_GT(json_number(r.out, "base_c0_m_per_s"), 0) << r.out;
+  // A .npy carries no cell: --set terrain.cell gives it one, as for runnel run.
+  write_terrain(dir.path("plane.npy"), plane);
+  const auto npy = run_cli({"validate", "erosion-convergence", "--terrain", dir.path("plane.npy"),
+                            "--settle", "1", "--set", "terrain.cell=4"});
+  ASSERT_EQ(npy.exit_code, 0) << npy.err;
+  EXPECT_NE(npy.out.find("\"terrain\": \"plane.npy 17x17, 4 m cells\""), std::string::npos)
+      << npy.out;
+  EXPECT_DOUBLE_EQ(json_number(npy.out, "rain_intensity_mm_per_h"), 120000.0) << npy.out;
 }
 
 TEST(CliSph, BenchPrintsThroughputAndKernelTimes) {

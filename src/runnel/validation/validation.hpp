@@ -14,7 +14,7 @@ namespace runnel {
 struct ValidationOptions {
   int resolution = 0;        // particles across the case's length scale; 0: the case's default
   std::string out_dir;       // where CSVs go; empty: none
-  Parameters params;         // sph.* overrides (--set)
+  Parameters params;         // parameter overrides (--set)
   bool progress = false;     // progress lines on stderr
   double settle_time = 0;    // s, hydrostatic: how long the column settles; 0: the case's default
   Heightmap terrain;         // erosion-convergence: the terrain; empty: fBm hills
