@@ -154,11 +154,12 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
 
   const double eroded = runs[0].eroded;
   auto change = [&](std::size_t k) { return std::fabs(runs[k].eroded - eroded) / eroded; };
+  // Each variant's Δh map against the base run's (the base against itself: 1).
   const std::vector<double> base_change = smoothed_change(runs[0], 4);
-  auto correlation_with_base = [&](std::size_t k) {
-    return pearson(base_change, smoothed_change(runs[k], 4));
-  };
-  const double correlation = correlation_with_base(2);
+  std::vector<double> correlation_with_base(runs.size(), 1.0);
+  for (std::size_t k = 1; k < runs.size(); ++k)
+    correlation_with_base[k] = pearson(base_change, smoothed_change(runs[k], 4));
+  const double correlation = correlation_with_base[2];
   const double spawn_change = std::max(change(3), change(4));
   const double c0_change = change(5);
 
@@ -180,7 +181,7 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
                         .add("variant", variants[k].name)
                         .add("eroded_m3", runs[k].eroded)
                         .add("relative_change", k == 0 ? 0.0 : change(k))
-                        .add("dh_correlation_with_base", k == 0 ? 1.0 : correlation_with_base(k))
+                        .add("dh_correlation_with_base", correlation_with_base[k])
                         .add("peak_mach", runs[k].peak_mach)
                         .add("peak_compression", runs[k].peak_compression)
                         .add("particles_spawned", runs[k].spawned)
