@@ -19,10 +19,21 @@ const std::vector<std::string> kSphSources = {
 constexpr cl_uint kStatBlocks = 256;
 constexpr int kStatColumns = 6;
 
-// -DFOOTPRINT_RADIUS and the particle volume for the water depth pass (cl/water_depth.cl).
+// Particles a work-item of water_depth_scatter_runs counts (cl/water_depth.cl), and the particles
+// per tile of the hash from which the solver takes that kernel: a sheet of water has about one
+// particle to a tile, whose footprints seldom overlap, a deep pool 8 to 27.
+constexpr unsigned kWaterRun = 16;
+constexpr unsigned kDeepWaterPerTile = 4;
+
+// The footprint and the particle volume for the water depth pass (cl/water_depth.cl).
 std::string footprint_options(const SphSettings& s, double terrain_cell) {
-  return float_define("FOOTPRINT_RADIUS", footprint_radius(s, terrain_cell)) +
-         float_define("WATER_PARTICLE_VOLUME", s.spacing * s.spacing * s.spacing);
+  const double radius = footprint_radius(s, terrain_cell);
+  // The most vertices a footprint spans along an axis: floor(2R/cell) + 1, and one more for the
+  // float rounding of its ends.
+  const int side = static_cast<int>(std::floor(2.0 * radius / terrain_cell)) + 2;
+  return float_define("FOOTPRINT_RADIUS", radius) + " -DFOOTPRINT_SIDE=" + std::to_string(side) +
+         float_define("WATER_PARTICLE_VOLUME", s.spacing * s.spacing * s.spacing) +
+         " -DWATER_RUN=" + std::to_string(kWaterRun) + "u";
 }
 
 // Candidates a tiled neighbour pass holds in local memory at once: as many as half the device's
@@ -66,6 +77,7 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   stats_ = Kernel(compute, program, "step_stats");
   project_ = Kernel(compute, program, "project_to_surface");
   depth_scatter_ = Kernel(compute, program, "water_depth_scatter");
+  depth_scatter_runs_ = Kernel(compute, program, "water_depth_scatter_runs");
   depth_gather_ = Kernel(compute, program, "water_depth_gather");
   water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, floor.size() * sizeof(cl_long));
   stats_buffer_ =
@@ -111,12 +123,18 @@ void SphSolver::measure_water_depth() {
   const std::size_t vertices = static_cast<std::size_t>(terrain_.nx()) * terrain_.ny();
   compute_.queue().enqueueFillBuffer(water_, cl_long{0}, 0, vertices * sizeof(cl_long));
   if (n == 0) return;
-  for (Kernel* k : {&depth_scatter_, &depth_gather_}) {
+  for (Kernel* k : {&depth_scatter_, &depth_scatter_runs_, &depth_gather_}) {
     store_.bind(*k, {kX, kZ, kId});
     k->set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
     k->set("tcell", terrain_.cell());
   }
-  depth_scatter_.launch(round_up_work(n));
+  // Where the water lies deep, consecutive particles share vertices, and counting them in runs
+  // saves most of the atomics on them; a GPU's atomics are cheap, and it needs the work-items.
+  if (compute_.info().type != "GPU" && n >= kDeepWaterPerTile * hash_.tile_count()) {
+    depth_scatter_runs_.launch(round_up_work((n + kWaterRun - 1) / kWaterRun));
+  } else {
+    depth_scatter_.launch(round_up_work(n));
+  }
   store_.bind(depth_gather_, {kDepth});
   depth_gather_.launch(round_up_work(n));
 }

@@ -99,7 +99,7 @@ class SphSolver {
   ParticleStore store_;
   SpatialHash hash_;
   Kernel forces_inputs_, forces_, continuity_, drift_, stats_, project_, depth_scatter_,
-      depth_gather_;
+      depth_scatter_runs_, depth_gather_;
   cl::Buffer water_;  // water on each terrain vertex, counts of 1 µm of depth (cl/water_depth.cl)
   cl::Buffer stats_buffer_, counters_buffer_;
   bool rates_ready_ = false;
