@@ -92,6 +92,11 @@ TEST(WaterDepthOracle, ParticlesFarSmallerThanTheCellsShareTheirVertices) {
   expect_depths_match_the_plain_sum({"cells of 8 spacings", 17, 4.0, 40, 300});
 }
 
+TEST(WaterDepthOracle, ParticlesFarLargerThanTheCellsReachTheWidestFootprint) {
+  // The footprint's radius is capped at 8 cells: 17 vertices along an axis, the largest box.
+  expect_depths_match_the_plain_sum({"cells of a tenth of a spacing", 321, 0.05, 20, 30});
+}
+
 TEST(WaterDepthOracle, ParticlesOfHalfACellAsInTheDefaultScenario) {
   expect_depths_match_the_plain_sum({"cells of 2 spacings", 65, 1.0, 24, 2000});
 }
