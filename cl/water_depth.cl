@@ -29,12 +29,24 @@ typedef struct {
   int i0, j0, lo_i, hi_i, lo_j, hi_j;
 } WaterBox;
 
-inline void water_box_anchor(WaterBox* b, const Footprint* f) {
-  // Centred on the footprint, so that the neighbours' footprints fit too.
-  b->i0 = f->i0 - 2;
-  b->j0 = f->j0 - 2;
+// Nothing held (the counts are all 0).
+inline void water_box_clear_range(WaterBox* b) {
   b->lo_i = b->lo_j = WATER_BOX;
   b->hi_i = b->hi_j = -1;
+}
+
+// An empty box moved to f, centred on it so that the neighbours' footprints fit too.
+inline void water_box_anchor(WaterBox* b, const Footprint* f) {
+  b->i0 = f->i0 - 2;
+  b->j0 = f->j0 - 2;
+}
+
+// f's vertices are now held too.
+inline void water_box_cover(WaterBox* b, const Footprint* f) {
+  b->lo_i = min(b->lo_i, f->i0 - b->i0);
+  b->hi_i = max(b->hi_i, f->i1 - b->i0);
+  b->lo_j = min(b->lo_j, f->j0 - b->j0);
+  b->hi_j = max(b->hi_j, f->j1 - b->j0);
 }
 
 inline bool water_box_holds(const WaterBox* b, const Footprint* f) {
@@ -49,8 +61,7 @@ inline void water_box_flush(WaterBox* b, volatile __global long* water, int nx) 
       b->count[j * WATER_BOX + i] = 0;
     }
   }
-  b->lo_i = b->lo_j = WATER_BOX;
-  b->hi_i = b->hi_j = -1;
+  water_box_clear_range(b);
 }
 
 #define WATER_BOX_ADD(i, j, share) box.count[((j) - box.j0) * WATER_BOX + ((i) - box.i0)] += (share)
@@ -76,9 +87,8 @@ __kernel void water_depth_scatter_runs(const __global float* x, const __global f
   const long counts = water_counts(tcell);
   WaterBox box;
   for (int k = 0; k < WATER_BOX * WATER_BOX; ++k) box.count[k] = 0;
-  box.i0 = box.j0 = -(1 << 20);  // holds nothing until anchored
-  box.lo_i = box.lo_j = WATER_BOX;
-  box.hi_i = box.hi_j = -1;
+  box.i0 = box.j0 = -(1 << 20);  // holds no footprint until anchored
+  water_box_clear_range(&box);
   for (uint i = first; i < end; ++i) {
     if (id[i] & DEAD_FLAG) continue;
     const Footprint f = footprint_of(x[i], z[i], tnx, tny, tcell);
@@ -91,10 +101,7 @@ __kernel void water_depth_scatter_runs(const __global float* x, const __global f
       water_box_anchor(&box, &f);
     }
     FOR_EACH_FOOTPRINT_SHARE(f, tnx, tcell, x[i], z[i], counts, 0.5f, (const __global float*)0, 1.0f, WATER_BOX_ADD);
-    box.lo_i = min(box.lo_i, f.i0 - box.i0);
-    box.hi_i = max(box.hi_i, f.i1 - box.i0);
-    box.lo_j = min(box.lo_j, f.j0 - box.j0);
-    box.hi_j = max(box.hi_j, f.j1 - box.j0);
+    water_box_cover(&box, &f);
   }
   water_box_flush(&box, water, tnx);
 }

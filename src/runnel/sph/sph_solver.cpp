@@ -123,18 +123,16 @@ void SphSolver::measure_water_depth() {
   const std::size_t vertices = static_cast<std::size_t>(terrain_.nx()) * terrain_.ny();
   compute_.queue().enqueueFillBuffer(water_, cl_long{0}, 0, vertices * sizeof(cl_long));
   if (n == 0) return;
-  for (Kernel* k : {&depth_scatter_, &depth_scatter_runs_, &depth_gather_}) {
+  // Where the water lies deep, consecutive particles share vertices, and counting them in runs
+  // saves most of the atomics on them; a GPU's atomics are cheap, and it needs the work-items.
+  const bool in_runs = compute_.info().type != "GPU" && n >= kDeepWaterPerTile * hash_.tile_count();
+  Kernel& scatter = in_runs ? depth_scatter_runs_ : depth_scatter_;
+  for (Kernel* k : {&scatter, &depth_gather_}) {
     store_.bind(*k, {kX, kZ, kId});
     k->set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
     k->set("tcell", terrain_.cell());
   }
-  // Where the water lies deep, consecutive particles share vertices, and counting them in runs
-  // saves most of the atomics on them; a GPU's atomics are cheap, and it needs the work-items.
-  if (compute_.info().type != "GPU" && n >= kDeepWaterPerTile * hash_.tile_count()) {
-    depth_scatter_runs_.launch(round_up_work((n + kWaterRun - 1) / kWaterRun));
-  } else {
-    depth_scatter_.launch(round_up_work(n));
-  }
+  scatter.launch(round_up_work(in_runs ? (n + kWaterRun - 1) / kWaterRun : n));
   store_.bind(depth_gather_, {kDepth});
   depth_gather_.launch(round_up_work(n));
 }
