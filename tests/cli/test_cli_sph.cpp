@@ -27,6 +27,9 @@ TEST(CliSph, ValidateDambreakWritesFrontCsvAndJson) {
   EXPECT_LT(json_number(r.out, "relative_error"), 0.25) << r.out;
   EXPECT_NE(r.out.find("\"compared_points\": 14"), std::string::npos)
       << "the measurement beyond the tank's 4 L wall is not compared";
+  for (const char* reading : {"koshizuka_oka_pysph", "martin_moyce_a1.125", "martin_moyce_a2.25"})
+    EXPECT_NE(r.out.find(std::string("\"reading\": \"") + reading + "\""), std::string::npos)
+        << reading;
   EXPECT_GT(std::filesystem::file_size(dir.path("db/front.png")), 1000u);
   std::istringstream csv(test::read_text(dir.path("db/front.csv")));
   std::string line;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <random>
 
 #include "runnel/core/error.hpp"
@@ -355,6 +356,55 @@ TEST(SphValidation, ReferenceCurveEqualsTheShippedCsv) {
   }
   std::fclose(f);
   EXPECT_EQ(row, koshizuka_oka_1996().size());
+}
+
+TEST(SphValidation, OtherReadingsEqualTheShippedCsvInRunnelsTime) {
+  // The compiled-in readings equal data/reference/dambreak_other_readings.csv, whose times are
+  // printed as T = t·sqrt(2g/a): runnel's t* = t·sqrt(g/a) is T/√2.
+  FILE* f = std::fopen(RUNNEL_SOURCE_DIR "/data/reference/dambreak_other_readings.csv", "r");
+  ASSERT_NE(f, nullptr);
+  std::map<std::string, std::vector<FrontSample>> csv;
+  char line[256], name[64];
+  while (std::fgets(line, sizeof line, f)) {
+    double T, Z;
+    if (std::sscanf(line, "%63[^,],%lf,%lf", name, &T, &Z) == 3) csv[name].push_back({T, Z});
+  }
+  std::fclose(f);
+  ASSERT_EQ(csv.size(), dambreak_other_readings().size());
+  for (const FrontReading& reading : dambreak_other_readings()) {
+    const auto& printed = csv[reading.name];
+    ASSERT_EQ(printed.size(), reading.samples.size()) << reading.name;
+    for (std::size_t k = 0; k < printed.size(); ++k) {
+      EXPECT_NEAR(reading.samples[k].t_star * std::sqrt(2.0), printed[k].t_star, 1e-12)
+          << reading.name;
+      EXPECT_EQ(reading.samples[k].x_over_l, printed[k].x_over_l) << reading.name;
+    }
+  }
+  // Martin & Moyce's column at T = 0.849 is at 1.245 a, where Koshizuka & Oka's is at 1.244 L at
+  // t* = 0.597: the same instant, which a wrong factor of √2 would not give.
+  EXPECT_NEAR(dambreak_other_readings()[1].samples[0].t_star, koshizuka_oka_1996()[1].t_star,
+              0.005);
+}
+
+TEST(SphValidation, SurgeScoreComparesSurgeDistancesInsideTheTankAndTheSimulatedTime) {
+  // A front that runs linearly from 1 L at t* = 0 to 3 L at t* = 2 and then stays: x = 1 + t*.
+  const std::vector<std::pair<double, double>> front = {{0.0, 1.0}, {1.0, 2.0}, {2.0, 3.0}};
+  const std::vector<FrontSample> measured = {
+      {0.5, 1.25},  // surge 0.25 against the simulated 0.5: error 1
+      {1.5, 2.5},   // 2.5 simulated: exact, between the front's samples
+      {1.75, 2.4},  // surge 1.4 against 1.75: error 0.25
+      {2.5, 3.5},   // after the last simulated time: not compared
+      {1.9, 4.2},   // beyond the tank's 4 L wall: not compared
+      {0.1, 1.0},   // no surge yet: no relative error to take
+  };
+  const SurgeScore score = score_surge_front(front, measured, 4.0);
+  ASSERT_EQ(score.points.size(), 3u);
+  EXPECT_NEAR(score.points[0].x_simulated, 1.5, 1e-12);
+  EXPECT_NEAR(score.points[0].error, 1.0, 1e-12);
+  EXPECT_NEAR(score.points[1].error, 0.0, 1e-12);
+  EXPECT_NEAR(score.points[2].error, 0.25, 1e-12);
+  EXPECT_NEAR(score.mean, (1.0 + 0.0 + 0.25) / 3.0, 1e-12);
+  EXPECT_NEAR(score.worst, 1.0, 1e-12);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "runnel/compute/context.hpp"
@@ -83,5 +84,29 @@ struct FrontSample {
   double x_over_l;
 };
 const std::vector<FrontSample>& koshizuka_oka_1996();
+
+// Other readings of dam-break fronts than the target's, scored beside it (no target of their own):
+// Koshizuka & Oka's experiment read from its figure a second time, and Martin & Moyce's (1952)
+// two columns of the same shape. The same values as data/reference/dambreak_other_readings.csv.
+struct FrontReading {
+  std::string name;    // its key in the JSON
+  std::string source;  // the experiment, and who read it from the figure
+  std::vector<FrontSample> samples;
+};
+const std::vector<FrontReading>& dambreak_other_readings();
+
+// A simulated front, (t*, x/L) in time order, against measurements, on the surge distance x − L:
+// error = |s_sim − s_exp| / s_exp at each measured time inside the simulated times whose front lies
+// inside the tank (1 < x_exp < tank_length, in L) and so could be reached; the front between two
+// samples is interpolated linearly.
+struct SurgeComparison {
+  double t_star, x_experiment, x_simulated, error;
+};
+struct SurgeScore {
+  std::vector<SurgeComparison> points;
+  double mean = 0, worst = 0;
+};
+SurgeScore score_surge_front(const std::vector<std::pair<double, double>>& front,
+                             const std::vector<FrontSample>& measured, double tank_length);
 
 }  // namespace runnel
