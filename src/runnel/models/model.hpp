@@ -75,6 +75,8 @@ class Model {
 
   // The model's own entries for metrics.json (counters, effective settings).
   virtual JsonObject diagnostics() = 0;
+  // One line on what limits the trust in this run's result, printed after it (empty: nothing).
+  virtual std::string caution() { return {}; }
   // A short fragment for the progress line ("12,000 particles").
   virtual std::string status() = 0;
   // The work of the latest step in `work_unit()`s (particles, cells or droplet moves), for the

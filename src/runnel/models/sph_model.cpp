@@ -2,6 +2,7 @@
 #include "runnel/models/sph_model.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "runnel/models/water_binning.hpp"
 
@@ -118,6 +119,7 @@ double SphModel::rain_volume() {
 
 JsonObject SphModel::diagnostics() {
   const SphCounters c = sim_->counters();
+  const WaterResolution w = water_resolution();
   return JsonObject()
       .add("particles_spawned", static_cast<long long>(sim_->rain().spawned()))
       .add("particles_alive", static_cast<long long>(sim_->particles()))
@@ -125,7 +127,36 @@ JsonObject SphModel::diagnostics() {
       .add("particles_outflow", c.outflow_particles)
       .add("below_surface_projections", c.surface_projections)
       .add("collisions", c.collisions)
+      .add("water_resolution",
+           JsonObject()
+               .add("bed_particles", w.bed_particles)
+               .add("film_share", w.film_share)
+               .add("median_particles_per_footprint", w.median_particles_per_footprint))
       .add("effective", sim_->effective_settings());
+}
+
+WaterResolution SphModel::water_resolution() {
+  ParticleStore& store = sim_->solver().particles();
+  const std::vector<float> x = store.read_field(kX), y = store.read_field(kY),
+                           z = store.read_field(kZ), depth = store.read_field(kDepth);
+  const SphSettings& s = sim_->solver().settings();
+  const Heightmap terrain = sim_->terrain();
+  return runnel::water_resolution({x, y, z, depth}, terrain, s.spacing * s.spacing * s.spacing,
+                                  footprint_radius(s, terrain.cell), s.contact_radius);
+}
+
+std::string SphModel::caution() {
+  const WaterResolution w = water_resolution();
+  if (w.film_share <= kFilmShareWarning) return {};
+  char line[320];
+  std::snprintf(
+      line, sizeof line,
+      "%.0f %% of the particles on the bed are films of their own (a footprint holding under two "
+      "particles' water; median %.1f): erosion there depends on the particle size. Halve "
+      "sph.spacing "
+      "to check (docs/erosion.md, \"Unresolved films\")",
+      100.0 * w.film_share, w.median_particles_per_footprint);
+  return line;
 }
 
 std::string SphModel::status() {

@@ -4,6 +4,7 @@
 
 #include "runnel/models/model.hpp"
 #include "runnel/models/sph_simulation.hpp"
+#include "runnel/sph/water_resolution.hpp"
 
 namespace runnel {
 
@@ -27,6 +28,7 @@ class SphModel final : public Model {
   CheckpointData checkpoint() override { return sim_->checkpoint(); }
   void restore(const CheckpointData& data) override;
   JsonObject diagnostics() override;
+  std::string caution() override;
   std::string status() override;
   double step_work() override { return static_cast<double>(sim_->particles()); }
   const char* work_unit() const override { return "particle_steps"; }
@@ -52,6 +54,8 @@ class SphModel final : public Model {
   double sound_speed() const { return sim_->solver().settings().c0; }
   double volume_quantum() { return sim_->solver().terrain().volume_quantum(); }
   const RainSettings& rain() { return sim_->rain().settings(); }
+  // How well the particles on the bed resolve the water there, now (water_resolution.hpp).
+  WaterResolution water_resolution();
 
  private:
   // The emitter's settings from the scenario's rain, the painted disc and the switch.
