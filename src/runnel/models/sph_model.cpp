@@ -149,13 +149,11 @@ std::string SphModel::caution() {
   const WaterResolution w = water_resolution();
   if (w.film_share <= kFilmShareWarning) return {};
   char line[320];
-  std::snprintf(
-      line, sizeof line,
-      "%.0f %% of the particles on the bed are films of their own (a footprint holding under two "
-      "particles' water; median %.1f): erosion there depends on the particle size. Halve "
-      "sph.spacing "
-      "to check (docs/erosion.md, \"Unresolved films\")",
-      100.0 * w.film_share, w.median_particles_per_footprint);
+  std::snprintf(line, sizeof line,
+                "%.0f %% of the particles on the bed are films of their own (a footprint holding "
+                "under two particles' water; median %.1f): erosion there depends on the particle "
+                "size. Halve sph.spacing to check (docs/erosion.md, \"Unresolved films\")",
+                100.0 * w.film_share, w.median_particles_per_footprint);
   return line;
 }
 
