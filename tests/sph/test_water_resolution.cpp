@@ -2,7 +2,8 @@
 // How many particles' water a footprint holds (sph/water_resolution.hpp), measured on the solver's
 // own water depth: a lone drop resting on the ground is one particle's water, a film of its own; a
 // sheet three particles deep holds the continuum depth of three layers, far more than two
-// particles'; a drop in the air is not on the bed. And `runnel run` says when films dominate.
+// particles'; a drop in the air is not on the bed. And `runnel run` and `runnel compare`'s report
+// say when films dominate.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -107,6 +108,20 @@ TEST(WaterResolution, RunCautionsWhenFilmsDominateAndOnlyThen) {
   const auto heavy = run("60000", "heavy");
   ASSERT_EQ(heavy.exit_code, 0) << heavy.err;
   EXPECT_EQ(heavy.err.find("caution: "), std::string::npos) << heavy.err;
+}
+
+TEST(WaterResolution, CompareReportCarriesTheSphCautionBesideItsTable) {
+  test::ScratchDir dir;
+  const auto r = test::run_cli({"compare", "--models", "sph,thermal", "--set", "terrain.size=33",
+                                "--set", "rain.intensity=2000", "--set", "rain.lifespan=1e9",
+                                "--set", "erosion.morphological_factor=100", "--set",
+                                "run.sim_time=10", "--out", dir.path("cmp")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string report = test::read_text(dir.path("cmp/report.md"));
+  EXPECT_NE(report.find("Cautions:\n\n- sph: "), std::string::npos) << report;
+  EXPECT_EQ(report.find("- thermal: "), report.find("- thermal: the scenario"))
+      << "thermal has no caution, only its budget line:\n"
+      << report;
 }
 
 }  // namespace

@@ -129,6 +129,7 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
     r.clock = clock_name(model->info().clock);
     r.folder = name;
     r.setup = setup_text(scenario, params[k]);
+    r.caution = s.caution;
     r.steps = s.steps;
     r.time = s.sim_time;
     r.wall_seconds = s.wall_seconds;

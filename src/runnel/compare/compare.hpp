@@ -33,7 +33,8 @@ Parameters model_parameters(const Parameters& scenario, const std::string& model
 // One model's results, the rows of metrics.csv.
 struct ModelResult {
   std::string model, class_name, clock, folder;
-  std::string setup;  // the parameters compare set for the budget ("pipe.rain = 0.02")
+  std::string setup;    // the parameters compare set for the budget ("pipe.rain = 0.02")
+  std::string caution;  // what limits the trust in this model's result (Model::caution)
   unsigned long long steps = 0;
   double time = 0, wall_seconds = 0, rain_volume = 0;
   MassBalance balance;

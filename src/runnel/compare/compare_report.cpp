@@ -182,6 +182,11 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
       md += "\n";
     }
   }
+  // A comparison is only as fair as its least resolved model: say so beside the table.
+  std::string cautions;
+  for (const ModelResult& r : results)
+    if (!r.caution.empty()) cautions += "- " + r.model + ": " + r.caution + "\n";
+  if (!cautions.empty()) md += "\nCautions:\n\n" + cautions;
   md += "\nHow each model received the budget (parameters set by runnel compare):\n\n";
   for (const ModelResult& r : results)
     md += "- " + r.model + ": " + (r.setup.empty() ? "the scenario as it is" : r.setup) + "\n";

@@ -279,8 +279,8 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       static_cast<unsigned long long>(s.steps), s.sim_time, clock_suffix(model.info().clock),
       m.eroded, m.deposited, m.residual, m.relative);
   progress.finish(buf);
-  if (const std::string caution = model.caution(); !caution.empty())
-    std::fprintf(stderr, "runnel: caution: %s\n", caution.c_str());
+  s.caution = model.caution();
+  if (!s.caution.empty()) std::fprintf(stderr, "runnel: caution: %s\n", s.caution.c_str());
   return s;
 }
 

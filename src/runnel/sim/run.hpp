@@ -31,6 +31,7 @@ struct RunSummary {
   double rain_volume = 0;                                      // m³
   std::vector<std::pair<std::string, double>> terrain_values;  // metrics::terrain_metric_values
   JsonObject metrics;                                          // what metrics.json holds
+  std::string caution;  // Model::caution() at the end, printed after the summary (empty: none)
 };
 
 // Advances `model` to the target, reporting the mass balance every report_every steps, writing
