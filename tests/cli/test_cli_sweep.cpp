@@ -8,6 +8,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "test_support.hpp"
 
@@ -200,6 +204,60 @@ model = ["pipe"]
   r = run_cli({"sweep", dir.path("sweep.toml"), "--out", dir.path("s"), "-j", "1"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("1 done already"), std::string::npos) << r.err;
+}
+
+TEST(CliSweep, CollectsSphWaterResolutionAndLeavesItEmptyForOtherModels) {
+  // A sweep over the storm's intensity can say which members resolve their water: the lighter
+  // storm's water on the bed is mostly films of single particles, the heavier one's is not. The
+  // pipe model has no particles, so its fields stay empty and the columns stay aligned.
+  ScratchDir dir;
+  test::write_text(dir.path("base.toml"), R"([run]
+sim_time = 10
+[terrain]
+generator = "fbm"
+size = 33
+cell = 2.0
+[rain]
+lifespan = 1e9
+[erosion]
+morphological_factor = 100.0
+)");
+  test::write_text(dir.path("sweep.toml"), R"([sweep]
+base = "base.toml"
+metrics = ["film_share", "eroded_volume", "median_particles_per_footprint"]
+[axes]
+model = ["sph", "pipe"]
+"rain.intensity" = [2000.0, 60000.0]
+)");
+  const auto r =
+      run_cli({"sweep", dir.path("sweep.toml"), "--out", dir.path("s"), "-j", "1", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string results = test::read_text(dir.path("s/results.csv"));
+  std::istringstream lines(results);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(
+      line,
+      "member,run.model,rain.intensity,film_share,eroded_volume,median_particles_per_footprint");
+  std::map<std::string, std::vector<std::string>> rows;  // "model intensity" -> the three metrics
+  while (std::getline(lines, line)) {
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    if (!line.empty() && line.back() == ',') f.push_back("");
+    ASSERT_EQ(f.size(), 6u) << line;
+    rows[f[1] + " " + f[2]] = {f[3], f[4], f[5]};
+  }
+  ASSERT_EQ(rows.size(), 4u) << results;
+  const double light = std::stod(rows["sph 2000"][0]), heavy = std::stod(rows["sph 60000"][0]);
+  EXPECT_GT(light, 0.2) << results;
+  EXPECT_LT(heavy, 0.2) << results;
+  EXPECT_GT(std::stod(rows["sph 60000"][2]), std::stod(rows["sph 2000"][2])) << results;
+  for (const char* pipe : {"pipe 2000", "pipe 60000"}) {
+    EXPECT_EQ(rows[pipe][0], "") << results;
+    EXPECT_FALSE(rows[pipe][1].empty()) << results;
+    EXPECT_EQ(rows[pipe][2], "") << results;
+  }
 }
 
 TEST(CliSweep, BadSweepFilesAreRefusedBeforeAnythingRuns) {

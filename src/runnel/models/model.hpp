@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "runnel/core/heightmap.hpp"
@@ -77,6 +78,8 @@ class Model {
   virtual JsonObject diagnostics() = 0;
   // One line on what limits the trust in this run's result, printed after it (empty: nothing).
   virtual std::string caution() { return {}; }
+  // The model's own end-of-run figures that `runnel sweep` can collect (model_summary_names()).
+  virtual std::vector<std::pair<std::string, double>> summary_values() { return {}; }
   // A short fragment for the progress line ("12,000 particles").
   virtual std::string status() = 0;
   // The work of the latest step in `work_unit()`s (particles, cells or droplet moves), for the

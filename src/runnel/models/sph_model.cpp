@@ -37,6 +37,7 @@ SphModel::SphModel(std::unique_ptr<Simulation> simulation)
 
 void SphModel::restore(const CheckpointData& data) {
   sim_->restore(data);
+  resolution_.reset();
   if (scenario_rain_.region == RainSettings::Region::kMask) {  // a restored mask's rain
     scenario_rain_ = sim_->rain().masked_rain();
     apply_rain();
@@ -136,13 +137,28 @@ JsonObject SphModel::diagnostics() {
 }
 
 WaterResolution SphModel::water_resolution() {
+  if (resolution_ && resolution_->first == sim_->steps()) return resolution_->second;
   ParticleStore& store = sim_->solver().particles();
   const std::vector<float> x = store.read_field(kX), y = store.read_field(kY),
                            z = store.read_field(kZ), depth = store.read_field(kDepth);
   const SphSettings& s = sim_->solver().settings();
   const Heightmap terrain = sim_->terrain();
-  return runnel::water_resolution({x, y, z, depth}, terrain, s.spacing * s.spacing * s.spacing,
-                                  footprint_radius(s, terrain.cell), s.contact_radius);
+  resolution_.emplace(
+      sim_->steps(),
+      runnel::water_resolution({x, y, z, depth}, terrain, s.spacing * s.spacing * s.spacing,
+                               footprint_radius(s, terrain.cell), s.contact_radius));
+  return resolution_->second;
+}
+
+const std::vector<std::string>& SphModel::summary_names() {
+  static const std::vector<std::string> names = {"film_share", "median_particles_per_footprint"};
+  return names;
+}
+
+std::vector<std::pair<std::string, double>> SphModel::summary_values() {
+  const WaterResolution w = water_resolution();
+  return {{summary_names()[0], w.film_share},
+          {summary_names()[1], w.median_particles_per_footprint}};
 }
 
 std::string SphModel::caution() {

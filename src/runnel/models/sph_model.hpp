@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <memory>
+#include <optional>
 
 #include "runnel/models/model.hpp"
 #include "runnel/models/sph_simulation.hpp"
@@ -29,6 +30,9 @@ class SphModel final : public Model {
   void restore(const CheckpointData& data) override;
   JsonObject diagnostics() override;
   std::string caution() override;
+  std::vector<std::pair<std::string, double>> summary_values() override;
+  // The names summary_values() gives, in its order: what a sweep may collect.
+  static const std::vector<std::string>& summary_names();
   std::string status() override;
   double step_work() override { return static_cast<double>(sim_->particles()); }
   const char* work_unit() const override { return "particle_steps"; }
@@ -54,7 +58,8 @@ class SphModel final : public Model {
   double sound_speed() const { return sim_->solver().settings().c0; }
   double volume_quantum() { return sim_->solver().terrain().volume_quantum(); }
   const RainSettings& rain() { return sim_->rain().settings(); }
-  // How well the particles on the bed resolve the water there, now (water_resolution.hpp).
+  // How well the particles on the bed resolve the water there, now (water_resolution.hpp); measured
+  // once per step, however many of metrics.json, the caution and a sweep ask.
   WaterResolution water_resolution();
 
  private:
@@ -62,6 +67,7 @@ class SphModel final : public Model {
   void apply_rain();
   void drain_sinks();
   std::unique_ptr<Simulation> sim_;
+  std::optional<std::pair<std::uint64_t, WaterResolution>> resolution_;  // (step, figure)
   RainSettings scenario_rain_;
   std::vector<RainDisc> painted_;
   bool global_rain_ = true;

@@ -280,6 +280,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       m.eroded, m.deposited, m.residual, m.relative);
   progress.finish(buf);
   s.caution = model.caution();
+  s.model_values = model.summary_values();
   if (!s.caution.empty()) std::fprintf(stderr, "runnel: caution: %s\n", s.caution.c_str());
   return s;
 }

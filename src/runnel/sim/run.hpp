@@ -32,6 +32,7 @@ struct RunSummary {
   std::vector<std::pair<std::string, double>> terrain_values;  // metrics::terrain_metric_values
   JsonObject metrics;                                          // what metrics.json holds
   std::string caution;  // Model::caution() at the end, printed after the summary (empty: none)
+  std::vector<std::pair<std::string, double>> model_values;  // Model::summary_values()
 };
 
 // Advances `model` to the target, reporting the mass balance every report_every steps, writing

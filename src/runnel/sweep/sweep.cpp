@@ -19,6 +19,7 @@
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
+#include "runnel/models/sph_model.hpp"
 #include "runnel/sim/run.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 #include "runnel/terrain/terrain_source.hpp"
@@ -136,6 +137,8 @@ std::vector<std::string> sweep_metric_names() {
   const Heightmap probe(4, 4, 1.0);
   for (const auto& [name, value] : metrics::terrain_metric_values(probe, probe))
     names.push_back(name);
+  // The SPH model's own (SphModel::summary_values): empty fields for members of other models.
+  names.insert(names.end(), SphModel::summary_names().begin(), SphModel::summary_names().end());
   return names;
 }
 
@@ -333,12 +336,15 @@ void run_member(const SweepSpec& spec, const SweepMember& member, const std::str
                                                           {"steps", static_cast<double>(s.steps)},
                                                           {"sim_time", s.sim_time}};
     values.insert(values.end(), s.terrain_values.begin(), s.terrain_values.end());
+    values.insert(values.end(), s.model_values.begin(), s.model_values.end());
     std::string row = std::to_string(member.index);
     // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     for (const std::string& v : member.values) row.append(",").append(csv_field(v));
     for (const std::string& metric : spec.metrics) {
+      // A model's own figure that this member's model does not have stays an empty field.
+      row.append(",");
       for (const auto& [name, value] : values)
-        if (name == metric) row.append(",").append(number_text(value));
+        if (name == metric) row.append(number_text(value));
     }
     // Written last: the member is done only once every output is complete.
     write_text_atomically((dir / "result.csv").string(), row + "\n");
