@@ -78,7 +78,7 @@ class Model {
   virtual JsonObject diagnostics() = 0;
   // One line on what limits the trust in this run's result, printed after it (empty: nothing).
   virtual std::string caution() { return {}; }
-  // The model's own end-of-run figures that `runnel sweep` can collect (model_summary_names()).
+  // The model's own end-of-run figures that `runnel sweep` can collect (SphModel::summary_names()).
   virtual std::vector<std::pair<std::string, double>> summary_values() { return {}; }
   // A short fragment for the progress line ("12,000 particles").
   virtual std::string status() = 0;
