@@ -61,7 +61,8 @@ const ModelInfo& DropletModel::model_info() {
                               "droplet",
                               ModelClock::kIterations,
                               true,
-                              {{kTopographicElevation, FieldIntent::kInOut}}};
+                              {{kTopographicElevation, FieldIntent::kInOut}},
+                              {}};
   return info;
 }
 

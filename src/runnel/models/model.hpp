@@ -36,6 +36,9 @@ struct ModelInfo {
   ModelClock clock = ModelClock::kIterations;
   bool has_rain = false;
   std::vector<FieldUse> fields;
+  // The model's own end-of-run figures, in the order summary_values() gives them: metrics that
+  // `runnel sweep` can collect (an empty field for a member of another model).
+  std::vector<std::string> summary_names;
 };
 
 // One erosion model on one terrain. Every model advances the same way (`advance(dt)`, Landlab's
@@ -78,7 +81,7 @@ class Model {
   virtual JsonObject diagnostics() = 0;
   // One line on what limits the trust in this run's result, printed after it (empty: nothing).
   virtual std::string caution() { return {}; }
-  // The model's own end-of-run figures that `runnel sweep` can collect (SphModel::summary_names()).
+  // The model's own end-of-run figures, named as info().summary_names lists them.
   virtual std::vector<std::pair<std::string, double>> summary_values() { return {}; }
   // A short fragment for the progress line ("12,000 particles").
   virtual std::string status() = 0;

@@ -43,7 +43,8 @@ const ModelInfo& OlsenModel::model_info() {
       true,
       {{kTopographicElevation, FieldIntent::kInOut},
        {kSurfaceWaterDepth, FieldIntent::kOut},
-       {kSedimentSuspended, FieldIntent::kOut}}};
+       {kSedimentSuspended, FieldIntent::kOut}},
+      {}};
   return info;
 }
 

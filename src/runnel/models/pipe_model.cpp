@@ -73,7 +73,8 @@ const ModelInfo& PipeModel::model_info() {
        {kSurfaceWaterDepth, FieldIntent::kOut},
        {kSurfaceWaterOutflux, FieldIntent::kOut},
        {kSurfaceWaterVelocity, FieldIntent::kOut},
-       {kSedimentSuspended, FieldIntent::kOut}}};
+       {kSedimentSuspended, FieldIntent::kOut}},
+      {}};
   return info;
 }
 

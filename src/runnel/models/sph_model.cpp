@@ -25,7 +25,8 @@ const ModelInfo& SphModel::model_info() {
        {"particle__age", FieldIntent::kOut},
        {"particle__lifespan", FieldIntent::kOut},
        {"particle__contacts", FieldIntent::kOut},
-       {"particle__id", FieldIntent::kOut}}};
+       {"particle__id", FieldIntent::kOut}},
+      {"film_share", "median_particles_per_footprint"}};  // water_resolution.hpp
   return info;
 }
 
@@ -150,15 +151,10 @@ WaterResolution SphModel::water_resolution() {
   return resolution_->second;
 }
 
-const std::vector<std::string>& SphModel::summary_names() {
-  static const std::vector<std::string> names = {"film_share", "median_particles_per_footprint"};
-  return names;
-}
-
 std::vector<std::pair<std::string, double>> SphModel::summary_values() {
   const WaterResolution w = water_resolution();
-  return {{summary_names()[0], w.film_share},
-          {summary_names()[1], w.median_particles_per_footprint}};
+  const std::vector<std::string>& names = model_info().summary_names;
+  return {{names[0], w.film_share}, {names[1], w.median_particles_per_footprint}};
 }
 
 std::string SphModel::caution() {

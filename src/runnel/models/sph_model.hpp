@@ -31,8 +31,6 @@ class SphModel final : public Model {
   JsonObject diagnostics() override;
   std::string caution() override;
   std::vector<std::pair<std::string, double>> summary_values() override;
-  // The names summary_values() gives, in its order: what a sweep may collect.
-  static const std::vector<std::string>& summary_names();
   std::string status() override;
   double step_work() override { return static_cast<double>(sim_->particles()); }
   const char* work_unit() const override { return "particle_steps"; }

@@ -50,7 +50,8 @@ const ModelInfo& StreamPowerModel::model_info() {
       "stream_power",
       ModelClock::kYears,
       false,
-      {{kTopographicElevation, FieldIntent::kInOut}}};
+      {{kTopographicElevation, FieldIntent::kInOut}},
+      {}};
   return info;
 }
 

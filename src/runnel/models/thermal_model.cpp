@@ -12,7 +12,8 @@ const ModelInfo& ThermalModel::model_info() {
       "thermal",
       ModelClock::kIterations,
       false,
-      {{kTopographicElevation, FieldIntent::kInOut}}};
+      {{kTopographicElevation, FieldIntent::kInOut}},
+      {}};
   return info;
 }
 

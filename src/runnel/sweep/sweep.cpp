@@ -19,7 +19,6 @@
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
-#include "runnel/models/sph_model.hpp"
 #include "runnel/sim/run.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 #include "runnel/terrain/terrain_source.hpp"
@@ -137,8 +136,9 @@ std::vector<std::string> sweep_metric_names() {
   const Heightmap probe(4, 4, 1.0);
   for (const auto& [name, value] : metrics::terrain_metric_values(probe, probe))
     names.push_back(name);
-  // The SPH model's own (SphModel::summary_values): empty fields for members of other models.
-  names.insert(names.end(), SphModel::summary_names().begin(), SphModel::summary_names().end());
+  for (const ModelEntry& model : model_registry())
+    for (const std::string& name : model.info().summary_names)
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   return names;
 }
 
