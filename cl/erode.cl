@@ -7,9 +7,10 @@
 // The stream-power model (EROSION_MODEL 0): Foster & Meyer's (1975) coupling of detachment and
 // transport capacity, as in WEPP's rill equations (Nearing et al. 1989), driven by the power the
 // flow spends on its bed (Bagnold 1966; Nearing et al. 1997 found stream power the best predictor of
-// rill detachment). A particle of the water column on the bed (its lowest point, along the surface
-// normal, within the local water depth D of the terrain; D from water_depth.cl, measured at the end
-// of the last step) stands for the water over the bed area V/D, and exchanges with that area:
+// rill detachment). A particle of the water column on the bed (touching the ground, or its lowest
+// point, along the surface normal, within the local water depth D of the terrain; D from
+// water_depth.cl, measured at the end of the last step) stands for the water over the bed area
+// V/D, and exchanges with that area:
 //   bed shear stress (Manning, the SPH bed friction's law):  τ = ρ0 g n² |u_t|² / D^(1/3)
 //   stream power spent on the bed:   ω = τ |u_t|     (W/m²; ρ0 g q S in steady flow)
 //   detachment capacity:             D_c = K_ω (ω − ω_c)⁺ / ρ_b          (m/s of bed)
@@ -98,7 +99,9 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
   const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, px, pz);
   const float gap = (y[i] - s.height) * s.normal.y - EROSION_PARTICLE_RADIUS;  // along the normal
   const float water_depth = fmax(depth[i], 1e-6f);                            // D, m
-  if (gap > water_depth) return;  // above the water on the bed (a falling drop)
+  // On the bed: touching the ground (as the drift's bed friction decides), or within the water on
+  // it. A film's D can be thinner than the ε a resting particle keeps above the ground.
+  if (!(contacts[i] & TOUCHING_FLAG) && gap > water_depth) return;  // a falling drop
 
   // The exposed material's erodibility over the particle's footprint (docs/layers.md): its mean is a
   // factor on the detachment (never on the deposition), and the quanta detached come from the

@@ -89,7 +89,7 @@ Exchange exchange(const HostParticles& p, const std::vector<float>& depth, const
     const double* n = s.normal;
     const double gap = (p.f[kY][i] - s.height) * n[1] - sph.contact_radius;
     const double D = std::max<double>(depth[i], 1e-6);
-    if (gap > D) continue;
+    if (!(p.contacts[i] & kTouchingFlag) && gap > D) continue;  // in the air, not touching
     const double u0 = draw(seed, id, step, 0), u1 = draw(seed, id, step, 1);
     auto quanta = [&](double amount) {
       return static_cast<std::int64_t>(std::floor(amount / Q + u0));
