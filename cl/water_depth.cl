@@ -9,7 +9,7 @@
 // The counts are integers (WATER_QUANTUM m of depth per count) added with integer atomics, so the
 // field does not depend on the order of the work-items.
 // Compile-time constants (host -D): FOOTPRINT_RADIUS, FOOTPRINT_SIDE, WATER_PARTICLE_VOLUME (m³),
-// WATER_RUN.
+// WATER_RUN, FILM_NEIGHBOURS.
 
 #define WATER_QUANTUM 1e-6f  // m
 
@@ -106,10 +106,109 @@ __kernel void water_depth_scatter_runs(const __global float* x, const __global f
   water_box_flush(&box, water, tnx);
 }
 
+// The water on coarser grids, for films (docs/erosion.md, "Films"): level l has vertices 2^l cells
+// apart, vertex (I, J) holding the sum of the counts on the fine vertices [2^l I, 2^l (I + 1)) ×
+// [2^l J, 2^l (J + 1)), built from the level below. Integer sums, so the levels are as
+// independent of the order of the work-items as the fine field. `levels` holds every level, the
+// fine field first, each after the one below.
+__kernel void water_depth_coarsen(__global long* levels, const uint fine_offset, const int fnx, const int fny,
+                                  const uint coarse_offset, const int cnx, const int cny) {
+  const int k = get_global_id(0);
+  if (k >= cnx * cny) return;
+  const int I = k % cnx, J = k / cnx;
+  long sum = 0;
+  for (int j = 2 * J; j < min(2 * J + 2, fny); ++j)
+    for (int i = 2 * I; i < min(2 * I + 2, fnx); ++i) sum += levels[fine_offset + j * fnx + i];
+  levels[coarse_offset + J * cnx + I] = sum;
+}
+
+// The water depth at (x, z) read on level l (nx × ny vertices, each the mean of the fine vertices of
+// its block, standing at the block's centre) with the footprint scaled by 2^l, and the depth the
+// particle's own water alone gives there: its volume over the footprint, V·Σ ŵ_k²/A_k, A_k the area
+// of vertex k's block (cell_l², less where the block is cut by the grid's edge).
+typedef struct {
+  float depth, own;
+} LevelReading;
+
+inline LevelReading level_reading(const __global long* field, int l, int fnx, int fny, int nx, int ny, float fcell,
+                                  float x, float z) {
+  const int span = 1 << l;
+  const float cell = fcell * (float)span, radius = FOOTPRINT_RADIUS * (float)span;
+  const float lx = x - 0.5f * (float)(span - 1) * fcell, lz = z - 0.5f * (float)(span - 1) * fcell;
+  const int i0 = max(0, (int)ceil((lx - radius) / cell)), i1 = min(nx - 1, (int)floor((lx + radius) / cell));
+  const int j0 = max(0, (int)ceil((lz - radius) / cell)), j1 = min(ny - 1, (int)floor((lz + radius) / cell));
+  float sum = 0.0f, weights = 0.0f, squares = 0.0f;
+  for (int j = j0; j <= j1; ++j) {
+    const float t = fmax(0.0f, 1.0f - ((float)j * cell - lz) * ((float)j * cell - lz) / (radius * radius));
+    const int cover_z = min(fny, span * (j + 1)) - span * j;
+    for (int i = i0; i <= i1; ++i) {
+      const float u = fmax(0.0f, 1.0f - ((float)i * cell - lx) * ((float)i * cell - lx) / (radius * radius));
+      const float w = t * t * u * u;
+      const int cover_x = min(fnx, span * (i + 1)) - span * i;
+      const float covered = (float)(cover_x * cover_z);  // fine vertices: fewer at the grid's far edges
+      sum += w * (float)field[j * nx + i] / covered;
+      weights += w;
+      squares += w * w / covered;
+    }
+  }
+  LevelReading r = {0.0f, 0.0f};
+  if (weights > 0.0f) {
+    r.depth = sum * WATER_QUANTUM / weights;
+    r.own = WATER_PARTICLE_VOLUME * squares / (weights * weights * fcell * fcell);
+  }
+  return r;
+}
+
+// The depth a particle's own water alone gives on its fine footprint, V·Σŵ²/cell²: the weights
+// are separable, and so is the sum of their squares (cheap enough to ask of every particle).
+inline float own_fine_depth(float x, float z, int nx, int ny, float cell) {
+  const Footprint f = footprint_of(x, z, nx, ny, cell);
+  if (!(f.sum_x > 0.0f && f.sum_z > 0.0f)) return 0.0f;
+  float squares_x = 0.0f, squares_z = 0.0f;
+  for (int i = f.i0; i <= f.i1; ++i) {
+    const float w = footprint_weight((float)i * cell - x);
+    squares_x += w * w;
+  }
+  for (int j = f.j0; j <= f.j1; ++j) {
+    const float w = footprint_weight((float)j * cell - z);
+    squares_z += w * w;
+  }
+  return WATER_PARTICLE_VOLUME * squares_x * squares_z / (f.sum_x * f.sum_x * f.sum_z * f.sum_z * cell * cell);
+}
+
+// D at each particle. Where the water is resolved (the footprint holds FILM_NEIGHBOURS particles'
+// water besides the particle's own) the fine field's footprint mean, the particle's own water
+// included: it is one of a column of water. A film's footprint holds too little water to tell the
+// depth from the particle's own: it is read on the finest coarser level whose footprint holds
+// FILM_NEIGHBOURS other particles' water, without its own (the particles of a film lie at random, and
+// a footprint centred on one of them would count it on top of the mean: the k-nearest-neighbour
+// estimate, (k − 1)/area). Where no level holds that much, the particle is not a sample of a sheet
+// but a drop on its own (the first drops of a storm, a test droplet), as deep as its own footprint
+// says: the fine mean again.
 __kernel void water_depth_gather(const __global float* x, const __global float* z, const __global uint* id,
                                  const uint n, const __global long* water, const int tnx, const int tny,
-                                 const float tcell, __global float* depth) {
+                                 const float tcell, const int levels, __global float* depth) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  depth[i] = (id[i] & DEAD_FLAG) ? 0.0f : footprint_mean(water, WATER_QUANTUM, tnx, tny, tcell, x[i], z[i]);
+  if (id[i] & DEAD_FLAG) {
+    depth[i] = 0.0f;
+    return;
+  }
+  const float fine = footprint_mean(water, WATER_QUANTUM, tnx, tny, tcell, x[i], z[i]);
+  float d = fine;
+  if (levels > 0 && fine < (FILM_NEIGHBOURS + 1.0f) * own_fine_depth(x[i], z[i], tnx, tny, tcell)) {
+    uint offset = 0;
+    int nx = tnx, ny = tny;
+    for (int l = 1; l <= levels; ++l) {
+      offset += (uint)(nx * ny);
+      nx = (nx + 1) / 2;
+      ny = (ny + 1) / 2;
+      const LevelReading r = level_reading(water + offset, l, tnx, tny, nx, ny, tcell, x[i], z[i]);
+      if (r.depth - r.own >= FILM_NEIGHBOURS * r.own) {
+        d = r.depth - r.own;
+        break;
+      }
+    }
+  }
+  depth[i] = d;
 }

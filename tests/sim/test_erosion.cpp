@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPH erosion (docs/erosion.md): every exchange lands on a footprint of vertices, not on one tile;
-// the eroded volume does not move with the time step, the particle size or the spawn height; on
-// hills the erosion follows the water and leaves the surface smooth.
+// the eroded volume does not move with the time step, the particle size or the spawn height, under
+// a heavy storm and a light one; on hills the erosion follows the water and leaves the surface
+// smooth.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -79,6 +80,29 @@ TEST(Erosion, ErodedVolumeDoesNotMoveWithTimeStepParticleSizeSpawnHeightOrSoundS
   EXPECT_LT(test::json_number(json, "double_c0_peak_compression"),
             0.75 * test::json_number(json, "base_peak_compression"))
       << json;
+}
+
+TEST(Erosion, UnderLightRainTheErodedVolumeDoesNotFollowTheParticleSize) {
+  // 2,000 mm/h for 20 s on the convergence case's 65² hills: about 180 drops of 1 m³ on 128 m ×
+  // 128 m, most of them films whose own footprint holds no other drop's water. Read on their own
+  // footprint, as before the coarser levels (docs/erosion.md, "Films"), drops of half the size
+  // eroded 14–18 % less; another seed alone moves the volume by about 5 %.
+  const Heightmap hills =
+      generate_terrain("fbm", 65, 65, 2.0, 7, {{"relief", 0.12}, {"hurst", 1.0}, {"octaves", 6}});
+  auto eroded = [&](double spacing) {
+    Parameters p;
+    p.set("rain.intensity", 2000.0);
+    p.set("rain.lifespan", 1e9);
+    p.set("erosion.morphological_factor", 100.0);
+    p.set("sph.spacing", spacing);
+    p.set("rain.spawn_height", spacing);
+    Simulation sim(compute(), p, hills);
+    while (sim.time() < 20.0) sim.step();
+    return sim.mass_balance().eroded;
+  };
+  const double base = eroded(1.0), half = eroded(0.5);
+  EXPECT_GT(base, 50.0) << "m³: the storm must erode for the comparison to mean something";
+  EXPECT_NEAR(half / base, 1.0, 0.10) << base << " m³ against " << half << " m³";
 }
 
 TEST(Erosion, OnHillsErosionFollowsTheWaterAndLeavesTheSurfaceSmooth) {

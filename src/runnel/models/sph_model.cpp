@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "runnel/models/water_binning.hpp"
+#include "runnel/sph/water_depth_reference.hpp"
 
 namespace runnel {
 
@@ -26,7 +27,8 @@ const ModelInfo& SphModel::model_info() {
        {"particle__lifespan", FieldIntent::kOut},
        {"particle__contacts", FieldIntent::kOut},
        {"particle__id", FieldIntent::kOut}},
-      {"film_share", "median_particles_per_footprint"}};  // water_resolution.hpp
+      {"film_share", "unresolved_share",
+       "median_particles_per_footprint"}};  // water_resolution.hpp
   return info;
 }
 
@@ -133,6 +135,7 @@ JsonObject SphModel::diagnostics() {
            JsonObject()
                .add("bed_particles", w.bed_particles)
                .add("film_share", w.film_share)
+               .add("unresolved_share", w.unresolved_share)
                .add("median_particles_per_footprint", w.median_particles_per_footprint))
       .add("effective", sim_->effective_settings());
 }
@@ -140,32 +143,35 @@ JsonObject SphModel::diagnostics() {
 WaterResolution SphModel::water_resolution() {
   if (resolution_ && resolution_->first == sim_->steps()) return resolution_->second;
   ParticleStore& store = sim_->solver().particles();
-  const std::vector<float> x = store.read_field(kX), y = store.read_field(kY),
-                           z = store.read_field(kZ), depth = store.read_field(kDepth);
+  const HostParticles p = store.download();
+  const std::vector<float> depth = store.read_field(kDepth);
   const SphSettings& s = sim_->solver().settings();
   const Heightmap terrain = sim_->terrain();
   resolution_.emplace(
-      sim_->steps(),
-      runnel::water_resolution({x, y, z, depth}, terrain, s.spacing * s.spacing * s.spacing,
-                               footprint_radius(s, terrain.cell), s.contact_radius));
+      sim_->steps(), runnel::water_resolution({p.f[kX], p.f[kY], p.f[kZ], depth, p.contacts},
+                                              terrain, s.spacing * s.spacing * s.spacing,
+                                              footprint_radius(s, terrain.cell), s.contact_radius));
   return resolution_->second;
 }
 
 std::vector<std::pair<std::string, double>> SphModel::summary_values() {
   const WaterResolution w = water_resolution();
   const std::vector<std::string>& names = model_info().summary_names;
-  return {{names[0], w.film_share}, {names[1], w.median_particles_per_footprint}};
+  return {{names[0], w.film_share},
+          {names[1], w.unresolved_share},
+          {names[2], w.median_particles_per_footprint}};
 }
 
 std::string SphModel::caution() {
   const WaterResolution w = water_resolution();
-  if (w.film_share <= kFilmShareWarning) return {};
+  if (w.unresolved_share <= kUnresolvedShareWarning) return {};
   char line[320];
   std::snprintf(line, sizeof line,
-                "%.0f %% of the particles on the bed are films of their own (a footprint holding "
-                "under two particles' water; median %.1f): erosion there depends on the particle "
-                "size. Halve sph.spacing to check (docs/erosion.md, \"Unresolved films\")",
-                100.0 * w.film_share, w.median_particles_per_footprint);
+                "%.0f %% of the particles on the bed are drops on their own (even the widest "
+                "footprint holds fewer than %.0f other particles' water): erosion there depends "
+                "on the particle size. Halve sph.spacing to check, or rain longer "
+                "(docs/erosion.md, \"Films\")",
+                100.0 * w.unresolved_share, kFilmNeighbours);
   return line;
 }
 

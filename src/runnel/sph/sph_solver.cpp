@@ -8,6 +8,7 @@
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/sph/water_depth_reference.hpp"
 
 namespace runnel {
 namespace {
@@ -33,7 +34,8 @@ std::string footprint_options(const SphSettings& s, double terrain_cell) {
   const int side = static_cast<int>(std::floor(2.0 * radius / terrain_cell)) + 2;
   return float_define("FOOTPRINT_RADIUS", radius) + " -DFOOTPRINT_SIDE=" + std::to_string(side) +
          float_define("WATER_PARTICLE_VOLUME", s.spacing * s.spacing * s.spacing) +
-         " -DWATER_RUN=" + std::to_string(kWaterRun) + "u";
+         " -DWATER_RUN=" + std::to_string(kWaterRun) + "u" +
+         float_define("FILM_NEIGHBOURS", kFilmNeighbours);
 }
 
 // Candidates a tiled neighbour pass holds in local memory at once: as many as half the device's
@@ -79,7 +81,9 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   depth_scatter_ = Kernel(compute, program, "water_depth_scatter");
   depth_scatter_runs_ = Kernel(compute, program, "water_depth_scatter_runs");
   depth_gather_ = Kernel(compute, program, "water_depth_gather");
-  water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, floor.size() * sizeof(cl_long));
+  depth_coarsen_ = Kernel(compute, program, "water_depth_coarsen");
+  water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE,
+                      film_level_vertices(floor.nx, floor.ny) * sizeof(cl_long));
   stats_buffer_ =
       cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
   counters_buffer_ =
@@ -133,8 +137,25 @@ void SphSolver::measure_water_depth() {
     k->set("tcell", terrain_.cell());
   }
   scatter.launch(round_up_work(in_runs ? (n + kWaterRun - 1) / kWaterRun : n));
+  const int levels = film_levels(terrain_.nx(), terrain_.ny());
+  coarsen_water(levels);
   store_.bind(depth_gather_, {kDepth});
+  depth_gather_.set("levels", levels);
   depth_gather_.launch(round_up_work(n));
+}
+
+// The water counted on coarser grids, each from the one below, for the films' depth
+// (water_depth_reference.hpp).
+void SphSolver::coarsen_water(int levels) {
+  cl_uint offset = 0;
+  for (int l = 1, nx = terrain_.nx(), ny = terrain_.ny(); l <= levels; ++l) {
+    const int coarse_nx = (nx + 1) / 2, coarse_ny = (ny + 1) / 2;
+    depth_coarsen_.set("levels", water_).set("fine_offset", offset).set("fnx", nx).set("fny", ny);
+    offset += static_cast<cl_uint>(nx * ny);
+    depth_coarsen_.set("coarse_offset", offset).set("cnx", coarse_nx).set("cny", coarse_ny);
+    depth_coarsen_.launch(round_up_work(static_cast<std::size_t>(coarse_nx) * coarse_ny));
+    nx = coarse_nx, ny = coarse_ny;
+  }
 }
 
 void SphSolver::complete_step() {

@@ -86,6 +86,7 @@ class SphSolver {
  private:
   void drift_and_collide();
   void measure_water_depth();
+  void coarsen_water(int levels);
   void build_hash();
   void bind_domain(Kernel& k);
   void integrate_density();
@@ -99,8 +100,10 @@ class SphSolver {
   ParticleStore store_;
   SpatialHash hash_;
   Kernel forces_inputs_, forces_, continuity_, drift_, stats_, project_, depth_scatter_,
-      depth_scatter_runs_, depth_gather_;
-  cl::Buffer water_;  // water on each terrain vertex, counts of 1 µm of depth (cl/water_depth.cl)
+      depth_scatter_runs_, depth_gather_, depth_coarsen_;
+  // Water on each terrain vertex, counts of 1 µm of depth, then its coarser levels for the films
+  // (cl/water_depth.cl).
+  cl::Buffer water_;
   cl::Buffer stats_buffer_, counters_buffer_;
   bool rates_ready_ = false;
   bool hash_stale_ = true;

@@ -1,34 +1,36 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "runnel/core/heightmap.hpp"
 
 namespace runnel {
 
-// How well particles resolve the water on the bed (docs/erosion.md, "Unresolved films"). For each
-// particle on the bed (within the water depth D it reads, along the surface normal, as
-// erode_exchange decides) the water its footprint holds, in particles: D against the depth its own
-// water alone gives, lone_particle_depth (footprint.hpp). Under two, the particle is a film of its
-// own: it claims the bed area of its footprint whatever its volume, so erosion there depends on the
-// particle size, and the more so the larger the share of such films (measured in the README).
-inline constexpr double kFilmParticles = 2.0;
-// The film share above which `runnel run` cautions: in the convergence case's storms, at 26 % of
-// films the eroded volume moved by 9 % when the particle spacing halved, at 8 % by 4 % (README,
-// "Rain erosion").
-inline constexpr double kFilmShareWarning = 0.2;
+// How well the particles on the bed resolve the water there (docs/erosion.md, "Films"). A particle
+// is on the bed as erode_exchange decides: touching the ground, or within the water depth D it
+// reads, along the surface normal. Its footprint holds some particles' water
+// (water_depth_reference.hpp); with fewer than kFilmNeighbours besides its own it is a film, whose
+// depth is read over a coarser footprint, and an unresolved film where even the coarsest holds
+// less: a drop on its own, as deep as its own footprint says, so that erosion there depends on the
+// particle size.
+// The share of unresolved films above which `runnel run` cautions.
+inline constexpr double kUnresolvedShareWarning = 0.2;
 
 struct WaterResolution {
   long long bed_particles = 0;
-  double film_share = 0;                      // of the bed particles, those under kFilmParticles
-  double median_particles_per_footprint = 0;  // 0 without bed particles
+  double film_share = 0;        // of the bed particles, films (resolved on a coarser level or not)
+  double unresolved_share = 0;  // of the bed particles, films that no level resolved
+  double median_particles_per_footprint = 0;  // on the fine footprint, own water included; 0
+                                              // without bed particles
 };
 
 struct ParticlesOnTerrain {
   const std::vector<float>& x;
   const std::vector<float>& y;
   const std::vector<float>& z;
-  const std::vector<float>& depth;  // m, each particle's D (water_depth.cl)
+  const std::vector<float>& depth;             // m, each particle's D (water_depth.cl)
+  const std::vector<std::uint32_t>& contacts;  // kTouchingFlag: on the ground (particle_store.hpp)
 };
 
 WaterResolution water_resolution(const ParticlesOnTerrain& p, const Heightmap& terrain,
