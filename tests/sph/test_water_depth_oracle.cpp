@@ -5,7 +5,8 @@
 // solver counts deep water (several particles to a tile of the hash) in runs of consecutive
 // particles on a CPU (water_depth_scatter_runs), and sheets one particle a work-item: the first
 // case is mostly a deep pool on cells 8 particles wide, so runs gather many footprints in one box
-// and some outgrow it; the second is mostly drops scattered over the terrain.
+// and some outgrow it; the second is mostly drops scattered over the terrain, films that read their
+// depth on coarser levels of the field (water_depth_reference.hpp, the plain computation of both).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,7 +31,7 @@ struct DepthCase {
   double cell;    // m
   int pool;       // particles per side of the pool (3 layers deep)
   int scattered;  // drops anywhere on the terrain
-  int films;      // fewer of them read on coarser levels would not test those
+  int films;      // more particles than this must read a coarser level, or the levels go untested
 };
 
 void expect_depths_match_the_plain_sum(const DepthCase& c) {

@@ -26,8 +26,8 @@ struct DepthReading {
   double depth = 0;      // m, D
   int level = 0;         // the level D was read on: ≥ 1 a film that a coarser level resolved
   bool resolved = true;  // some level held kFilmNeighbours other particles' water
-  double fine_particles =
-      0;  // the fine footprint's water in particles (the particle's own included)
+  // The fine footprint's water in particles, the particle's own included.
+  double fine_particles = 0;
 };
 
 std::vector<DepthReading> water_depth_reference(const std::vector<float>& x,
