@@ -159,21 +159,20 @@ inline LevelReading level_reading(const __global long* field, int l, int fnx, in
   return r;
 }
 
-// The depth a particle's own water alone gives on its fine footprint, V·Σŵ²/cell²: the weights
+// The depth a particle's own water alone gives on its fine footprint f, V·Σŵ²/cell²: the weights
 // are separable, and so is the sum of their squares (cheap enough to ask of every particle).
-inline float own_fine_depth(float x, float z, int nx, int ny, float cell) {
-  const Footprint f = footprint_of(x, z, nx, ny, cell);
-  if (!(f.sum_x > 0.0f && f.sum_z > 0.0f)) return 0.0f;
+inline float own_fine_depth(const Footprint* f, float x, float z, float cell) {
+  if (!(f->sum_x > 0.0f && f->sum_z > 0.0f)) return 0.0f;
   float squares_x = 0.0f, squares_z = 0.0f;
-  for (int i = f.i0; i <= f.i1; ++i) {
+  for (int i = f->i0; i <= f->i1; ++i) {
     const float w = footprint_weight((float)i * cell - x);
     squares_x += w * w;
   }
-  for (int j = f.j0; j <= f.j1; ++j) {
+  for (int j = f->j0; j <= f->j1; ++j) {
     const float w = footprint_weight((float)j * cell - z);
     squares_z += w * w;
   }
-  return WATER_PARTICLE_VOLUME * squares_x * squares_z / (f.sum_x * f.sum_x * f.sum_z * f.sum_z * cell * cell);
+  return WATER_PARTICLE_VOLUME * squares_x * squares_z / (f->sum_x * f->sum_x * f->sum_z * f->sum_z * cell * cell);
 }
 
 // D at each particle. Where the water is resolved (the footprint holds FILM_NEIGHBOURS particles'
@@ -194,9 +193,10 @@ __kernel void water_depth_gather(const __global float* x, const __global float* 
     depth[i] = 0.0f;
     return;
   }
-  const float fine = footprint_mean(water, WATER_QUANTUM, tnx, tny, tcell, x[i], z[i]);
+  const Footprint f = footprint_of(x[i], z[i], tnx, tny, tcell);
+  const float fine = footprint_mean(&f, water, WATER_QUANTUM, tnx, tcell, x[i], z[i]);
   float d = fine;
-  if (levels > 0 && fine < (FILM_NEIGHBOURS + 1.0f) * own_fine_depth(x[i], z[i], tnx, tny, tcell)) {
+  if (levels > 0 && fine < (FILM_NEIGHBOURS + 1.0f) * own_fine_depth(&f, x[i], z[i], tcell)) {
     uint offset = 0;
     int nx = tnx, ny = tny;
     for (int l = 1; l <= levels; ++l) {

@@ -6,12 +6,10 @@
 
 namespace runnel {
 
-namespace {
-double axis_weight(double d, double radius) {
+double footprint_axis_weight(double d, double radius) {
   const double t = std::max(0.0, 1.0 - d * d / (radius * radius));
   return t * t;
 }
-}  // namespace
 
 std::vector<FootprintWeight> footprint_weights(double x, double z, int nx, int ny, double cell,
                                                double radius) {
@@ -23,7 +21,8 @@ std::vector<FootprintWeight> footprint_weights(double x, double z, int nx, int n
   double total = 0;
   for (int j = j0; j <= j1; ++j) {
     for (int i = i0; i <= i1; ++i) {
-      const double w = axis_weight(i * cell - x, radius) * axis_weight(j * cell - z, radius);
+      const double w =
+          footprint_axis_weight(i * cell - x, radius) * footprint_axis_weight(j * cell - z, radius);
       out.push_back({i, j, w});
       total += w;
     }

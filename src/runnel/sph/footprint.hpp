@@ -4,6 +4,9 @@
 
 namespace runnel {
 
+// The weight along one axis of a vertex at distance d: (1 − (d/R)²)² within R, 0 beyond.
+double footprint_axis_weight(double d, double radius);
+
 // The C++ reference of cl/footprint.cl: the vertices within `radius` of (x, z) on an nx × ny grid
 // of spacing `cell`, with their normalised weights (Σ = 1), the product of (1 − (d/R)²)² along x
 // and z.

@@ -39,11 +39,6 @@ struct Level {
   }
 };
 
-double axis_weight(double d, double radius) {
-  const double t = std::max(0.0, 1.0 - d * d / (radius * radius));
-  return t * t;
-}
-
 struct Reading {
   double depth, own;
 };
@@ -59,7 +54,7 @@ Reading read_level(const Level& level, double cell, double radius, double volume
   double sum = 0, weights = 0, squares = 0;
   for (int j = j0; j <= j1; ++j) {
     for (int i = i0; i <= i1; ++i) {
-      const double w = axis_weight(j * c - lz, r) * axis_weight(i * c - lx, r);
+      const double w = footprint_axis_weight(j * c - lz, r) * footprint_axis_weight(i * c - lx, r);
       const double area = level.block_area(i, j, cell);
       sum += w * level.depth[static_cast<std::size_t>(j) * level.nx + i];
       weights += w;
