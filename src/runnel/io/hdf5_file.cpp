@@ -246,9 +246,18 @@ bool H5File::exists(const std::string& name) const {
   return H5Lexists(file_.get(), name.c_str(), H5P_DEFAULT) > 0;
 }
 
-std::vector<hsize_t> H5File::dims(const std::string& name) const {
+// A dataset whose header HDF5 cannot parse (a chunk dimension of 0, say) is named as damaged, not
+// missing: whether libhdf5 1.10 refuses such a header or divides by it depends on what the process
+// read before, so the message must not depend on which happened.
+H5Handle H5File::open_dataset(const std::string& name) const {
   H5Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
-  if (!set.valid()) throw input_error(path_ + ": missing dataset " + name);
+  if (set.valid()) return set;
+  if (!exists(name)) throw input_error(path_ + ": missing dataset " + name);
+  throw input_error(path_ + ": damaged dataset " + name + " (its header cannot be read)");
+}
+
+std::vector<hsize_t> H5File::dims(const std::string& name) const {
+  const H5Handle set = open_dataset(name);
   H5Handle space(H5Dget_space(set.get()), H5Sclose);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   if (rank < 0) throw input_error(path_ + ": unreadable dataset " + name);
@@ -258,8 +267,7 @@ std::vector<hsize_t> H5File::dims(const std::string& name) const {
 }
 
 bool H5File::is_integer(const std::string& name) const {
-  H5Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
-  if (!set.valid()) throw input_error(path_ + ": missing dataset " + name);
+  const H5Handle set = open_dataset(name);
   H5Handle type(H5Dget_type(set.get()), H5Tclose);
   return H5Tget_class(type.get()) == H5T_INTEGER;
 }
@@ -280,7 +288,7 @@ std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsi
     total *= v;
   }
   std::vector<T> out(total);
-  H5Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+  const H5Handle set = open_dataset(name);
   if (total > 0 && H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
     throw input_error(path_ + ": cannot read dataset " + name + " (corrupt or truncated)");
   }

@@ -83,6 +83,8 @@ class H5File {
   template <typename T>
   std::vector<T> read_typed(const std::string& name, const std::vector<hsize_t>& expected,
                             hid_t type) const;
+  // The dataset `name`, or a refusal that says whether it is absent or there but unreadable.
+  H5Handle open_dataset(const std::string& name) const;
   std::string path_;
   H5Handle file_;
   bool reading_ = false;
