@@ -18,14 +18,7 @@ rounds=${2:-3}
 venv=$(realpath -m "${PEERS_VENV:-bench/peers/.venv}")
 cores=$(nproc)
 
-if [ ! -x "$venv/bin/pysph" ]; then
-  echo "installing PySPH 1.0b2 into $venv (PyPI; compiles with gcc, several minutes)" >&2
-  python3 -m venv "$venv"
-  # Cython 3 (PySPH 1.0b2 reads ndarray.data, which only Cython 3 maps to NumPy's accessor).
-  "$venv/bin/pip" install -q "numpy<2" "cython>=3,<3.1" mako setuptools wheel
-  "$venv/bin/pip" install -q --no-build-isolation cyarray==1.1 compyle pytools
-  "$venv/bin/pip" install -q --no-build-isolation pysph==1.0b2
-fi
+bash bench/peers/install_pysph.sh "$venv"
 [ -x build/runnel ] || bash scripts/build.sh
 
 work=$(mktemp -d)
