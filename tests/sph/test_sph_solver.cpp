@@ -358,6 +358,27 @@ TEST(SphValidation, ReferenceCurveEqualsTheShippedCsv) {
   EXPECT_EQ(row, koshizuka_oka_1996().size());
 }
 
+TEST(SphValidation, InstantReleaseReferenceEqualsTheShippedCsv) {
+  // The compiled-in PySPH front equals data/reference/dambreak_pysph_instant_release.csv, and it
+  // is sampled at the experiment's own measured times.
+  FILE* f = std::fopen(RUNNEL_SOURCE_DIR "/data/reference/dambreak_pysph_instant_release.csv", "r");
+  ASSERT_NE(f, nullptr);
+  const std::vector<FrontSample>& samples = dambreak_instant_release().samples;
+  char line[256];
+  std::size_t row = 0;
+  while (std::fgets(line, sizeof line, f)) {
+    double ts, xl;
+    if (line[0] == '#' || std::sscanf(line, "%lf,%lf", &ts, &xl) != 2) continue;
+    ASSERT_LT(row, samples.size());
+    EXPECT_DOUBLE_EQ(samples[row].t_star, ts);
+    EXPECT_DOUBLE_EQ(samples[row].x_over_l, xl);
+    EXPECT_DOUBLE_EQ(koshizuka_oka_1996()[row].t_star, ts);
+    ++row;
+  }
+  std::fclose(f);
+  EXPECT_EQ(row, samples.size());
+}
+
 TEST(SphValidation, OtherReadingsEqualTheShippedCsvInRunnelsTime) {
   // The compiled-in readings equal data/reference/dambreak_other_readings.csv, whose times are
   // printed as T = t·sqrt(2g/a): runnel's t* = t·sqrt(g/a) is T/√2.

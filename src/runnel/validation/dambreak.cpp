@@ -8,7 +8,8 @@
 // at every measured time whose front lies inside the simulated tank (x_exp < 4L; the last
 // measurement, 4.13 L, is beyond its wall). relative_error is their mean; the worst is reported
 // too, and so are the errors against other readings (the same experiment read again, Martin &
-// Moyce 1952), which show how far a reading of such a figure can be trusted.
+// Moyce 1952), which show how far a reading of such a figure can be trusted, and the gap to another
+// code's solution of the same instant release (PySPH), which shows whether runnel solves the case.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -91,6 +92,15 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
                          .add("worst_surge_error", score.worst)
                          .add("compared_points", static_cast<long long>(score.points.size())));
   }
+  // Another code's solution of the same instant release: how far runnel's surge lies from it.
+  const FrontReading& peer = dambreak_instant_release();
+  const SurgeScore peer_gap = score_surge_front(front, peer.samples, tank);
+  const JsonObject instant_release =
+      JsonObject()
+          .add("source", peer.source)
+          .add("mean_surge_gap", peer_gap.mean)
+          .add("worst_surge_gap", peer_gap.worst)
+          .add("compared_points", static_cast<long long>(peer_gap.points.size()));
 
   if (!options.out_dir.empty()) {
     write_file_atomically((std::filesystem::path(options.out_dir) / "front.csv").string(),
@@ -114,6 +124,10 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
       again_x.push_back(m.x_over_l);
     }
     plot.points(again_t, again_x, kPlotSecondary, "koshizuka & oka 1996, read again (pysph)");
+    std::vector<double> peer_t, peer_x;
+    for (const FrontSample& m : peer.samples)
+      peer_t.push_back(m.t_star), peer_x.push_back(m.x_over_l);
+    plot.points(peer_t, peer_x, kPlotPeer, "pysph, the same instant release, 67 across l");
     plot.line(sim_t, sim_x, kPlotSimulation,
               "runnel, " + std::to_string(resolution) + " particles across l");
     plot.write((std::filesystem::path(options.out_dir) / "front.png").string());
@@ -136,7 +150,8 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
       .add("measure", "surge distance (x - L)/L, relative to the experiment's")
       .add("front", table)
       .add("reference", "Koshizuka & Oka 1996")
-      .add("other_readings", others);
+      .add("other_readings", others)
+      .add("instant_release", instant_release);
   return r;
 }
 

@@ -95,6 +95,12 @@ struct FrontReading {
 };
 const std::vector<FrontReading>& dambreak_other_readings();
 
+// The same instant release solved by another code (PySPH's own dam-break example, finer than
+// runnel's default): not a measurement but a check that runnel solves the case as posed. Scored
+// like a reading, its "error" is the gap between the two codes' surge distances. The same values as
+// data/reference/dambreak_pysph_instant_release.csv.
+const FrontReading& dambreak_instant_release();
+
 // A simulated front, (t*, x/L) in time order, against measurements, on the surge distance x − L:
 // error = |s_sim − s_exp| / s_exp at each measured time inside the simulated times whose front lies
 // inside the tank (1 < x_exp < tank_length, in L) and so could be reached; the front between two
