@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Does SPH erosion follow the water on terrains it was not tuned for? Runs `runnel compare` (SPH and
-# the pipe model, the same rain budget) with the default scenario's physics on five terrains, only
+# the pipe model, the same rain budget) with the default scenario's physics on seven terrains, only
 # the terrain changing, and prints the drainage metrics of docs/metrics.md for each. Not part of
 # the test suite: about 10 minutes a terrain on 2 cores. Usage: scripts/drainage-check.sh [OUT]
 set -euo pipefail
@@ -16,13 +16,16 @@ mkdir -p "$out"
 "$runnel" generate ridged --size 129 --cell 2 --seed 7 --set relief=0.08 --set hurst=1.0 --set octaves=5 \
   -o "$out/ridged.npy" >/dev/null
 "$runnel" generate ridged --size 129 --cell 2 --seed 7 --set relief=0.12 -o "$out/ridged_rough.npy" >/dev/null
-names=(fbm_seed7 fbm_seed11 ridged ridged_rough jacksboro)  # the order of the table
+names=(fbm_seed7 fbm_seed11 ridged ridged_rough jacksboro jacksboro_nw jacksboro_se)  # the table's order
 declare -A terrain=(
   [fbm_seed7]=""                       # the default scenario itself
   [fbm_seed11]="--set terrain.seed=11" # other hills from the same generator
   [ridged]="--terrain $out/ridged.npy"
   [ridged_rough]="--terrain $out/ridged_rough.npy"
   [jacksboro]="--terrain data/terrains/jacksboro_crop_scaled.asc" # a real DEM's valleys, scaled 1:41.5
+  # Two more crops of the same DEM, never tuned on (data/README.md).
+  [jacksboro_nw]="--terrain data/terrains/jacksboro_nw_scaled.asc"
+  [jacksboro_se]="--terrain data/terrains/jacksboro_se_scaled.asc"
 )
 for name in "${names[@]}"; do
   # shellcheck disable=SC2086  # the options are words on purpose
