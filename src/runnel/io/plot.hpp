@@ -12,7 +12,7 @@ struct PlotColour {
 };
 inline constexpr PlotColour kPlotReference{20, 20, 20};    // measurements, analytic values
 inline constexpr PlotColour kPlotSimulation{200, 60, 30};  // runnel
-inline constexpr PlotColour kPlotSecondary{40, 90, 200};   // a second runnel series
+inline constexpr PlotColour kPlotSecondary{40, 90, 200};   // a second series or reading
 inline constexpr PlotColour kPlotPeer{30, 150, 60};        // another code's result
 
 // A small x–y chart for validation figures (front.png, pressure.png): axes with round ticks,
