@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
@@ -20,6 +21,7 @@
 #include "runnel/io/progress.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/terrain/height_steps.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
@@ -141,6 +143,14 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                  "runnel: %s on %s: at most %.1f MB of device memory (the device has %.0f MB)\n",
                  model.info().name.c_str(), compute.info().name.c_str(), model.device_bytes() / 1e6,
                  static_cast<double>(compute.info().global_memory) / 1e6);
+  }
+  // Before the run, so that a user can stop it and smooth the terrain first; once for the models of
+  // a comparison, which share the terrain.
+  const HeightSteps steps = height_steps(model.initial_terrain());
+  static std::string last_caution;
+  if (steps.stepped() && steps.caution() != last_caution) {
+    last_caution = steps.caution();
+    std::fprintf(stderr, "runnel: caution: %s\n", last_caution.c_str());
   }
   const auto start = std::chrono::steady_clock::now();
   compute.profiler().reset();
@@ -264,7 +274,11 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                           .add("ny", initial.ny)
                           .add("cell", initial.cell)
                           .add("min_height", initial.min_height())
-                          .add("max_height", initial.max_height()))
+                          .add("max_height", initial.max_height())
+                          .add("height_step", steps.step)
+                          .add("level_share", steps.level_share)
+                          .add("one_step_share", steps.one_step_share)
+                          .add("stepped", steps.stepped()))
       .add("terrain_metrics", metrics::terrain_metrics_json(s.terrain_values, final_terrain))
       .add("kernel_seconds", kernel_seconds)
       .add("kernel_launches", kernel_launches)
