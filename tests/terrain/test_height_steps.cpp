@@ -70,5 +70,17 @@ TEST(HeightSteps, TheShippedDemIsSteppedAndARunOnItSaysSoFirst) {
             std::string::npos);
 }
 
+TEST(HeightSteps, ACompareReportListsTheTerrainsStepsAmongItsCautions) {
+  test::ScratchDir dir;
+  const auto r = test::run_cli({"compare", "--models", "thermal", "--terrain",
+                                test::source_dir() + "/data/terrains/jacksboro_se_scaled.asc",
+                                "--set", "run.iterations=1", "--out", dir.path("cmp")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string report = test::read_text(dir.path("cmp/report.md"));
+  EXPECT_NE(report.find("Cautions:\n\n- terrain: the terrain's heights come in steps of 0.024 m"),
+            std::string::npos)
+      << report;
+}
+
 }  // namespace
 }  // namespace runnel

@@ -8,6 +8,7 @@
 #include "runnel/compare/compare.hpp"
 #include "runnel/ground/geology_picture.hpp"
 #include "runnel/io/images.hpp"
+#include "runnel/terrain/height_steps.hpp"
 
 namespace runnel::compare {
 namespace {
@@ -184,6 +185,8 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
   }
   // A comparison is only as fair as its least resolved model: say so beside the table.
   std::string cautions;
+  const std::string steps = height_steps(initial).caution();
+  if (!steps.empty()) cautions += "- terrain: " + steps + "\n";
   for (const ModelResult& r : results)
     if (!r.caution.empty()) cautions += "- " + r.model + ": " + r.caution + "\n";
   if (!cautions.empty()) md += "\nCautions:\n\n" + cautions;
