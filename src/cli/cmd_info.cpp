@@ -12,6 +12,7 @@
 #include "runnel/ground/strata.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/terrain/height_steps.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel::cli {
@@ -147,6 +148,7 @@ void add_info_command(CLI::App& app) {
       return;
     }
     const Heightmap t = read_terrain(opt->file);
+    const HeightSteps steps = height_steps(t);
     if (opt->json) {
       std::cout << JsonObject()
                        .add("file", opt->file)
@@ -160,6 +162,10 @@ void add_info_command(CLI::App& app) {
                        .add("origin_z", t.origin_z)
                        .add("crs", crs_name(t.georef.crs_wkt))
                        .add("crs_wkt", t.georef.crs_wkt)
+                       .add("height_step", steps.step)
+                       .add("level_share", steps.level_share)
+                       .add("one_step_share", steps.one_step_share)
+                       .add("stepped", steps.stepped())
                        .str()
                 << "\n";
       return;
@@ -173,6 +179,7 @@ void add_info_command(CLI::App& app) {
       std::printf("  lower-left corner (%.10g, %.10g), CRS %s\n", t.origin_x, t.origin_z,
                   crs_name(t.georef.crs_wkt).c_str());
     }
+    if (steps.stepped()) std::printf("  stepped: %s\n", steps.caution().c_str());
   });
 }
 

@@ -145,6 +145,12 @@ TEST(Cli, InfoDescribesATerrain) {
       run_cli({"info", "--json", test::source_dir() + "/data/terrains/jacksboro_fault_dem.asc"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\"nx\": 403"), std::string::npos) << r.out;
+  // Stored in whole metres: a staircase (docs/terrain-formats.md, "Stepped DEMs").
+  EXPECT_NE(r.out.find("\"height_step\": 1,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"stepped\": true"), std::string::npos) << r.out;
+  const auto png = run_cli({"info", test::source_dir() + "/data/terrains/fbm_257.png"});
+  ASSERT_EQ(png.exit_code, 0) << png.err;
+  EXPECT_EQ(png.out.find("stepped"), std::string::npos) << png.out;
 }
 
 }  // namespace
