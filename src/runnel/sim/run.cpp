@@ -148,9 +148,9 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   // a comparison, which share the terrain.
   const HeightSteps steps = height_steps(model.initial_terrain());
   static std::string last_caution;
-  if (steps.stepped() && steps.caution() != last_caution) {
-    last_caution = steps.caution();
-    std::fprintf(stderr, "runnel: caution: %s\n", last_caution.c_str());
+  if (const std::string caution = steps.caution(); !caution.empty() && caution != last_caution) {
+    last_caution = caution;
+    std::fprintf(stderr, "runnel: caution: %s\n", caution.c_str());
   }
   const auto start = std::chrono::steady_clock::now();
   compute.profiler().reset();
