@@ -37,6 +37,19 @@ __kernel void terrain_view(const __global long* height_fixed, __global float* he
   height[k] = fixed_height_view(height_fixed[k], quantum);
 }
 
+// The view of the tiles marked in `changed`, for a step whose kernels added their changes straight to
+// height_fixed (DeviceTerrain::bind_fixed_changes): they read only the float view during the step,
+// so the fixed heights need no separate deltas, and the pass moves 12 bytes a vertex instead of 28.
+__kernel void terrain_view_changed(const __global long* height_fixed, __global float* height, const int nx,
+                                   const int ny, const float quantum, const __global uint* changed,
+                                   const int tiles_x) {
+  const int k = get_global_id(0);
+  if (k >= nx * ny) return;
+  const int j = grid_row(k, nx), i = k - j * nx;
+  if (!changed[terrain_tile(i, j, tiles_x)]) return;
+  height[k] = fixed_height_view(height_fixed[k], quantum);
+}
+
 // The tiles whose normals a step's changes made stale: the changed tiles and their neighbours (a
 // vertex's normal reads the heights one vertex away, which may lie in the next tile).
 __kernel void terrain_stale_normals(const __global uint* changed, __global uint* stale, const int tiles_x,

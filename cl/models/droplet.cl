@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Particle droplets (Beyer 2015; models.md "droplet"). A batch of droplets moves in lockstep: one
 // launch moves every droplet of the batch one cell over the terrain as the previous step left it
-// (height, m), and the host applies the step's erosion and deposition before the next. Changes go
-// into the fixed-point deltas (counts of the height quantum) with 64-bit integer atomics, so a
-// step's result does not depend on the order of the droplets. Sediment is carried as quanta too:
+// (height, m, the float view), and the host refreshes that view before the next. Changes go
+// straight into the fixed-point heights (counts of the height quantum), which no droplet reads,
+// with 64-bit integer atomics, so a step's result does not depend on the order of the droplets. Sediment is carried as quanta too:
 // what a droplet erodes, it deposits (or carries out of the map, booked as outflow) exactly.
 // (Running each droplet's whole lifetime on the terrain of the batch start let the droplets that
 // met in one pit each fill it to the brim; the spikes that made grew without bound.)
@@ -30,7 +30,7 @@ inline float height_at(const __global float* h, int nx, float x, float z, float*
 }
 
 // Deposits `quanta` on the 4 corners of the cell with bilinear weights, exactly.
-inline void deposit_bilinear(volatile __global long* delta, __global uint* changed, int tiles_x, int nx, float x,
+inline void deposit_bilinear(volatile __global long* height_fixed, __global uint* changed, int tiles_x, int nx, float x,
                              float z, long quanta) {
   if (quanta <= 0) return;
   const int i = (int)x, j = (int)z;
@@ -44,9 +44,9 @@ inline void deposit_bilinear(volatile __global long* delta, __global uint* chang
     const long part = min((long)floor((float)quanta * w[c]), quanta - given);
     given += part;
     if (w[c] > w[largest]) largest = c;
-    if (part > 0) atom_add(&delta[k[c]], part);
+    if (part > 0) atom_add(&height_fixed[k[c]], part);
   }
-  if (quanta - given > 0) atom_add(&delta[k[largest]], quanta - given);
+  if (quanta - given > 0) atom_add(&height_fixed[k[largest]], quanta - given);
 }
 
 // Erodes floor(amount·ē/quantum) quanta from the vertices within DROPLET_RADIUS cells, weighted by
@@ -54,7 +54,7 @@ inline void deposit_bilinear(volatile __global long* delta, __global uint* chang
 // under the brush: a layered bed gives in proportion to how easily it erodes, a frozen vertex
 // nothing (docs/layers.md). Returns the quanta taken.
 #define BRUSH_SIDE (2 * (int)DROPLET_RADIUS_CELLS + 2)
-inline long erode_brush(volatile __global long* delta, __global uint* changed, int tiles_x, int nx, int ny, float x,
+inline long erode_brush(volatile __global long* height_fixed, __global uint* changed, int tiles_x, int nx, int ny, float x,
                         float z, float amount, float quantum, const __global float* erodibility) {
   const int r = DROPLET_RADIUS_CELLS;
   const int ci = (int)x, cj = (int)z;
@@ -92,19 +92,19 @@ inline long erode_brush(volatile __global long* delta, __global uint* changed, i
         best_part = part;
         best = m;
       }
-      if (part > 0) atom_add(&delta[m], -part);
+      if (part > 0) atom_add(&height_fixed[m], -part);
     }
   }
-  if (quanta - taken > 0 && best >= 0) atom_add(&delta[best], -(quanta - taken));
+  if (quanta - taken > 0 && best >= 0) atom_add(&height_fixed[best], -(quanta - taken));
   return quanta;
 }
 
 // Droplet state between steps: (x, z, dir_x, dir_z, speed, water) in cell units; water < 0 marks
-// a droplet that has finished. droplet_spawn places a batch's droplets; the host then orders them
-// by where they fell (row by row), and droplet_step moves them in that order: neighbouring
-// work-items then touch the same rows of the terrain and its deltas, which stay in the cache,
-// where droplets in the order they were drawn touched a random place each. The changes are integer
-// sums, so the order changes nothing in the result.
+// a droplet that has finished. droplet_spawn places a batch's droplets; the host then stores them
+// in the order of where they fell (row by row), and droplet_step moves droplet g with work-item g:
+// neighbouring work-items then touch the same rows of the terrain, which stay in the cache, and
+// read their states one after another. Droplets in the order they were drawn touched a random
+// place each. The changes are integer sums, so the order changes nothing in the result.
 __kernel void droplet_spawn(const int nx, const int ny, const ulong seed, const ulong first_droplet, const uint count,
                             __global float* state, __global long* load, volatile __global long* counters,
                             const __global float* rain_weight, const float spawn_x, const float spawn_z,
@@ -138,15 +138,14 @@ __kernel void droplet_spawn(const int nx, const int ny, const ulong seed, const 
 #endif
 }
 
-// One step of every droplet of the batch, the droplet order[g] for work-item g.
-__kernel void droplet_step(const __global float* height, volatile __global long* delta, __global uint* changed,
+// One step of every droplet of the batch.
+__kernel void droplet_step(const __global float* height, volatile __global long* height_fixed, __global uint* changed,
                            const int tiles_x, const int nx, const int ny, const float quantum, const uint count,
-                           const int step_index, const __global uint* order, __global float* state,
+                           const int step_index, __global float* state,
                            __global long* load, volatile __global long* counters,
                            const __global float* erodibility) {
-  const uint g = get_global_id(0);
-  if (g >= count) return;
-  const uint d = order[g];
+  const uint d = get_global_id(0);
+  if (d >= count) return;
   __global float* s = state + 6 * d;
   if (s[5] < 0.0f) return;
   float x = s[0], z = s[1], speed = s[4], water = s[5];
@@ -157,7 +156,7 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
   float dir_z = s[3] * DROPLET_INERTIA - gz * (1.0f - DROPLET_INERTIA);
   const float len = sqrt(dir_x * dir_x + dir_z * dir_z);
   if (len == 0.0f) {  // flat: the droplet stops and deposits what it carries
-    deposit_bilinear(delta, changed, tiles_x, nx, x, z, sediment);
+    deposit_bilinear(height_fixed, changed, tiles_x, nx, x, z, sediment);
     load[d] = 0;
     s[5] = -1.0f;
     return;
@@ -180,16 +179,16 @@ __kernel void droplet_step(const __global float* height, volatile __global long*
   if (dh > 0.0f || carried > capacity) {
     const float amount = dh > 0.0f ? fmin(dh, carried) : (carried - capacity) * DROPLET_DEPOSIT;
     const long q = min(sediment, (long)floor(amount / quantum));
-    deposit_bilinear(delta, changed, tiles_x, nx, x, z, q);
+    deposit_bilinear(height_fixed, changed, tiles_x, nx, x, z, q);
     sediment -= q;
   } else {
     const float amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
-    sediment += erode_brush(delta, changed, tiles_x, nx, ny, x, z, amount, quantum, erodibility);
+    sediment += erode_brush(height_fixed, changed, tiles_x, nx, ny, x, z, amount, quantum, erodibility);
   }
   speed = sqrt(fmax(0.0f, speed * speed - dh * DROPLET_GRAVITY));
   water *= 1.0f - DROPLET_EVAPORATE;
   if (step_index == DROPLET_LIFETIME - 1) {  // the end of its life: it deposits what it still carries
-    deposit_bilinear(delta, changed, tiles_x, nx, nx_pos, nz_pos, sediment);
+    deposit_bilinear(height_fixed, changed, tiles_x, nx, nx_pos, nz_pos, sediment);
     sediment = 0;
     water = -1.0f;
   }

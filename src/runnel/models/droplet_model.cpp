@@ -99,16 +99,14 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       counters_(compute.context(), CL_MEM_READ_WRITE, 3 * sizeof(cl_long)),
       droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, batch_size())),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
-                    static_cast<std::size_t>(batch_size()) * sizeof(cl_long)),
-      droplet_order_(compute.context(), CL_MEM_READ_WRITE,
-                     static_cast<std::size_t>(batch_size()) * sizeof(cl_uint)) {
+                    static_cast<std::size_t>(batch_size()) * sizeof(cl_long)) {
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
   step_kernel_.set("erodibility", bed() ? bed()->erodibility : placeholder_);
   spawn_kernel_.set("rain_weight", rain_weight());
 }
 
 double DropletModel::scratch_bytes() const {
-  return buffer_bytes({&counters_, &droplet_state_, &droplet_load_, &droplet_order_});
+  return buffer_bytes({&counters_, &droplet_state_, &droplet_load_});
 }
 
 long long DropletModel::batch_size() const {
@@ -165,27 +163,27 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
   order_by_place(count);
   // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl).
   for (int step = 0; step < settings_.lifetime; ++step) {
-    terrain.bind_changes(step_kernel_);
+    terrain.bind_fixed_changes(step_kernel_);
     step_kernel_.set("height", terrain.height())
         .set("nx", terrain.nx())
         .set("ny", terrain.ny())
         .set("quantum", static_cast<float>(terrain.quantum()))
         .set("count", count)
         .set("step_index", static_cast<cl_int>(step))
-        .set("order", droplet_order_)
         .set("state", droplet_state_)
         .set("load", droplet_load_)
         .set("counters", counters_)
         .launch(round_up_work(count));
-    terrain.apply_changed();
+    terrain.view_changed();
   }
   droplets_ += count;
 }
 
-// The order droplet_step moves a batch's droplets in: by the vertex they fell on, row by row (ties
-// in droplet order), so that neighbouring work-items share rows of the terrain in the cache. The
-// result does not depend on it (droplet.cl); the speed does: random places miss the cache at every
-// brush vertex.
+// Stores a batch's droplets in the order of the vertex they fell on, row by row (ties in droplet
+// order), so that neighbouring work-items of droplet_step share rows of the terrain in the cache
+// and read their states in sequence. The result does not depend on the order (droplet.cl), since
+// a droplet's number matters only to droplet_spawn's random numbers; the speed does: random places
+// miss the cache at every brush vertex.
 void DropletModel::order_by_place(cl_uint count) {
   std::vector<cl_float> state(static_cast<std::size_t>(count) * 6);
   compute_.queue().enqueueReadBuffer(droplet_state_, CL_TRUE, 0, state.size() * sizeof(cl_float),
@@ -198,10 +196,14 @@ void DropletModel::order_by_place(cl_uint count) {
     keyed[d] = (j * nx + i) << 32 | d;
   }
   std::sort(keyed.begin(), keyed.end());
-  std::vector<cl_uint> order(count);
-  for (cl_uint g = 0; g < count; ++g) order[g] = static_cast<cl_uint>(keyed[g] & 0xffffffffu);
-  compute_.queue().enqueueWriteBuffer(droplet_order_, CL_TRUE, 0, order.size() * sizeof(cl_uint),
-                                      order.data());
+  std::vector<cl_float> ordered(state.size());
+  for (cl_uint g = 0; g < count; ++g) {
+    const std::size_t d = keyed[g] & 0xffffffffu;
+    std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(6 * d), 6,
+                ordered.begin() + static_cast<std::ptrdiff_t>(6 * g));
+  }
+  compute_.queue().enqueueWriteBuffer(droplet_state_, CL_TRUE, 0, ordered.size() * sizeof(cl_float),
+                                      ordered.data());
 }
 
 std::array<cl_long, 3> DropletModel::read_counters() {

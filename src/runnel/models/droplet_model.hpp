@@ -72,7 +72,6 @@ class DropletModel final : public GridModel {
   Kernel spawn_kernel_, step_kernel_;
   cl::Buffer counters_;  // {droplets out, outflow quanta, droplets the rain mask kept from falling}
   cl::Buffer droplet_state_, droplet_load_;  // per droplet of a batch, between its steps
-  cl::Buffer droplet_order_;                 // the droplets in the order droplet_step moves them
 };
 
 }  // namespace runnel

@@ -31,6 +31,8 @@ DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, 
                           static_cast<std::size_t>(tiles_x_) * tiles_y_ * sizeof(cl_uint)),
       apply_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}), "terrain_apply"),
       view_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}), "terrain_view"),
+      view_changed_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}),
+                    "terrain_view_changed"),
       stale_normals_(compute, compute.program({"cl/common.cl", "cl/terrain_apply.cl"}),
                      "terrain_stale_normals") {
   if (!(quantum > 0)) throw input_error("erosion.height_quantum: must be positive");
@@ -90,6 +92,22 @@ void DeviceTerrain::apply_changed() {
       .set("changed", changed_tiles_)
       .set("tiles_x", tiles_x_)
       .launch(round_up_work(static_cast<std::size_t>(nx_) * ny_));
+  mark_stale_normals();
+}
+
+void DeviceTerrain::view_changed() {
+  view_changed_.set("height_fixed", height_fixed_)
+      .set("height", height_)
+      .set("nx", nx_)
+      .set("ny", ny_)
+      .set("quantum", static_cast<float>(quantum_))
+      .set("changed", changed_tiles_)
+      .set("tiles_x", tiles_x_)
+      .launch(round_up_work(static_cast<std::size_t>(nx_) * ny_));
+  mark_stale_normals();
+}
+
+void DeviceTerrain::mark_stale_normals() {
   stale_normals_.set("changed", changed_tiles_)
       .set("stale", stale_normal_tiles_)
       .set("tiles_x", tiles_x_)
@@ -123,6 +141,10 @@ void DeviceTerrain::fill_tiles(cl::Buffer& tiles, cl_uint value) {
 void DeviceTerrain::bind_changes(Kernel& k) {
   deltas_in_use_ = true;
   k.set("delta", delta_).set("changed", changed_tiles_).set("tiles_x", tiles_x_);
+}
+
+void DeviceTerrain::bind_fixed_changes(Kernel& k) {
+  k.set("height_fixed", height_fixed_).set("changed", changed_tiles_).set("tiles_x", tiles_x_);
 }
 
 Heightmap DeviceTerrain::download() {

@@ -35,6 +35,9 @@ class DeviceTerrain {
   // The same for the tiles marked changed by the kernels that added deltas (bind_changes), and
   // only their normals turn stale: a step's cost follows the water, not the terrain's size.
   void apply_changed();
+  // The same for a step whose kernels added straight to the fixed heights (bind_fixed_changes):
+  // only the marked tiles' view is refreshed.
+  void view_changed();
   // The float view as a heightmap, and the exact fixed-point state.
   Heightmap download();
   std::vector<std::int64_t> download_fixed();
@@ -54,6 +57,11 @@ class DeviceTerrain {
   // The arguments of a kernel that adds to the deltas: delta, changed (the tiles it marks; see
   // mark_changed_tiles in cl/common.cl) and tiles_x.
   void bind_changes(Kernel& kernel);
+  // The arguments height_fixed, changed and tiles_x, for a kernel that adds straight to the fixed
+  // heights because it reads
+  // only the float view while it adds (the droplets): a step needs no deltas to clear. Finish
+  // the step with view_changed().
+  void bind_fixed_changes(Kernel& kernel);
   cl::Buffer& changed_tiles() { return changed_tiles_; }
   int tiles_x() const { return tiles_x_; }
   int tiles_y() const { return tiles_y_; }
@@ -69,6 +77,8 @@ class DeviceTerrain {
 
  private:
   void refresh_view();
+  void
+  mark_stale_normals();  // the changed tiles' normals, and their neighbours', then clears changed
   void fill_tiles(cl::Buffer& tiles, cl_uint value);
   ComputeContext& compute_;
   TerrainNormals normals_;
@@ -81,7 +91,7 @@ class DeviceTerrain {
   cl::Buffer height_fixed_, delta_, height_, normal_;
   cl::Buffer changed_tiles_, stale_normal_tiles_;  // one cl_uint per tile, 1: marked
   bool normals_stale_ = true;                      // some tile of stale_normal_tiles_ may be marked
-  Kernel apply_, view_, stale_normals_;
+  Kernel apply_, view_, view_changed_, stale_normals_;
   bool deltas_in_use_ = false;  // some kernel may add to delta_ (apply() must read it)
 };
 
