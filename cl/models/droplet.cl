@@ -58,18 +58,30 @@ inline long erode_brush(volatile __global long* height_fixed, __global uint* cha
                         float z, float amount, float quantum, const __global float* erodibility) {
   const int r = DROPLET_RADIUS_CELLS;
   const int ci = (int)x, cj = (int)z;
+  // Only rows and columns of the map nearer than the radius can hold a weight: every vertex of
+  // another lies at least the radius away, its weight is 0, and adding 0 to the sums changes no bit.
+  // (A radius of 3 cells leaves 6 × 6 of the 8 × 8 vertices around the droplet's cell.)
+  int i0 = r + 1, i1 = -r - 1, j0 = r + 1, j1 = -r - 1;
+  for (int d = -r; d <= r + 1; ++d) {
+    const float dx = (float)(ci + d) - x, dz = (float)(cj + d) - z;
+    if (ci + d >= 0 && ci + d < nx && sqrt(dx * dx) < DROPLET_RADIUS) {
+      i0 = min(i0, d);
+      i1 = max(i1, d);
+    }
+    if (cj + d >= 0 && cj + d < ny && sqrt(dz * dz) < DROPLET_RADIUS) {
+      j0 = min(j0, d);
+      j1 = max(j1, d);
+    }
+  }
   // The weights once, kept for the second pass.
   float weight[BRUSH_SIDE * BRUSH_SIDE];
   float total = 0.0f, plain_total = 0.0f;
-  for (int dj = -r; dj <= r + 1; ++dj) {
-    for (int di = -r; di <= r + 1; ++di) {
+  for (int dj = j0; dj <= j1; ++dj) {
+    for (int di = i0; di <= i1; ++di) {
       const int a = ci + di, b = cj + dj;
-      float w = 0.0f, e = 1.0f;
       const float dx = (float)a - x, dz = (float)b - z;  // sqrt, not hypot: far faster on CPUs
-      if (a >= 0 && b >= 0 && a < nx && b < ny) {
-        w = fmax(0.0f, DROPLET_RADIUS - sqrt(dx * dx + dz * dz));
-        e = ERODIBILITY(erodibility, b * nx + a);
-      }
+      const float w = fmax(0.0f, DROPLET_RADIUS - sqrt(dx * dx + dz * dz));
+      const float e = ERODIBILITY(erodibility, b * nx + a);
       weight[(dj + r) * BRUSH_SIDE + (di + r)] = w * e;
       total += w * e;
       plain_total += w;
@@ -77,13 +89,14 @@ inline long erode_brush(volatile __global long* height_fixed, __global uint* cha
   }
   const long quanta = plain_total > 0.0f ? (long)floor(amount * (total / plain_total) / quantum) : 0;
   if (quanta <= 0 || total <= 0.0f) return 0;
-  mark_changed_tiles(changed, tiles_x, max(ci - r, 0), min(ci + r + 1, nx - 1), max(cj - r, 0),
-                     min(cj + r + 1, ny - 1));
+  mark_changed_tiles(changed, tiles_x, ci + i0, ci + i1, cj + j0, cj + j1);
   long taken = 0, best_part = -1;
   int best = -1;
-  for (int dj = -r; dj <= r + 1; ++dj) {
-    for (int di = -r; di <= r + 1; ++di) {
-      const float w = weight[(dj + r) * BRUSH_SIDE + (di + r)] / total;
+  for (int dj = j0; dj <= j1; ++dj) {
+    for (int di = i0; di <= i1; ++di) {
+      const float share = weight[(dj + r) * BRUSH_SIDE + (di + r)];
+      if (share <= 0.0f) continue;  // outside the disc, or a frozen vertex: w below would be 0
+      const float w = share / total;
       if (w <= 0.0f) continue;
       const int m = (cj + dj) * nx + (ci + di);
       const long part = min((long)floor((float)quanta * w), quanta - taken);
