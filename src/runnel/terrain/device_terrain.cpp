@@ -83,20 +83,18 @@ void DeviceTerrain::apply() {
 }
 
 void DeviceTerrain::apply_changed() {
-  apply_.set("height_fixed", height_fixed_)
-      .set("delta", delta_)
-      .set("height", height_)
-      .set("nx", nx_)
-      .set("ny", ny_)
-      .set("quantum", static_cast<float>(quantum_))
-      .set("changed", changed_tiles_)
-      .set("tiles_x", tiles_x_)
-      .launch(round_up_work(static_cast<std::size_t>(nx_) * ny_));
-  mark_stale_normals();
+  apply_.set("delta", delta_);
+  refresh_changed(apply_);
 }
 
 void DeviceTerrain::view_changed() {
-  view_changed_.set("height_fixed", height_fixed_)
+  refresh_changed(view_changed_);
+}
+
+// terrain_apply or terrain_view_changed over the tiles marked changed, whose normals then turn
+// stale.
+void DeviceTerrain::refresh_changed(Kernel& pass) {
+  pass.set("height_fixed", height_fixed_)
       .set("height", height_)
       .set("nx", nx_)
       .set("ny", ny_)

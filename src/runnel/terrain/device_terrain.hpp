@@ -77,8 +77,10 @@ class DeviceTerrain {
 
  private:
   void refresh_view();
-  void
-  mark_stale_normals();  // the changed tiles' normals, and their neighbours', then clears changed
+  // terrain_apply or terrain_view_changed over the changed tiles, then mark_stale_normals().
+  void refresh_changed(Kernel& pass);
+  // Marks the changed tiles' normals, and their neighbours', stale, then clears the changed tiles.
+  void mark_stale_normals();
   void fill_tiles(cl::Buffer& tiles, cl_uint value);
   ComputeContext& compute_;
   TerrainNormals normals_;
