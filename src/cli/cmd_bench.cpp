@@ -11,7 +11,7 @@ namespace runnel::cli {
 
 void add_bench_command(CLI::App& app) {
   struct Options {
-    std::string which, device;
+    std::string which, device, trace;
     long long particles = 100000;
     int size = 1024;
     int steps = 20;
@@ -36,6 +36,9 @@ void add_bench_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
+  cmd->add_option("--trace", opt->trace,
+                  "write the timed steps' kernel launches to FILE as a Chrome trace (Perfetto, "
+                  "chrome://tracing)");
   cmd->callback([opt] {
     if (opt->particles < 8 || opt->particles > 100000000)
       throw input_error("--particles: must be in 8..1e8");
@@ -43,6 +46,7 @@ void add_bench_command(CLI::App& app) {
     Parameters params;
     apply_overrides(params, opt->sets);
     ComputeContext compute(opt->device);
+    if (!opt->trace.empty()) compute.profiler().trace_to(opt->trace);
     if (opt->which == "generate") {
       if (opt->size < 16 || opt->size > 16384) throw input_error("--size: must be in 16..16384");
       std::cout << benchmark_generators(compute, opt->size, opt->steps).str() << "\n";

@@ -20,6 +20,7 @@ void add_run_command(CLI::App& app) {
     long long seed = -1;
     std::vector<std::string> sets;
     bool quiet = false;
+    std::string trace;
     OutputFlags output;
   };
   auto opt = std::make_shared<Options>();
@@ -54,6 +55,9 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
+  cmd->add_option("--trace", opt->trace,
+                  "write every kernel launch to FILE as a Chrome trace (open it in Perfetto or "
+                  "chrome://tracing; about 150 bytes a launch, ~35 launches an SPH step)");
   add_output_flags(*cmd, opt->output);
   cmd->callback([opt] {
     Parameters params = opt->scenario.empty() ? Parameters() : load_scenario(opt->scenario);
@@ -86,6 +90,7 @@ void add_run_command(CLI::App& app) {
     opt->output.apply(options);
     // Building the model validates every setting before anything is written.
     const std::unique_ptr<Model> model = make_model(compute, params, terrain);
+    if (!opt->trace.empty()) compute.profiler().trace_to(opt->trace);
     const RunSummary s = run_model(compute, *model, options);
     std::cout << opt->out << "/metrics.json: " << s.steps << " steps, mass balance "
               << s.balance.residual << " m^3 (relative " << s.balance.relative << ")\n";

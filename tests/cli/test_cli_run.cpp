@@ -15,24 +15,47 @@ using test::ScratchDir;
 
 TEST(CliRun, WritesPicturesTerrainAndMetrics) {
   ScratchDir dir;
-  const auto r = run_cli({"run", "--generate", "fbm", "--set", "terrain.size=65", "--set",
-                          "terrain.cell=1", "--steps", "150", "--seed", "3", "--out",
-                          dir.path("out"), "--set", "rain.rate=2000"});
+  const auto r =
+      run_cli({"run", "--generate", "fbm", "--set", "terrain.size=65", "--set", "terrain.cell=1",
+               "--steps", "150", "--seed", "3", "--out", dir.path("out"), "--set", "rain.rate=2000",
+               "--trace", dir.path("trace.json")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : {"height_initial.png", "height_final.png", "erosion.png", "final.asc",
                         "final.npy", "metrics.json"}) {
     EXPECT_TRUE(std::filesystem::exists(dir.path(std::string("out/") + f))) << f;
   }
   const std::string metrics = test::read_text(dir.path("out/metrics.json"));
-  for (const char* key :
-       {"steps", "sim_time", "wall_seconds", "particle_steps_per_second", "particles_spawned",
-        "particles_alive", "eroded_volume", "deposited_volume", "outflow_volume",
-        "suspended_volume", "mass_balance_abs", "mass_balance_rel", "below_surface_projections",
-        "collisions", "seed", "model", "parameters", "effective", "kernel_seconds"}) {
+  for (const char* key : {"steps",
+                          "sim_time",
+                          "wall_seconds",
+                          "particle_steps_per_second",
+                          "particles_spawned",
+                          "particles_alive",
+                          "eroded_volume",
+                          "deposited_volume",
+                          "outflow_volume",
+                          "suspended_volume",
+                          "mass_balance_abs",
+                          "mass_balance_rel",
+                          "below_surface_projections",
+                          "collisions",
+                          "seed",
+                          "model",
+                          "parameters",
+                          "effective",
+                          "kernel_seconds",
+                          "kernel_launches",
+                          "kernel_waits",
+                          "device_idle_seconds"}) {
     EXPECT_NE(metrics.find(std::string("\"") + key + "\""), std::string::npos) << key;
   }
   EXPECT_NE(metrics.find("\"steps\": 150"), std::string::npos);
   EXPECT_NE(metrics.find("\"seed\": 3"), std::string::npos);
+  // The trace holds the step's kernels (test_profiler.cpp checks its times).
+  const std::string trace = test::read_text(dir.path("trace.json"));
+  EXPECT_EQ(trace.substr(0, 2), "[\n");
+  EXPECT_NE(trace.find("\"name\": \"sph_forces\""), std::string::npos);
+  EXPECT_EQ(trace.substr(trace.size() - 2), "]\n");
   const Heightmap final_terrain = read_terrain(dir.path("out/final.asc"));
   EXPECT_EQ(final_terrain.nx, 65);
   // Progress goes to stderr as plain lines when it is not a terminal, and ends with a summary.
@@ -67,6 +90,7 @@ TEST(CliRun, BadValuesExitWithTwoNamingTheKey) {
       {{"run", "--terrain", dir.path("missing.asc")}, "missing.asc"},
       {{"run", "--steps", "10", "--sim-time", "3"}, "excludes"},
       {{"run", "--set", "rain.region=disc"}, "rain.disc_radius"},
+      {{"run", "--steps", "5", "--trace", dir.path("no-folder/trace.json")}, "--trace"},
   };
   for (auto& c : cases) {
     auto args = c.args;

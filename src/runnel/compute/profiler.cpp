@@ -1,7 +1,21 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/compute/profiler.hpp"
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include "runnel/core/error.hpp"
+
 namespace runnel {
+
+KernelProfiler::~KernelProfiler() {
+  // No collect() here (it may throw): a trace still open keeps the launches collected so far.
+  if (trace_ != nullptr) {
+    std::fputs("\n]\n", trace_);
+    std::fclose(trace_);
+  }
+}
 
 void KernelProfiler::launch(cl::Kernel& kernel, std::size_t global, const char* name,
                             std::size_t group) {
@@ -28,9 +42,54 @@ const std::map<std::string, double>& KernelProfiler::collect() {
     const cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
     seconds_[name] += 1e-9 * static_cast<double>(end - start);
     calls_[name] += 1;
+    const cl_ulong wait = last_end_ > 0 && start > last_end_ ? start - last_end_ : 0;
+    waits_[name] += 1e-9 * static_cast<double>(wait);
+    last_end_ = end;
+    if (trace_ != nullptr) {
+      const cl_ulong queued = event.getProfilingInfo<CL_PROFILING_COMMAND_QUEUED>();
+      if (trace_empty_) trace_origin_ = std::min(queued, start);
+      auto us = [&](cl_ulong t) { return 1e-3 * static_cast<double>(t - trace_origin_); };
+      std::fprintf(trace_,
+                   "%s{\"name\": \"%s\", \"ph\": \"X\", \"pid\": 1, \"tid\": 1, \"ts\": %.3f, "
+                   "\"dur\": %.3f, \"args\": {\"queued_us\": %.3f, \"wait_us\": %.3f}}",
+                   trace_empty_ ? "\n" : ",\n", name.c_str(), us(start),
+                   1e-3 * static_cast<double>(end - start), us(queued),
+                   1e-3 * static_cast<double>(wait));
+      trace_empty_ = false;
+    }
   }
   pending_.clear();
   return seconds_;
+}
+
+double KernelProfiler::idle_seconds() const {
+  double idle = 0;
+  for (const auto& [name, seconds] : waits_) idle += seconds;
+  return idle;
+}
+
+void KernelProfiler::reset() {
+  seconds_.clear();
+  waits_.clear();
+  calls_.clear();
+  last_end_ = 0;
+}
+
+void KernelProfiler::trace_to(const std::string& path) {
+  close_trace();
+  trace_ = std::fopen(path.c_str(), "w");
+  if (trace_ == nullptr)
+    throw input_error("--trace " + path + ": cannot be written (" + std::strerror(errno) + ")");
+  std::fputs("[", trace_);
+  trace_empty_ = true;
+}
+
+void KernelProfiler::close_trace() {
+  if (trace_ == nullptr) return;
+  if (!pending_.empty()) collect();
+  std::fputs("\n]\n", trace_);
+  std::fclose(trace_);
+  trace_ = nullptr;
 }
 
 }  // namespace runnel

@@ -154,8 +154,9 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   }
   const auto start = std::chrono::steady_clock::now();
   compute.profiler().reset();
-  compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") ==
-                            nullptr);  // per-kernel times in metrics.json
+  // Per-kernel times in metrics.json; always when a trace was asked for (KernelProfiler::trace_to).
+  compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") == nullptr ||
+                            compute.profiler().tracing());
   Progress progress(Progress::mode_for_stderr(options.quiet));
   std::vector<JsonObject> reports;
   double work = 0;  // particle-, cell- or droplet-steps
@@ -206,6 +207,11 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   // wake-up of its worker threads) is a cost of its own, outside every kernel's time.
   JsonObject kernel_launches;
   for (auto& [name, calls] : compute.profiler().calls()) kernel_launches.add(name, calls);
+  // The device's idle time between launches, booked to the kernel that waited (profiler.hpp).
+  JsonObject kernel_waits;
+  for (auto& [name, seconds] : compute.profiler().waits()) kernel_waits.add(name, seconds);
+  const double device_idle = compute.profiler().idle_seconds();
+  compute.profiler().close_trace();
   compute.profiler().enable(false);
   const Parameters& params = model.parameters();
   write_checkpoint((out / "final.h5").string(), model.checkpoint());
@@ -282,6 +288,8 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       .add("terrain_metrics", metrics::terrain_metrics_json(s.terrain_values, final_terrain))
       .add("kernel_seconds", kernel_seconds)
       .add("kernel_launches", kernel_launches)
+      .add("kernel_waits", kernel_waits)
+      .add("device_idle_seconds", device_idle)
       .add("parameters", parameters_json(params))
       .add("mass_balance_reports", reports);
   if (model.ground()) s.metrics.add("ground", ground_report);

@@ -15,6 +15,7 @@ namespace {
 
 struct Timing {
   double seconds = 0;
+  double idle = 0;  // device idle between launches (KernelProfiler::waits)
   JsonObject kernels;
 };
 
@@ -31,6 +32,7 @@ Timing time_steps(ComputeContext& compute, int steps, const std::function<void()
   Timing t;
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (auto& [name, v] : profiler.collect()) t.kernels.add(name, v);
+  t.idle = profiler.idle_seconds();
   profiler.enable(false);
   return t;
 }
@@ -67,6 +69,7 @@ JsonObject benchmark_model(ComputeContext& compute, const std::string& name, int
       // Droplets are counted for their whole lifetime; those that leave the map early did less
       // work.
       .add(std::string(model->work_unit()) + "_per_second", work / t.seconds)
+      .add("device_idle_seconds", t.idle)
       .add("kernel_seconds", t.kernels);
   return o;
 }
@@ -82,6 +85,7 @@ JsonObject benchmark_generators(ComputeContext& compute, int size, int steps) {
                           .add("generator", g.name)
                           .add("seconds", t.seconds)
                           .add("vertices_per_second", vertices / t.seconds)
+                          .add("device_idle_seconds", t.idle)
                           .add("kernel_seconds", t.kernels));
   }
   return JsonObject()

@@ -54,6 +54,7 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
       .add("h_factor", s.h / s.spacing)
       .add("bytes_per_particle", static_cast<long long>(ParticleStore::bytes_per_particle()))
       .add("kernel_seconds_total", kernel_total)
+      .add("device_idle_seconds", profiler.idle_seconds())
       .add("kernel_seconds", kernels);
   return out;
 }
