@@ -3,8 +3,9 @@
 // launch moves every droplet of the batch one cell over the terrain as the previous step left it
 // (height, m, the float view), and the host refreshes that view before the next. Changes go
 // straight into the fixed-point heights (counts of the height quantum), which no droplet reads,
-// with 64-bit integer atomics, so a step's result does not depend on the order of the droplets. Sediment is carried as quanta too:
-// what a droplet erodes, it deposits (or carries out of the map, booked as outflow) exactly.
+// with 64-bit integer atomics, so a step's result does not depend on the order of the droplets.
+// Sediment is carried as quanta too: what a droplet erodes, it deposits (or carries out of the
+// map, booked as outflow) exactly.
 // (Running each droplet's whole lifetime on the terrain of the batch start let the droplets that
 // met in one pit each fill it to the brim; the spikes that made grew without bound.)
 // Per step, with cell coordinates and bilinear height and gradient:
@@ -54,8 +55,8 @@ inline void deposit_bilinear(volatile __global long* height_fixed, __global uint
 // under the brush: a layered bed gives in proportion to how easily it erodes, a frozen vertex
 // nothing (docs/layers.md). Returns the quanta taken.
 #define BRUSH_SIDE (2 * (int)DROPLET_RADIUS_CELLS + 2)
-inline long erode_brush(volatile __global long* height_fixed, __global uint* changed, int tiles_x, int nx, int ny, float x,
-                        float z, float amount, float quantum, const __global float* erodibility) {
+inline long erode_brush(volatile __global long* height_fixed, __global uint* changed, int tiles_x, int nx, int ny,
+                        float x, float z, float amount, float quantum, const __global float* erodibility) {
   const int r = DROPLET_RADIUS_CELLS;
   const int ci = (int)x, cj = (int)z;
   // Only rows and columns of the map nearer than the radius can hold a weight: every vertex of
