@@ -38,7 +38,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->add_option("--trace", opt->trace,
                   "write the timed steps' kernel launches to FILE as a Chrome trace (Perfetto, "
-                  "chrome://tracing)");
+                  "chrome://tracing)")
+      ->type_name("FILE");
   cmd->callback([opt] {
     if (opt->particles < 8 || opt->particles > 100000000)
       throw input_error("--particles: must be in 8..1e8");

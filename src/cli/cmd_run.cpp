@@ -57,7 +57,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
   cmd->add_option("--trace", opt->trace,
                   "write every kernel launch to FILE as a Chrome trace (open it in Perfetto or "
-                  "chrome://tracing; about 150 bytes a launch, ~35 launches an SPH step)");
+                  "chrome://tracing; about 150 bytes a launch, ~35 launches an SPH step)")
+      ->type_name("FILE");
   add_output_flags(*cmd, opt->output);
   cmd->callback([opt] {
     Parameters params = opt->scenario.empty() ? Parameters() : load_scenario(opt->scenario);
