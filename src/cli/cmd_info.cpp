@@ -162,10 +162,7 @@ void add_info_command(CLI::App& app) {
                        .add("origin_z", t.origin_z)
                        .add("crs", crs_name(t.georef.crs_wkt))
                        .add("crs_wkt", t.georef.crs_wkt)
-                       .add("height_step", steps.step)
-                       .add("level_share", steps.level_share)
-                       .add("one_step_share", steps.one_step_share)
-                       .add("stepped", steps.stepped())
+                       .merge(steps.json())
                        .str()
                 << "\n";
       return;

@@ -11,10 +11,7 @@ namespace runnel {
 
 KernelProfiler::~KernelProfiler() {
   // No collect() here (it may throw): a trace still open keeps the launches collected so far.
-  if (trace_ != nullptr) {
-    std::fputs("\n]\n", trace_);
-    std::fclose(trace_);
-  }
+  if (trace_ != nullptr) end_trace();
 }
 
 void KernelProfiler::launch(cl::Kernel& kernel, std::size_t global, const char* name,
@@ -87,6 +84,10 @@ void KernelProfiler::trace_to(const std::string& path) {
 void KernelProfiler::close_trace() {
   if (trace_ == nullptr) return;
   if (!pending_.empty()) collect();
+  end_trace();
+}
+
+void KernelProfiler::end_trace() {
   std::fputs("\n]\n", trace_);
   std::fclose(trace_);
   trace_ = nullptr;

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -53,6 +52,7 @@ class KernelProfiler {
   std::map<std::string, double> seconds_, waits_;
   std::map<std::string, long long> calls_;
   cl_ulong last_end_ = 0;  // device clock (ns) at the end of the last collected launch; 0: none
+  void end_trace();        // closes the JSON array and the file
   std::FILE* trace_ = nullptr;
   cl_ulong trace_origin_ = 0;  // device clock of the trace's first launch
   bool trace_empty_ = true;

@@ -58,9 +58,8 @@ class DeviceTerrain {
   // mark_changed_tiles in cl/common.cl) and tiles_x.
   void bind_changes(Kernel& kernel);
   // The arguments height_fixed, changed and tiles_x, for a kernel that adds straight to the fixed
-  // heights because it reads
-  // only the float view while it adds (the droplets): a step needs no deltas to clear. Finish
-  // the step with view_changed().
+  // heights because it reads only the float view while it adds (the droplets): a step needs no
+  // deltas to clear. Finish the step with view_changed().
   void bind_fixed_changes(Kernel& kernel);
   cl::Buffer& changed_tiles() { return changed_tiles_; }
   int tiles_x() const { return tiles_x_; }

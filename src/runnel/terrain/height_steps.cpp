@@ -36,6 +36,14 @@ std::string HeightSteps::caution() const {
   return line;
 }
 
+JsonObject HeightSteps::json() const {
+  return JsonObject()
+      .add("height_step", step)
+      .add("level_share", level_share)
+      .add("one_step_share", one_step_share)
+      .add("stepped", stepped());
+}
+
 // Calls visit(|Δh|) for every pair of 4-neighbours; two passes over the grid, no copy of it (a
 // DEM may be large).
 template <typename Visit>

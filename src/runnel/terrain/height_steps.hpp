@@ -3,6 +3,7 @@
 #include <string>
 
 #include "runnel/core/heightmap.hpp"
+#include "runnel/io/json.hpp"
 
 namespace runnel {
 
@@ -19,6 +20,9 @@ struct HeightSteps {
   // the first without the second.
   bool stepped() const;
   std::string caution() const;  // one line for `runnel run`, empty when not stepped
+  // height_step, level_share, one_step_share and stepped: the fields metrics.json's terrain block
+  // and `runnel info --json` report.
+  JsonObject json() const;
 };
 
 HeightSteps height_steps(const Heightmap& terrain);
