@@ -135,7 +135,10 @@ __kernel void neighbour_list(const __global float* x, const __global float* y, c
 // of 32 and 8). A neighbour pass runs one work-group per tile; the tile's particles share the cell
 // and so the candidates, which the group loads once into local memory. Tiles of at most `small`
 // particles (sheets of water one or two particles deep) are listed after the others, so that they
-// run in work-groups of `small` work-items: an idle work-item still costs its turn on a CPU.
+// run in work-groups of `small` work-items: an idle work-item still costs its turn on a CPU. Tiles
+// of at most `lone` particles (a film: a drop to a cell) come last: for them the group's loading
+// and barriers cost more than their few candidates, and a pass takes them one work-item a tile
+// (the passes' _direct kernels, sph_boundary.cl).
 // The list is a compaction of the particles that start a tile, in sorted order: per-chunk counts,
 // one serial scan, per-chunk writes, as in the radix sort (no atomics, one result).
 inline uint tile_size_at(const __global uint* key, const __global uint* cell_start, const __global uint* cell_end,
@@ -145,48 +148,51 @@ inline uint tile_size_at(const __global uint* key, const __global uint* cell_sta
   return min(tile, cell_end[key[i]] - i);
 }
 
-// counts[block]: the chunk's large tiles; counts[blocks + block]: its small ones.
+// A tile's class: 0 large, 1 small, 2 lone; 3 for a particle that starts no tile.
+inline uint tile_class(uint size, uint small, uint lone) {
+  return size == 0 ? 3u : size <= lone ? 2u : size <= small ? 1u : 0u;
+}
+
+// counts[c·blocks + block]: the chunk's tiles of class c.
 __kernel void tile_count(const __global uint* key, const __global uint* cell_start, const __global uint* cell_end,
                          const __global uint* alive, const uint chunk, const uint tile, const uint small,
-                         __global uint* counts) {
+                         const uint lone, __global uint* counts) {
   const uint block = get_global_id(0);
   const uint blocks = get_global_size(0);
   const uint end = min((block + 1) * chunk, alive[0]);
-  uint large_count = 0, small_count = 0;
+  uint count[3] = {0, 0, 0};
   for (uint i = block * chunk; i < end; ++i) {
-    const uint size = tile_size_at(key, cell_start, cell_end, i, tile);
-    large_count += size > small ? 1 : 0;
-    small_count += size > 0 && size <= small ? 1 : 0;
+    const uint c = tile_class(tile_size_at(key, cell_start, cell_end, i, tile), small, lone);
+    if (c < 3) ++count[c];
   }
-  counts[block] = large_count;
-  counts[blocks + block] = small_count;
+  for (uint c = 0; c < 3; ++c) counts[c * blocks + block] = count[c];
 }
 
-// Exclusive scan of the 2·blocks counts in place: the large tiles first, then the small ones. The
-// totals go to summary[1] (large) and summary[2] (small); summary[0] is the live count, so the host
-// reads all three at once.
+// Exclusive scan of the 3·blocks counts in place: the large tiles first, then the small ones, then
+// the lone ones. The totals go to summary[1] (large), summary[2] (small) and summary[3] (lone);
+// summary[0] is the live count, so the host reads them all at once.
 __kernel void tile_scan(__global uint* counts, const uint blocks, __global uint* summary) {
   if (get_global_id(0) != 0) return;
   uint sum = 0;
-  for (uint b = 0; b < 2 * blocks; ++b) {
+  for (uint b = 0; b < 3 * blocks; ++b) {
     const uint v = counts[b];
     counts[b] = sum;
     sum += v;
-    if (b + 1 == blocks) summary[1] = sum;
+    if ((b + 1) % blocks == 0) summary[1 + b / blocks] = sum;
   }
-  summary[2] = sum - summary[1];
+  summary[3] -= summary[2];
+  summary[2] -= summary[1];
 }
 
 __kernel void tile_scatter(const __global uint* key, const __global uint* cell_start, const __global uint* cell_end,
                            const __global uint* alive, const uint chunk, const uint tile, const uint small,
-                           const __global uint* counts, __global uint* tile_first) {
+                           const uint lone, const __global uint* counts, __global uint* tile_first) {
   const uint block = get_global_id(0);
   const uint blocks = get_global_size(0);
   const uint end = min((block + 1) * chunk, alive[0]);
-  uint large_out = counts[block], small_out = counts[blocks + block];
+  uint out[3] = {counts[block], counts[blocks + block], counts[2 * blocks + block]};
   for (uint i = block * chunk; i < end; ++i) {
-    const uint size = tile_size_at(key, cell_start, cell_end, i, tile);
-    if (size > small) tile_first[large_out++] = i;
-    if (size > 0 && size <= small) tile_first[small_out++] = i;
+    const uint c = tile_class(tile_size_at(key, cell_start, cell_end, i, tile), small, lone);
+    if (c < 3) tile_first[out[c]++] = i;
   }
 }

@@ -38,6 +38,23 @@ inline void add_pair_continuity(float* drho, float* ghost_drho, float* shepard, 
   *shepard += others * volume_j * wendland_w(r);
 }
 
+// The terrain under the particle (the mirrored normal velocity) and the tank walls, scaled by θ,
+// added to the neighbours' sums: particle i's dρ/dt and ρ(n+1).
+inline void finish_continuity(uint i, float3 mid_i, float3 vi, float rhoi, float drho_i, float drho_ghosts,
+                              float shepard, float dt, const __global float* terrain_height,
+                              const __global float* terrain_normal, int tnx, int tny, float tcell,
+                              __global float* drho, __global float* rho_new) {
+  const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, mid_i.x, mid_i.z);
+  const float d = (mid_i.y - floor.height) * floor.normal.y;
+  const float theta = fluid_fullness(shepard, d, rhoi);
+  drho_i += theta * (drho_ghosts - 2.0f * rhoi * dot(vi, floor.normal) * wall_integral(d));
+  drho[i] = drho_i;
+  // The floor: a particle of a thinning film or of spray only ever expands under continuity (the
+  // pressure is clamped at zero below ρ0, so nothing pulls it back); held here, it does not drift
+  // without bound in a long run (docs/sph.md "Failure handling").
+  rho_new[i] = fmax(rhoi + dt * drho_i, SPH_RHO_FLOOR);
+}
+
 // One work-group per tile (spatial_hash.cl), as in sph_forces.cl: the tile's particles share their
 // cell's candidates and their images across the tank walls within reach.
 // The fields the candidates are copied from are `restrict`: only read here, and so the compiler
@@ -137,15 +154,39 @@ __kernel void sph_continuity(
     barrier(CLK_LOCAL_MEM_FENCE);
   }
   if (!t.active) return;
+  finish_continuity(i, mid_i, vi, rhoi, drho_i, drho_ghosts, shepard, dt, terrain_height, terrain_normal, tnx, tny,
+                    tcell, drho, rho_new);
+}
 
-  // The terrain under the particle (the mirrored normal velocity) and the tank walls, scaled by θ.
-  const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, mid_i.x, mid_i.z);
-  const float d = (mid_i.y - floor.height) * floor.normal.y;
-  const float theta = fluid_fullness(shepard, d, rhoi);
-  drho_i += theta * (drho_ghosts - 2.0f * rhoi * dot(vi, floor.normal) * wall_integral(d));
-  drho[i] = drho_i;
-  // The floor: a particle of a thinning film or of spray only ever expands under continuity (the
-  // pressure is clamped at zero below ρ0, so nothing pulls it back); held here, it does not drift
-  // without bound in a long run (docs/sph.md "Failure handling").
-  rho_new[i] = fmax(rhoi + dt * drho_i, SPH_RHO_FLOOR);
+// The same pass for lone tiles (sph_boundary.cl), one work-item a tile, as sph_forces_direct.
+__kernel void sph_continuity_direct(
+    const __global float* x, const __global float* y, const __global float* z, const __global float* mid_x,
+    const __global float* mid_y, const __global float* mid_z, const __global float* drift_vx,
+    const __global float* drift_vy, const __global float* drift_vz, const __global float* volume,
+    const __global float* rho, const float dt, const float ox, const float oy, const float oz, const float inv_cell,
+    const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
+    const __global uint* tile_first, const uint tile_offset, const uint tiles, const uint tile,
+    const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
+    const float tcell, const float domain_x, const float domain_z, __global float* drho, __global float* rho_new) {
+  if (get_global_id(0) >= tiles) return;
+  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const LoneTile t = lone_tile(tile_first, tile_offset, tile, x, y, z, grid, cell_end);  // x(n): the sort's cells
+  const Neighbourhood nb = cell_neighbourhood(t.cell, grid, cell_start, cell_end);
+  const Images images = tile_images(t.cell, grid, domain_x, domain_z);
+  for (uint i = t.first; i < t.last; ++i) {
+    const float3 vi = (float3)(drift_vx[i], drift_vy[i], drift_vz[i]);
+    const float3 mid_i = (float3)(mid_x[i], mid_y[i], mid_z[i]);
+    const float rhoi = rho[i];
+    float drho_i = 0.0f, drho_ghosts = 0.0f, shepard = 0.0f;
+    LONE_CANDIDATES_BEGIN(nb, images)
+    const float3 mid = image_position(image_, (float3)(mid_x[j], mid_y[j], mid_z[j]), domain_x, domain_z);
+    const float3 v = image_velocity(image_, (float3)(drift_vx[j], drift_vy[j], drift_vz[j]));
+    const float dx = mid_i.x - mid.x, dy = mid_i.y - mid.y, dz = mid_i.z - mid.z;
+    const float vdotx = (vi.x - v.x) * dx + (vi.y - v.y) * dy + (vi.z - v.z) * dz;
+    add_pair_continuity(&drho_i, &drho_ghosts, &shepard, dx, dy, dz, vdotx, rhoi, rho[j], volume[j],
+                        image_ != 0 || j != i ? 1.0f : 0.0f, image_ != 0 ? 1.0f : 0.0f);
+    LONE_CANDIDATES_END
+    finish_continuity(i, mid_i, vi, rhoi, drho_i, drho_ghosts, shepard, dt, terrain_height, terrain_normal, tnx, tny,
+                      tcell, drho, rho_new);
+  }
 }

@@ -100,6 +100,22 @@ inline void add_pair_force(ForceSums* s, float dx, float dy, float dz, float dvx
   s->shepard += others * volume_j * wendland_w(r);
 }
 
+// The terrain under the particle and the tank walls, scaled by the fluid fullness θ, added to the
+// neighbours' sums: particle i's acceleration.
+inline void finish_forces(uint i, float3 pi, float rhoi, float pres_i, const ForceSums* sum,
+                          const __global float* terrain_height, const __global float* terrain_normal, int tnx,
+                          int tny, float tcell, __global float* ax, __global float* ay, __global float* az) {
+  const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);
+  const float d = (pi.y - floor.height) * floor.normal.y;
+  const float theta = fluid_fullness(sum->shepard, d, rhoi);
+  const float3 gp = (float3)(sum->gx, sum->gy, sum->gz);
+  const float3 acc = (float3)(sum->ax, sum->ay, sum->az) +
+                     theta * ((float3)(sum->wx, sum->wy, sum->wz) + wall_force(d, floor.normal, pres_i / rhoi, gp / rhoi));
+  ax[i] = acc.x;
+  ay[i] = acc.y - SPH_GRAVITY;
+  az[i] = acc.z;
+}
+
 // One work-group per tile (spatial_hash.cl): the tile's particles share their cell's candidates,
 // and the candidates' images across the tank walls within reach.
 // The fields the candidates are copied from are `restrict`: only read here, and so the compiler
@@ -203,15 +219,41 @@ __kernel void sph_forces(
     barrier(CLK_LOCAL_MEM_FENCE);
   }
   if (!t.active) return;
+  finish_forces(i, pi, rhoi, pres_i, &sum, terrain_height, terrain_normal, tnx, tny, tcell, ax, ay, az);
+}
 
-  // The terrain under the particle and the tank walls, scaled by the fluid fullness θ.
-  const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);
-  const float d = (pi.y - floor.height) * floor.normal.y;
-  const float theta = fluid_fullness(sum.shepard, d, rhoi);
-  const float3 gp = (float3)(sum.gx, sum.gy, sum.gz);
-  const float3 acc = (float3)(sum.ax, sum.ay, sum.az) +
-                     theta * ((float3)(sum.wx, sum.wy, sum.wz) + wall_force(d, floor.normal, pres_i / rhoi, gp / rhoi));
-  ax[i] = acc.x;
-  ay[i] = acc.y - SPH_GRAVITY;
-  az[i] = acc.z;
+// The same pass for lone tiles (sph_boundary.cl): work-item g walks tile g's neighbourhood for each
+// of its particles. The sums run in another order than the tiled loop's, so its particles' results
+// differ from what a tiled pass would give them in the last bits; which tiles are lone depends on
+// the particles alone, so a run still has one result.
+__kernel void sph_forces_direct(
+    const __global float* x, const __global float* y, const __global float* z, const __global float* vx,
+    const __global float* vy, const __global float* vz, const __global float* rho, const float ox, const float oy,
+    const float oz, const float inv_cell, const int gx, const int gy, const int gz, const __global uint* cell_start,
+    const __global uint* cell_end, const __global uint* tile_first, const uint tile_offset, const uint tiles,
+    const uint tile, const __global float* pressure, const __global float* p_over_rho2, const __global float* volume,
+    const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
+    const float tcell, const float domain_x, const float domain_z, __global float* ax, __global float* ay,
+    __global float* az) {
+  if (get_global_id(0) >= tiles) return;
+  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const LoneTile t = lone_tile(tile_first, tile_offset, tile, x, y, z, grid, cell_end);
+  const Neighbourhood nb = cell_neighbourhood(t.cell, grid, cell_start, cell_end);
+  const Images images = tile_images(t.cell, grid, domain_x, domain_z);
+  for (uint i = t.first; i < t.last; ++i) {
+    const float3 pi = (float3)(x[i], y[i], z[i]);
+    const float3 vi = (float3)(vx[i], vy[i], vz[i]);
+    const float rhoi = rho[i];
+    const float pres_i = pressure[i];
+    const float pi_over_rho2 = p_over_rho2[i];
+    ForceSums sum = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    LONE_CANDIDATES_BEGIN(nb, images)
+    const float3 p = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+    const float3 v = image_velocity(image_, (float3)(vx[j], vy[j], vz[j]));
+    add_pair_force(&sum, pi.x - p.x, pi.y - p.y, pi.z - p.z, vi.x - v.x, vi.y - v.y, vi.z - v.z, rhoi, pres_i,
+                   pi_over_rho2, rho[j], pressure[j], p_over_rho2[j], volume[j],
+                   image_ != 0 || j != i ? 1.0f : 0.0f, image_ != 0 ? 1.0f : 0.0f);
+    LONE_CANDIDATES_END
+    finish_forces(i, pi, rhoi, pres_i, &sum, terrain_height, terrain_normal, tnx, tny, tcell, ax, ay, az);
+  }
 }

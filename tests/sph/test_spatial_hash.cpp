@@ -168,7 +168,8 @@ TEST(SpatialHash, SortIsByCellAndDeterministic) {
 
 // The tiles the neighbour passes run on: every cell's particles, in runs of at most the tile size
 // starting at the cell's first particle, each particle in exactly one tile, those of more than
-// kSmallTile particles listed first; against lists made here from the sorted positions.
+// kSmallTile particles listed first, then those of more than kLoneTile, then the lone ones;
+// against lists made here from the sorted positions.
 TEST(SpatialHash, TilesCoverEachCellInRunsOfTheTileSize) {
   ComputeContext compute("cpu");
   std::mt19937 rng(9);
@@ -187,21 +188,27 @@ TEST(SpatialHash, TilesCoverEachCellInRunsOfTheTileSize) {
       auto c = [](float v) { return std::min(15, static_cast<int>(v / 0.25f)); };
       return c(s.f[kX][i]) + 16 * (c(s.f[kY][i]) + 16 * c(s.f[kZ][i]));
     };
-    std::vector<std::uint32_t> large, small;
+    std::vector<std::uint32_t> large, small, lone;
     for (std::size_t begin = 0, end = 0; begin < s.size(); begin = end) {
       end = begin;
       while (end < s.size() && cell(end) == cell(begin)) ++end;
       for (std::size_t t = begin; t < end; t += tile) {
         const std::size_t size = std::min<std::size_t>(tile, end - t);
-        (size > SpatialHash::kSmallTile ? large : small).push_back(static_cast<std::uint32_t>(t));
+        (size > SpatialHash::kSmallTile  ? large
+         : size > SpatialHash::kLoneTile ? small
+                                         : lone)
+            .push_back(static_cast<std::uint32_t>(t));
       }
     }
+    ASSERT_FALSE(lone.empty());  // the case covers all three kinds
     ASSERT_EQ(hash.small_tile_count(), small.size()) << "tile " << tile;
-    ASSERT_EQ(hash.tile_count(), large.size() + small.size()) << "tile " << tile;
+    ASSERT_EQ(hash.lone_tile_count(), lone.size()) << "tile " << tile;
+    ASSERT_EQ(hash.tile_count(), large.size() + small.size() + lone.size()) << "tile " << tile;
     std::vector<std::uint32_t> first(hash.tile_count());
     compute.queue().enqueueReadBuffer(hash.tile_first(), CL_TRUE, 0, first.size() * 4,
                                       first.data());
     large.insert(large.end(), small.begin(), small.end());
+    large.insert(large.end(), lone.begin(), lone.end());
     EXPECT_EQ(first, large) << "tile " << tile;
   }
 }

@@ -151,6 +151,7 @@ TEST(SphSolver, AccelerationsMatchTheCppReference) {
     EXPECT_FLOAT_EQ(ay[i], static_cast<float>(-s.gravity));
   }
   EXPECT_EQ(lone, 4);
+  EXPECT_GE(solver.hash().lone_tile_count(), 4u);  // the drops' passes ran the direct kernels
 }
 
 TEST(SphSolver, ContinuityMatchesTheCppReferenceForTheDrift) {
@@ -163,6 +164,23 @@ TEST(SphSolver, ContinuityMatchesTheCppReferenceForTheDrift) {
   for (std::size_t i = 0; i < r.before.size(); ++i) {
     // ρ advanced with the drift, by exactly this rate.
     ASSERT_NEAR(r.after.f[kRho][i], r.before.f[kRho][i] + r.dt * r.drho[i], 1e-3) << i;
+  }
+}
+
+// The direct kernels, which the neighbour passes take for tiles of at most kLoneTile particles (a
+// film), on the cases above with every tile sent to them: the bulk, the floor, the walls' ghosts,
+// the corners and the fullness ramp, against the reference as before.
+TEST(SphSolver, DirectPassesMatchTheCppReference) {
+  const SphSettings s = settings();
+  for (int c = 0; c < 2; ++c) {
+    SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);
+    solver.hash().set_lone_tile(SpatialHash::kDefaultTile);
+    solver.add(c == 0 ? block_on_floor(3) : packed_corner_block(6));
+    solver.prepare();
+    ASSERT_EQ(solver.hash().lone_tile_count(), solver.hash().tile_count()) << c;
+    ASSERT_NO_FATAL_FAILURE(check_accelerations(solver, s)) << c;
+    DriftRates rates;
+    ASSERT_NO_FATAL_FAILURE(check_continuity(solver, s, rates)) << c;
   }
 }
 

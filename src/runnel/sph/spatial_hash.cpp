@@ -57,7 +57,7 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   tile_scatter_ = Kernel(compute, program, "tile_scatter");
   auto& ctx = compute.context();
   hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * kRadixBlocks * sizeof(cl_uint));
-  summary_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 3 * sizeof(cl_uint));
+  summary_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * sizeof(cl_uint));
   cell_start_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
   cell_end_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
   // Once: afterwards each build empties only the cells its predecessor filled.
@@ -80,11 +80,12 @@ void SpatialHash::bind_cells(Kernel& k) const {
   k.set("cell_start", cell_start_).set("cell_end", cell_end_);
 }
 
-void SpatialHash::launch_tiled(Kernel& k) const {
-  bind_cells(k);
-  k.set("tile_first", tile_first_);
-  k.set("tile_offset", cl_uint{0}).launch_groups(tiles_, tile_);
-  k.set("tile_offset", tiles_).launch_groups(small_tiles_, kSmallTile);
+void SpatialHash::launch_tiled(Kernel& tiled, Kernel& direct) const {
+  for (Kernel* k : {&tiled, &direct}) bind_cells(k->set("tile_first", tile_first_));
+  tiled.set("tile_offset", cl_uint{0}).launch_groups(tiles_, tile_);
+  tiled.set("tile_offset", tiles_).launch_groups(small_tiles_, kSmallTile);
+  direct.set("tile_offset", tiles_ + small_tiles_).set("tiles", lone_tiles_).set("tile", tile_);
+  if (lone_tiles_ > 0) direct.launch(round_up_work(lone_tiles_));
 }
 
 void SpatialHash::ensure_capacity(std::size_t n) {
@@ -104,7 +105,7 @@ void SpatialHash::build(ParticleStore& store) {
     clear_cells_.set("cell_start", cell_start_).launch(round_up_work(sorted_));
     sorted_ = 0;
   }
-  tiles_ = small_tiles_ = 0;
+  tiles_ = small_tiles_ = lone_tiles_ = 0;
   if (n == 0) return;
   ensure_capacity(n);
 
@@ -164,17 +165,19 @@ void SpatialHash::build(ParticleStore& store) {
   for (Kernel* k : {&tile_count_, &tile_scatter_}) {
     k->set("key", keys_[in]).set("cell_start", cell_start_).set("cell_end", cell_end_);
     k->set("alive", summary_).set("chunk", chunk).set("tile", tile_).set("small", kSmallTile);
+    k->set("lone", lone_);
     k->set("counts", hist_);
   }
   tile_count_.launch(blocks);
   tile_scan_.set("counts", hist_).set("blocks", blocks).set("summary", summary_).launch(1);
   tile_scatter_.set("tile_first", tile_first_).launch(blocks);
 
-  cl_uint summary[3] = {0, 0, 0};  // live particles, large tiles, small tiles
+  cl_uint summary[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
   q.enqueueReadBuffer(summary_, CL_TRUE, 0, sizeof(summary), summary);
   store.truncate(summary[0]);
   tiles_ = summary[1];
   small_tiles_ = summary[2];
+  lone_tiles_ = summary[3];
 }
 
 std::vector<std::vector<std::uint32_t>> SpatialHash::neighbour_lists(ParticleStore& store,

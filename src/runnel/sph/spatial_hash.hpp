@@ -37,20 +37,26 @@ class SpatialHash {
   const cl::Buffer& cell_start() const { return cell_start_; }
   const cl::Buffer& cell_end() const { return cell_end_; }
   // Each occupied cell's particles in tiles of at most tile_size(), in sorted order, those of more
-  // than kSmallTile particles first: tile_first()[t] is the sorted index of tile t's first
-  // particle; the tile size and its cell's cell_end bound it.
+  // than kSmallTile particles first, then those of more than kLoneTile, then the rest:
+  // tile_first()[t] is the sorted index of tile t's first particle; the tile size and its cell's
+  // cell_end bound it.
   std::uint32_t tile_size() const { return tile_; }
-  std::uint32_t tile_count() const { return tiles_ + small_tiles_; }
+  std::uint32_t tile_count() const { return tiles_ + small_tiles_ + lone_tiles_; }
   std::uint32_t small_tile_count() const { return small_tiles_; }
+  std::uint32_t lone_tile_count() const { return lone_tiles_; }
+  // The most particles a lone tile holds, kLoneTile unless set (from the next build on). Tests set
+  // the tile size, so that every tile takes the direct kernels.
+  void set_lone_tile(std::uint32_t most) { lone_ = most; }
   const cl::Buffer& tile_first() const { return tile_first_; }
   // The grid arguments every kernel that hashes a position takes: ox, oy, oz, inv_cell, gx, gy, gz.
   void bind_grid(Kernel& kernel) const;
   // The grid and its cell ranges (cell_start, cell_end): what a neighbour loop walks.
   void bind_cells(Kernel& kernel) const;
-  // Binds the cell ranges and the tile list and launches a tiled pass: work-groups of tile_size()
-  // over the large tiles, then of kSmallTile over the small ones (the kernel takes `tile_offset`,
-  // its first tile).
-  void launch_tiled(Kernel& kernel) const;
+  // Binds the cell ranges and the tile list to a neighbour pass's two kernels and launches them:
+  // `tiled` in work-groups of tile_size() over the large tiles, then of kSmallTile over the small
+  // ones; `direct` one work-item a tile over the lone ones (each kernel takes `tile_offset`, its
+  // first tile; `direct` also `tiles`, their count, and `tile`, the tile size).
+  void launch_tiled(Kernel& tiled, Kernel& direct) const;
 
   // Neighbour ids within `radius` of every particle, in the store's (sorted) order. For tests.
   std::vector<std::vector<std::uint32_t>> neighbour_lists(ParticleStore& store, float radius);
@@ -60,6 +66,8 @@ class SpatialHash {
   static constexpr std::uint32_t kDefaultTile = 32;
   // A cell of a sheet of water one or two particles deep: its own, narrower work-groups.
   static constexpr std::uint32_t kSmallTile = 8;
+  // A cell of a film (a drop to a cell): one work-item walks its neighbourhood.
+  static constexpr std::uint32_t kLoneTile = 2;
 
  private:
   void ensure_capacity(std::size_t n);
@@ -68,7 +76,8 @@ class SpatialHash {
   std::uint32_t dead_key_;
   int passes_;
   std::uint32_t tile_;
-  std::uint32_t tiles_ = 0, small_tiles_ = 0;
+  std::uint32_t lone_ = kLoneTile;
+  std::uint32_t tiles_ = 0, small_tiles_ = 0, lone_tiles_ = 0;
   std::size_t capacity_ = 0;
   cl_uint sorted_ = 0;  // keys in keys_[sorted_in_] from the last build: their cells are filled
   int sorted_in_ = 0;

@@ -73,8 +73,10 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
       hash_(compute, fluid_grid(settings, floor, top)) {
   cl::Program& program = sph_program(compute, settings, floor.cell);
   forces_ = Kernel(compute, program, "sph_forces");
+  forces_direct_ = Kernel(compute, program, "sph_forces_direct");
   forces_inputs_ = Kernel(compute, program, "forces_inputs");
   continuity_ = Kernel(compute, program, "sph_continuity");
+  continuity_direct_ = Kernel(compute, program, "sph_continuity_direct");
   drift_ = Kernel(compute, program, "drift");
   stats_ = Kernel(compute, program, "step_stats");
   project_ = Kernel(compute, program, "project_to_surface");
@@ -209,12 +211,15 @@ void bind_continuity_inputs(ParticleStore& store, Kernel& k) {
 }
 
 void SphSolver::integrate_density() {
-  auto& k = continuity_;  // its inputs from the drift (drift_and_collide)
-  store_.bind(k, {kX, kY, kZ, kRho, kDrho});
-  store_.bind_new(k, {kRho});
-  bind_continuity_inputs(store_, k);
-  bind_domain(k);
-  hash_.launch_tiled(k.set("dt", static_cast<float>(dt_)));
+  for (Kernel* k :
+       {&continuity_, &continuity_direct_}) {  // inputs from the drift (drift_and_collide)
+    store_.bind(*k, {kX, kY, kZ, kRho, kDrho});
+    store_.bind_new(*k, {kRho});
+    bind_continuity_inputs(store_, *k);
+    bind_domain(*k);
+    k->set("dt", static_cast<float>(dt_));
+  }
+  hash_.launch_tiled(continuity_, continuity_direct_);
 }
 
 void SphSolver::compute_forces() {
@@ -224,11 +229,12 @@ void SphSolver::compute_forces() {
   for (int s = 0; s < 3; ++s) forces_inputs_.set(inputs[s], store_.spare(s));
   forces_inputs_.launch(round_up_work(n));
 
-  auto& k = forces_;
-  store_.bind(k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAx, kAy, kAz});
-  for (int s = 0; s < 3; ++s) k.set(inputs[s], store_.spare(s));
-  bind_domain(k);
-  hash_.launch_tiled(k);
+  for (Kernel* k : {&forces_, &forces_direct_}) {
+    store_.bind(*k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAx, kAy, kAz});
+    for (int s = 0; s < 3; ++s) k->set(inputs[s], store_.spare(s));
+    bind_domain(*k);
+  }
+  hash_.launch_tiled(forces_, forces_direct_);
 }
 
 void SphSolver::choose_next_dt(bool closing_kick) {

@@ -99,8 +99,9 @@ class SphSolver {
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  Kernel forces_inputs_, forces_, continuity_, drift_, stats_, project_, depth_scatter_,
-      depth_scatter_runs_, depth_gather_, depth_coarsen_;
+  // The neighbour passes come in pairs: tiled, and direct for the lone tiles (SpatialHash).
+  Kernel forces_inputs_, forces_, forces_direct_, continuity_, continuity_direct_, drift_, stats_,
+      project_, depth_scatter_, depth_scatter_runs_, depth_gather_, depth_coarsen_;
   // Water on each terrain vertex, counts of 1 µm of depth, then its coarser levels for the films
   // (cl/water_depth.cl).
   cl::Buffer water_;
