@@ -166,6 +166,39 @@ TEST(SpatialHash, SortIsByCellAndDeterministic) {
   }
 }
 
+// The build in two halves: until finish_build() the store still counts the dead particles, sorted
+// to its end with their flag, and the tile counts are the last build's; then it holds the live
+// ones in the order build() leaves them.
+TEST(SpatialHash, ASplitBuildDropsTheDeadWhenItFinishes) {
+  ComputeContext compute("cpu");
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 4.0f);
+  HostParticles p;
+  for (int i = 0; i < 3000; ++i) p.push(u(rng), u(rng), u(rng), 0, 0, 0, 1000, 1);
+  std::size_t live = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.id[i] = static_cast<std::uint32_t>(i) | (i % 3 == 0 ? kDeadFlag : 0u);
+    live += i % 3 != 0;
+  }
+  ParticleStore whole(compute), split(compute);
+  whole.upload(p);
+  split.upload(p);
+  SpatialHash one(compute, test_grid()), two(compute, test_grid());
+  one.build(whole);
+  two.begin_build(split);
+  EXPECT_EQ(split.size(), p.size());
+  EXPECT_EQ(two.tile_count(), 0u);  // no build has finished yet
+  const HostParticles during = split.download();
+  for (std::size_t i = 0; i < during.size(); ++i)
+    ASSERT_EQ((during.id[i] & kDeadFlag) != 0, i >= live) << i;
+  two.finish_build(split);
+  EXPECT_EQ(split.size(), live);
+  EXPECT_EQ(whole.size(), live);
+  EXPECT_EQ(split.download().id, whole.download().id);
+  EXPECT_EQ(two.tile_count(), one.tile_count());
+  EXPECT_GT(one.tile_count(), 0u);
+}
+
 // The tiles the neighbour passes run on: every cell's particles, in runs of at most the tile size
 // starting at the cell's first particle, each particle in exactly one tile, those of more than
 // kSmallTile particles listed first, then those of more than kLoneTile, then the lone ones;

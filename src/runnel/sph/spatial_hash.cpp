@@ -98,14 +98,19 @@ void SpatialHash::ensure_capacity(std::size_t n) {
 }
 
 void SpatialHash::build(ParticleStore& store) {
+  begin_build(store);
+  finish_build(store);
+}
+
+void SpatialHash::begin_build(ParticleStore& store) {
   const cl_uint n = static_cast<cl_uint>(store.size());
   auto& q = compute_.queue();
+  summary_pending_ = false;
   if (sorted_ > 0) {
     clear_cells_.set("key", keys_[sorted_in_]).set("n", sorted_).set("dead_key", dead_key_);
     clear_cells_.set("cell_start", cell_start_).launch(round_up_work(sorted_));
     sorted_ = 0;
   }
-  tiles_ = small_tiles_ = lone_tiles_ = 0;
   if (n == 0) return;
   ensure_capacity(n);
 
@@ -172,12 +177,20 @@ void SpatialHash::build(ParticleStore& store) {
   tile_scan_.set("counts", hist_).set("blocks", blocks).set("summary", summary_).launch(1);
   tile_scatter_.set("tile_first", tile_first_).launch(blocks);
 
-  cl_uint summary[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
-  q.enqueueReadBuffer(summary_, CL_TRUE, 0, sizeof(summary), summary);
-  store.truncate(summary[0]);
-  tiles_ = summary[1];
-  small_tiles_ = summary[2];
-  lone_tiles_ = summary[3];
+  q.enqueueReadBuffer(summary_, CL_FALSE, 0, sizeof(summary_host_), summary_host_, nullptr,
+                      &summary_read_);
+  summary_pending_ = true;
+}
+
+void SpatialHash::finish_build(ParticleStore& store) {
+  tiles_ = small_tiles_ = lone_tiles_ = 0;
+  if (!summary_pending_) return;  // nothing was sorted: no particles
+  summary_read_.wait();
+  summary_pending_ = false;
+  store.truncate(summary_host_[0]);
+  tiles_ = summary_host_[1];
+  small_tiles_ = summary_host_[2];
+  lone_tiles_ = summary_host_[3];
 }
 
 std::vector<std::vector<std::uint32_t>> SpatialHash::neighbour_lists(ParticleStore& store,

@@ -32,6 +32,13 @@ class SpatialHash {
 
   // Sorts and reorders `store` in place; afterwards store.size() counts live particles only.
   void build(ParticleStore& store);
+  // The build in two halves, for a caller with work to queue that needs neither the live count nor
+  // the tiles: begin_build() queues the sort, the tables and the read of their summary;
+  // finish_build() waits for that read (the device meanwhile runs what was queued after it) and
+  // truncates the store to the live particles. In between, the store still counts the dead ones,
+  // sorted to its end with their id's DEAD_FLAG, and the tile counts are the last build's.
+  void begin_build(ParticleStore& store);
+  void finish_build(ParticleStore& store);
 
   const GridSpec& grid() const { return grid_; }
   const cl::Buffer& cell_start() const { return cell_start_; }
@@ -77,6 +84,9 @@ class SpatialHash {
   int passes_;
   std::uint32_t tile_;
   std::uint32_t lone_ = kLoneTile;
+  cl_uint summary_host_[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
+  cl::Event summary_read_;
+  bool summary_pending_ = false;
   std::uint32_t tiles_ = 0, small_tiles_ = 0, lone_tiles_ = 0;
   std::size_t capacity_ = 0;
   cl_uint sorted_ = 0;  // keys in keys_[sorted_in_] from the last build: their cells are filled

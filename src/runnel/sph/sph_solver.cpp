@@ -101,8 +101,9 @@ void SphSolver::add(HostParticles particles) {
 }
 
 void SphSolver::prepare() {
-  build_hash();
+  sort_particles();
   measure_water_depth();
+  drop_dead_particles();
   compute_forces();
   choose_next_dt();
   rates_ready_ = true;
@@ -124,6 +125,9 @@ void SphSolver::drift() {
   store_.swap_scratch({kX, kY, kZ, kRho});  // x(n+1), ρ(n+1) become the state
 }
 
+// Between the hash's two halves the store still counts the dead particles at its end: both water
+// kernels skip them, and the choice between the two takes the last finished build's tiles (they
+// give the same field, so the choice changes the time only).
 void SphSolver::measure_water_depth() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   const std::size_t vertices = static_cast<std::size_t>(terrain_.nx()) * terrain_.ny();
@@ -161,8 +165,9 @@ void SphSolver::coarsen_water(int levels) {
 }
 
 void SphSolver::complete_step() {
-  build_hash();           // sort by cell, reorder, drop dead particles, cell tables
+  sort_particles();       // by cell, dead particles last; cell tables, tiles
   measure_water_depth();  // D at x(n+1), new drops included: the next step's friction and erosion
+  drop_dead_particles();  // the hash's live count and tiles, read while the depth pass runs
   compute_forces();       // a(n+1) at x(n+1), ρ(n+1)
   time_ += dt_;
   ++steps_;
@@ -184,8 +189,17 @@ void SphSolver::drift_and_collide() {
 }
 
 void SphSolver::build_hash() {
-  hash_.build(store_);
+  sort_particles();
+  drop_dead_particles();
+}
+
+void SphSolver::sort_particles() {
+  hash_.begin_build(store_);
   hash_stale_ = false;
+}
+
+void SphSolver::drop_dead_particles() {
+  hash_.finish_build(store_);
 }
 
 void SphSolver::project_to_surface() {

@@ -87,7 +87,11 @@ class SphSolver {
   void drift_and_collide();
   void measure_water_depth();
   void coarsen_water(int levels);
-  void build_hash();
+  void build_hash();  // the two halves below at once
+  // The hash build in two halves (SpatialHash::begin_build): work that does not need the live
+  // count or the tiles goes between them, while the device reads them for the host.
+  void sort_particles();
+  void drop_dead_particles();
   void bind_domain(Kernel& k);
   void integrate_density();
   void compute_forces();
