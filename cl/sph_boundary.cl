@@ -150,30 +150,34 @@ inline void find_tile_candidates(TileItem t, Grid grid, const __global uint* cel
 
 // A lone tile (spatial_hash.cl): a cell's last few particles, whose pass runs one work-item a tile
 // and walks the neighbourhood directly from global memory, without the group's copies and barriers.
-// The work-item's tile: its particles [first, last), its cell.
+// The work-item's tile: its particles [first, last), its cell's neighbourhood and wall images.
 typedef struct {
   uint first, last;
-  int3 cell;
+  Neighbourhood nb;
+  Images images;
 } LoneTile;
 
 inline LoneTile lone_tile(const __global uint* tile_first, uint tile_offset, uint tile, const __global float* x,
                           const __global float* y, const __global float* z, Grid grid,
-                          const __global uint* cell_end) {
+                          const __global uint* cell_start, const __global uint* cell_end, float domain_x,
+                          float domain_z) {
   LoneTile t;
   t.first = tile_first[tile_offset + get_global_id(0)];
-  t.cell = cell_of((float3)(x[t.first], y[t.first], z[t.first]), grid);
-  t.last = min(t.first + tile, cell_end[linear_cell(t.cell, grid)]);
+  const int3 cell = cell_of((float3)(x[t.first], y[t.first], z[t.first]), grid);
+  t.last = min(t.first + tile, cell_end[linear_cell(cell, grid)]);
+  t.nb = cell_neighbourhood(cell, grid, cell_start, cell_end);
+  t.images = tile_images(cell, grid, domain_x, domain_z);
   return t;
 }
 
 // Visits the candidates of a lone tile as the tiled passes see them: every image of every
 // neighbourhood candidate, row by row; `image_` the image (0: the candidate itself), j its sorted
-// index. Usage: LONE_CANDIDATES_BEGIN(nb, images) {...} LONE_CANDIDATES_END
-#define LONE_CANDIDATES_BEGIN(nb, im)                                       \
-  for (uint m_ = 0; m_ < (im).count; ++m_) {                                \
-    const uint image_ = (im).image[m_];                                     \
-    for (uint r_ = 0; r_ < (nb).rows; ++r_) {                               \
-      for (uint j = (nb).begin[r_]; j < (nb).begin[r_] + (nb).count[r_]; ++j) {
+// index. Usage: LONE_CANDIDATES_BEGIN(lone) {...} LONE_CANDIDATES_END, `lone` a LoneTile
+#define LONE_CANDIDATES_BEGIN(lone)                                                      \
+  for (uint m_ = 0; m_ < (lone).images.count; ++m_) {                                    \
+    const uint image_ = (lone).images.image[m_];                                         \
+    for (uint r_ = 0; r_ < (lone).nb.rows; ++r_) {                                       \
+      for (uint j = (lone).nb.begin[r_]; j < (lone).nb.begin[r_] + (lone).nb.count[r_]; ++j) {
 #define LONE_CANDIDATES_END \
   }                         \
   }                         \

@@ -170,15 +170,14 @@ __kernel void sph_continuity_direct(
     const float tcell, const float domain_x, const float domain_z, __global float* drho, __global float* rho_new) {
   if (get_global_id(0) >= tiles) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
-  const LoneTile t = lone_tile(tile_first, tile_offset, tile, x, y, z, grid, cell_end);  // x(n): the sort's cells
-  const Neighbourhood nb = cell_neighbourhood(t.cell, grid, cell_start, cell_end);
-  const Images images = tile_images(t.cell, grid, domain_x, domain_z);
+  const LoneTile t =  // x(n): the sort's cells
+      lone_tile(tile_first, tile_offset, tile, x, y, z, grid, cell_start, cell_end, domain_x, domain_z);
   for (uint i = t.first; i < t.last; ++i) {
     const float3 vi = (float3)(drift_vx[i], drift_vy[i], drift_vz[i]);
     const float3 mid_i = (float3)(mid_x[i], mid_y[i], mid_z[i]);
     const float rhoi = rho[i];
     float drho_i = 0.0f, drho_ghosts = 0.0f, shepard = 0.0f;
-    LONE_CANDIDATES_BEGIN(nb, images)
+    LONE_CANDIDATES_BEGIN(t)
     const float3 mid = image_position(image_, (float3)(mid_x[j], mid_y[j], mid_z[j]), domain_x, domain_z);
     const float3 v = image_velocity(image_, (float3)(drift_vx[j], drift_vy[j], drift_vz[j]));
     const float dx = mid_i.x - mid.x, dy = mid_i.y - mid.y, dz = mid_i.z - mid.z;

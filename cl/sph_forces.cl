@@ -237,9 +237,8 @@ __kernel void sph_forces_direct(
     __global float* az) {
   if (get_global_id(0) >= tiles) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
-  const LoneTile t = lone_tile(tile_first, tile_offset, tile, x, y, z, grid, cell_end);
-  const Neighbourhood nb = cell_neighbourhood(t.cell, grid, cell_start, cell_end);
-  const Images images = tile_images(t.cell, grid, domain_x, domain_z);
+  const LoneTile t =
+      lone_tile(tile_first, tile_offset, tile, x, y, z, grid, cell_start, cell_end, domain_x, domain_z);
   for (uint i = t.first; i < t.last; ++i) {
     const float3 pi = (float3)(x[i], y[i], z[i]);
     const float3 vi = (float3)(vx[i], vy[i], vz[i]);
@@ -247,7 +246,7 @@ __kernel void sph_forces_direct(
     const float pres_i = pressure[i];
     const float pi_over_rho2 = p_over_rho2[i];
     ForceSums sum = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-    LONE_CANDIDATES_BEGIN(nb, images)
+    LONE_CANDIDATES_BEGIN(t)
     const float3 p = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
     const float3 v = image_velocity(image_, (float3)(vx[j], vy[j], vz[j]));
     add_pair_force(&sum, pi.x - p.x, pi.y - p.y, pi.z - p.z, vi.x - v.x, vi.y - v.y, vi.z - v.z, rhoi, pres_i,

@@ -32,6 +32,14 @@ HostParticles to_particles(const Cloud& c) {
   return p;
 }
 
+// `count` particles uniform over [0, 4]³, drawn from rng.
+HostParticles uniform_particles(std::mt19937& rng, int count) {
+  std::uniform_real_distribution<float> u(0.0f, 4.0f);
+  HostParticles p;
+  for (int i = 0; i < count; ++i) p.push(u(rng), u(rng), u(rng), 0, 0, 0, 1000, 1);
+  return p;
+}
+
 // Grid over [0, 4]³ with cell 0.25 (radius = cell, as 2h).
 GridSpec test_grid() {
   const double lo[3] = {0, 0, 0}, hi[3] = {4, 4, 4};
@@ -132,9 +140,7 @@ TEST(SpatialHash, ParticlesOnCellBordersAndOutsideTheGridMatchKdTree) {
 TEST(SpatialHash, SortIsByCellAndDeterministic) {
   ComputeContext compute("cpu");
   std::mt19937 rng(4);
-  std::uniform_real_distribution<float> u(0.0f, 4.0f);
-  HostParticles p;
-  for (int i = 0; i < 5000; ++i) p.push(u(rng), u(rng), u(rng), 0, 0, 0, 1000, 1);
+  HostParticles p = uniform_particles(rng, 5000);
   std::vector<std::uint32_t> orders[2];
   for (auto& order : orders) {
     ParticleStore store(compute);
@@ -172,9 +178,7 @@ TEST(SpatialHash, SortIsByCellAndDeterministic) {
 TEST(SpatialHash, ASplitBuildDropsTheDeadWhenItFinishes) {
   ComputeContext compute("cpu");
   std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(0.0f, 4.0f);
-  HostParticles p;
-  for (int i = 0; i < 3000; ++i) p.push(u(rng), u(rng), u(rng), 0, 0, 0, 1000, 1);
+  HostParticles p = uniform_particles(rng, 3000);
   std::size_t live = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     p.id[i] = static_cast<std::uint32_t>(i) | (i % 3 == 0 ? kDeadFlag : 0u);
@@ -206,10 +210,8 @@ TEST(SpatialHash, ASplitBuildDropsTheDeadWhenItFinishes) {
 TEST(SpatialHash, TilesCoverEachCellInRunsOfTheTileSize) {
   ComputeContext compute("cpu");
   std::mt19937 rng(9);
-  std::uniform_real_distribution<float> u(0.0f, 4.0f);
   std::normal_distribution<float> clump(2.0f, 0.05f);  // cells of 100+ particles: several tiles
-  HostParticles p;
-  for (int i = 0; i < 3000; ++i) p.push(u(rng), u(rng), u(rng), 0, 0, 0, 1000, 1);
+  HostParticles p = uniform_particles(rng, 3000);
   for (int i = 0; i < 1000; ++i) p.push(clump(rng), clump(rng), clump(rng), 0, 0, 0, 1000, 1);
   for (std::uint32_t tile : {1u, 7u, 32u}) {
     ParticleStore store(compute);

@@ -225,8 +225,8 @@ void bind_continuity_inputs(ParticleStore& store, Kernel& k) {
 }
 
 void SphSolver::integrate_density() {
-  for (Kernel* k :
-       {&continuity_, &continuity_direct_}) {  // inputs from the drift (drift_and_collide)
+  // Its inputs come from the drift (drift_and_collide).
+  for (Kernel* k : {&continuity_, &continuity_direct_}) {
     store_.bind(*k, {kX, kY, kZ, kRho, kDrho});
     store_.bind_new(*k, {kRho});
     bind_continuity_inputs(store_, *k);
