@@ -57,6 +57,14 @@ inline int terrain_tile(int i, int j, int tiles_x) {
   return (j >> TERRAIN_TILE_SHIFT) * tiles_x + (i >> TERRAIN_TILE_SHIFT);
 }
 
+// The float view (DeviceTerrain's `height`) of a fixed-point height: high and low bits apart,
+// accurate to a float's rounding.
+inline float fixed_height_view(long h, float quantum) {
+  const long high = h >> 20;  // arithmetic shift: floor division by 2^20, also for negative heights
+  const long low = h - (high << 20);
+  return (float)high * (quantum * 1048576.0f) + (float)low * quantum;
+}
+
 // Marks the tiles of the vertices [i0, i1] × [j0, j1] (inside the grid).
 inline void mark_changed_tiles(__global uint* changed, int tiles_x, int i0, int i1, int j0, int j1) {
   for (int tj = j0 >> TERRAIN_TILE_SHIFT; tj <= j1 >> TERRAIN_TILE_SHIFT; ++tj)

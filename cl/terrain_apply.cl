@@ -9,13 +9,6 @@
 // hold deltas (the kernels that add them mark their tiles); the others are left as they are.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 
-// The float view of a fixed-point height: high and low bits apart, accurate to a float's rounding.
-inline float fixed_height_view(long h, float quantum) {
-  const long high = h >> 20;  // arithmetic shift: floor division by 2^20, also for negative heights
-  const long low = h - (high << 20);
-  return (float)high * (quantum * 1048576.0f) + (float)low * quantum;
-}
-
 __kernel void terrain_apply(__global long* height_fixed, __global long* delta, __global float* height, const int nx,
                             const int ny, const float quantum, const __global uint* changed, const int tiles_x) {
   const int k = get_global_id(0);

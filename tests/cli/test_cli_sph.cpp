@@ -106,7 +106,7 @@ TEST(CliSph, BenchDropletPrintsItsThroughput) {
   const auto r = run_cli({"bench", "droplet", "--size", "129", "--steps", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_GT(json_number(r.out, "droplet_steps_per_second"), 0.0);
-  EXPECT_NE(r.out.find("\"droplet_step\""), std::string::npos) << "per-kernel times";
+  EXPECT_NE(r.out.find("\"droplet_move\""), std::string::npos) << "per-kernel times";
   EXPECT_EQ(run_cli({"bench", "droplet", "--size", "3"}).exit_code, 2);
   for (const char* model : {"olsen", "thermal", "pipe"}) {
     const auto g = run_cli({"bench", model, "--size", "129", "--steps", "3"});

@@ -95,18 +95,33 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       settings_(DropletSettings::from(params)),
       seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
       spawn_kernel_(compute, droplet_program(compute, settings_, params), "droplet_spawn"),
-      step_kernel_(compute, droplet_program(compute, settings_, params), "droplet_step"),
+      move_kernel_(compute, droplet_program(compute, settings_, params), "droplet_move"),
+      apply_kernel_(compute, droplet_program(compute, settings_, params), "droplet_apply"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 3 * sizeof(cl_long)),
       droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, batch_size())),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
-                    static_cast<std::size_t>(batch_size()) * sizeof(cl_long)) {
+                    static_cast<std::size_t>(batch_size()) * sizeof(cl_long)),
+      plan_place_(compute.context(), CL_MEM_READ_WRITE,
+                  static_cast<std::size_t>(batch_size()) * sizeof(cl_float2)),
+      plan_change_(compute.context(), CL_MEM_READ_WRITE,
+                   static_cast<std::size_t>(batch_size()) * sizeof(cl_long2)) {
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
-  step_kernel_.set("erodibility", bed() ? bed()->erodibility : placeholder_);
+  const cl::Buffer& erodibility = bed() ? bed()->erodibility : placeholder_;
+  move_kernel_.set("erodibility", erodibility)
+      .set("counters", counters_)
+      .set("state", droplet_state_)
+      .set("load", droplet_load_)
+      .set("plan_place", plan_place_)
+      .set("plan_change", plan_change_);
+  apply_kernel_.set("erodibility", erodibility)
+      .set("state", droplet_state_)
+      .set("plan_place", plan_place_)
+      .set("plan_change", plan_change_);
   spawn_kernel_.set("rain_weight", rain_weight());
 }
 
 double DropletModel::scratch_bytes() const {
-  return buffer_bytes({&counters_, &droplet_state_, &droplet_load_});
+  return buffer_bytes({&counters_, &droplet_state_, &droplet_load_, &plan_place_, &plan_change_});
 }
 
 long long DropletModel::batch_size() const {
@@ -161,29 +176,28 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
       .set("spawn_radius", spawn_radius)
       .launch(round_up_work(count));
   order_by_place(count);
-  // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl).
+  // The batch moves in lockstep, each step on the terrain the previous one left (droplet.cl). The
+  // droplets read the fixed heights, so the float view is refreshed once, after the batch.
+  move_kernel_.set("height_fixed", terrain.height_fixed())
+      .set("nx", terrain.nx())
+      .set("ny", terrain.ny())
+      .set("quantum", static_cast<float>(terrain.quantum()))
+      .set("count", count);
+  terrain.bind_fixed_changes(apply_kernel_);
+  apply_kernel_.set("nx", terrain.nx()).set("ny", terrain.ny()).set("count", count);
   for (int step = 0; step < settings_.lifetime; ++step) {
-    terrain.bind_fixed_changes(step_kernel_);
-    step_kernel_.set("height", terrain.height())
-        .set("nx", terrain.nx())
-        .set("ny", terrain.ny())
-        .set("quantum", static_cast<float>(terrain.quantum()))
-        .set("count", count)
-        .set("step_index", static_cast<cl_int>(step))
-        .set("state", droplet_state_)
-        .set("load", droplet_load_)
-        .set("counters", counters_)
-        .launch(round_up_work(count));
-    terrain.view_changed();
+    move_kernel_.set("step_index", static_cast<cl_int>(step)).launch(round_up_work(count));
+    apply_kernel_.launch(round_up_work(count));
   }
+  terrain.view_changed();
   droplets_ += count;
 }
 
 // Stores a batch's droplets in the order of the vertex they fell on, row by row (ties in droplet
-// order), so that neighbouring work-items of droplet_step share rows of the terrain in the cache
-// and read their states in sequence. The result does not depend on the order (droplet.cl), since
-// a droplet's number matters only to droplet_spawn's random numbers; the speed does: random places
-// miss the cache at every brush vertex.
+// order), so that neighbouring work-items of droplet_move and droplet_apply share rows of the
+// terrain in the cache and read their states in sequence. The result does not depend on the order
+// (droplet.cl), since a droplet's number matters only to droplet_spawn's random numbers; the speed
+// does: random places miss the cache at every brush vertex.
 void DropletModel::order_by_place(cl_uint count) {
   std::vector<cl_float> state(static_cast<std::size_t>(count) * 6);
   compute_.queue().enqueueReadBuffer(droplet_state_, CL_TRUE, 0, state.size() * sizeof(cl_float),

@@ -27,9 +27,9 @@ struct DropletSettings {
 };
 
 // Erosion_Beyer2015: particle droplets (Beyer 2015), host side of cl/models/droplet.cl. Each step
-// runs one batch of droplets in parallel, in lockstep: every droplet step is one launch whose
-// fixed-point changes are applied before the next, exactly conserving volume: what leaves the map
-// is counted as outflow.
+// runs one batch of droplets in parallel, in lockstep: every droplet step is a move over the
+// heights as they stand and then the application of its fixed-point changes, exactly conserving
+// volume: what leaves the map is counted as outflow.
 class DropletModel final : public GridModel {
  public:
   static const ModelInfo& model_info();
@@ -69,9 +69,10 @@ class DropletModel final : public GridModel {
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;
-  Kernel spawn_kernel_, step_kernel_;
+  Kernel spawn_kernel_, move_kernel_, apply_kernel_;
   cl::Buffer counters_;  // {droplets out, outflow quanta, droplets the rain mask kept from falling}
   cl::Buffer droplet_state_, droplet_load_;  // per droplet of a batch, between its steps
+  cl::Buffer plan_place_, plan_change_;      // per droplet, from droplet_move to droplet_apply
 };
 
 }  // namespace runnel
