@@ -1,12 +1,19 @@
 // SPDX-License-Identifier: MIT
 // Particle droplets (Beyer 2015; models.md "droplet"). A batch of droplets moves in lockstep, each
-// step in two launches: droplet_move moves every droplet one cell over the terrain as the previous
-// step left it and writes down what it erodes or deposits; droplet_apply then adds those changes to
-// the fixed-point heights (counts of the height quantum) with 64-bit integer atomics, so a step's
-// result does not depend on the order of the droplets. Nothing writes the heights while the droplets
-// read them, and they read the fixed heights themselves (as the float view would give them): the
-// float view is refreshed once per batch, not once per step. Sediment is carried as quanta too:
-// what a droplet erodes, it deposits (or carries out of the map, booked as outflow) exactly.
+// step in three stages: droplet_move moves every droplet one cell over the terrain as the previous
+// step left it and writes down what it erodes or deposits; droplet_bin lists the droplets with
+// changes by the block of DROPLET_BLOCK_ROWS rows and DROPLET_BLOCK_WIDTH columns of cells they are
+// in (DropletBlocks: whole rows of the map on a CPU); droplet_apply then adds the changes to the
+// fixed-point heights (counts of the height quantum), one work-item a block, in a launch for each
+// parity of the blocks' column and row. What a droplet changes lies within its brush's reach (and
+// a cell beyond) of its cell, and blocks are at least twice that reach plus one wide and high, so
+// two blocks of one launch never touch the same vertex: plain integer adds, no atomics, and since
+// integer sums do not depend on their order, neither does the result. (With 64-bit atomics
+// straight from each droplet, 28 lock-prefixed adds a step, the adds took more time than the
+// rest of the model.) Nothing writes the heights while the droplets read them, and they read the
+// fixed heights themselves (as the float view would give them): the float view is refreshed once
+// per batch, not once per step. Sediment is carried as quanta too: what a droplet erodes, it
+// deposits (or carries out of the map, booked as outflow) exactly.
 // (Running each droplet's whole lifetime on the terrain of the batch start let the droplets that
 // met in one pit each fill it to the brim; the spikes that made grew without bound.)
 // Per step, with cell coordinates and bilinear height and gradient:
@@ -21,21 +28,54 @@
 #define DROPLET_STREAM 0x64726f70UL  // "drop"
 #define DROPLET_MASK_STREAM 0x64726d6bUL  // "drmk"
 
-// Bilinear height (m) and gradient at (x, z), from the fixed heights as the float view gives them.
-inline float height_at(const __global long* h, float quantum, int nx, float x, float z, float* gx, float* gz) {
-  const int i = (int)x, j = (int)z;
-  const float u = x - (float)i, v = z - (float)j;
-  const int k = j * nx + i;
-  const float h00 = fixed_height_view(h[k], quantum), h10 = fixed_height_view(h[k + 1], quantum),
-              h01 = fixed_height_view(h[k + nx], quantum), h11 = fixed_height_view(h[k + nx + 1], quantum);
+// droplet_move takes DROPLET_LANES droplets a work-item, in the lanes of OpenCL vectors: the
+// compilers of CPUs (PoCL's among them) do not vectorise its branchy code across work-items, and
+// written for one droplet it ran a lane at a time. The host sets DROPLET_LANES (it pads the planes).
+#if DROPLET_LANES != 8
+#error "droplet_move's vector types hold 8 droplets"
+#endif
+typedef float8 floatv;
+typedef int8 intv;
+typedef long8 longv;
+typedef uint8 uintv;
+#define LOADV(offset, p) vload8(offset, p)
+#define STOREV(v, offset, p) vstore8(v, offset, p)
+#define CONVERT_FLOATV convert_float8
+#define CONVERT_INTV convert_int8
+#define CONVERT_LONGV convert_long8
+#define CONVERT_UINTV convert_uint8
+
+// The heights at 8 vertices.
+inline longv gather_heights(const __global long* h, intv k) {
+  return (longv)(h[k.s0], h[k.s1], h[k.s2], h[k.s3], h[k.s4], h[k.s5], h[k.s6], h[k.s7]);
+}
+
+// fixed_height_view (common.cl), lane by lane: the same expression, the same bits.
+inline floatv fixed_height_view_v(longv h, float quantum) {
+  const longv high = h >> 20;
+  const longv low = h - (high << 20);
+  return CONVERT_FLOATV(high) * (quantum * 1048576.0f) + CONVERT_FLOATV(low) * quantum;
+}
+
+// Bilinear height (m) and gradient at (x, z), from the fixed heights as the float view gives them;
+// lanes outside `valid` read vertex 0 and give nothing meaningful.
+inline floatv height_at(const __global long* h, float quantum, int nx, floatv x, floatv z, intv valid, floatv* gx,
+                        floatv* gz) {
+  const intv i = CONVERT_INTV(x), j = CONVERT_INTV(z);
+  const floatv u = x - CONVERT_FLOATV(i), v = z - CONVERT_FLOATV(j);
+  const intv k = select((intv)0, j * nx + i, valid);
+  const floatv h00 = fixed_height_view_v(gather_heights(h, k), quantum),
+               h10 = fixed_height_view_v(gather_heights(h, k + 1), quantum),
+               h01 = fixed_height_view_v(gather_heights(h, k + nx), quantum),
+               h11 = fixed_height_view_v(gather_heights(h, k + nx + 1), quantum);
   *gx = (h10 - h00) * (1.0f - v) + (h11 - h01) * v;
   *gz = (h01 - h00) * (1.0f - u) + (h11 - h10) * u;
   return h00 * (1.0f - u) * (1.0f - v) + h10 * u * (1.0f - v) + h01 * (1.0f - u) * v + h11 * u * v;
 }
 
 // Deposits `quanta` on the 4 corners of the cell with bilinear weights, exactly.
-inline void deposit_bilinear(volatile __global long* height_fixed, __global uint* changed, int tiles_x, int nx, float x,
-                             float z, long quanta) {
+inline void deposit_bilinear(__global long* height_fixed, __global uint* changed, int tiles_x, int nx, float x, float z,
+                             long quanta) {
   if (quanta <= 0) return;
   const int i = (int)x, j = (int)z;
   mark_changed_tiles(changed, tiles_x, i, i + 1, j, j + 1);
@@ -48,9 +88,9 @@ inline void deposit_bilinear(volatile __global long* height_fixed, __global uint
     const long part = min((long)floor((float)quanta * w[c]), quanta - given);
     given += part;
     if (w[c] > w[largest]) largest = c;
-    if (part > 0) atom_add(&height_fixed[k[c]], part);
+    if (part > 0) height_fixed[k[c]] += part;
   }
-  if (quanta - given > 0) atom_add(&height_fixed[k[largest]], quanta - given);
+  if (quanta - given > 0) height_fixed[k[largest]] += quanta - given;
 }
 
 // The erosion brush: the vertices within DROPLET_RADIUS cells of (x, z), weighted by
@@ -134,7 +174,7 @@ inline long brush_quanta(int nx, int ny, float x, float z, float amount, float q
 }
 
 // Takes `quanta` (from brush_quanta) from the brush's vertices in proportion to their weights, exactly.
-inline void erode_brush(volatile __global long* height_fixed, __global uint* changed, int tiles_x, int nx, int ny,
+inline void erode_brush(__global long* height_fixed, __global uint* changed, int tiles_x, int nx, int ny,
                         float x, float z, long quanta, const __global float* erodibility) {
   if (quanta <= 0) return;
   const int r = DROPLET_RADIUS_CELLS;
@@ -162,132 +202,227 @@ inline void erode_brush(volatile __global long* height_fixed, __global uint* cha
         best_part = given;
         best = m;
       }
-      if (given > 0) atom_add(&height_fixed[m], -given);
+      if (given > 0) height_fixed[m] -= given;
     }
   }
-  if (quanta - taken > 0 && best >= 0) atom_add(&height_fixed[best], -(quanta - taken));
+  if (quanta - taken > 0 && best >= 0) height_fixed[best] -= quanta - taken;
 }
 
-// Droplet state between steps: (x, z, dir_x, dir_z, speed, water) in cell units; water < 0 marks
-// a droplet that has finished. droplet_spawn places a batch's droplets; the host then stores them
-// in the order of where they fell (row by row), and droplet_move and droplet_apply take droplet g with work-item g:
-// neighbouring work-items then touch the same rows of the terrain, which stay in the cache, and
-// read their states one after another. Droplets in the order they were drawn touched a random
-// place each. The changes are integer sums, so the order changes nothing in the result.
+// Droplet state between steps, one plane of `stride` floats per field (DROPLET_X .. DROPLET_WATER,
+// in cell units); water < 0 marks a droplet that has finished. droplet_spawn places a batch's
+// droplets; the host then stores them in the order of where they fell (row by row), and
+// droplet_move and droplet_apply take droplet g with work-item g: neighbouring work-items then
+// touch the same rows of the terrain, which stay in the cache, and read their states one after
+// another. Droplets in the order they were drawn touched a random place each. The changes are
+// integer sums, so the order changes nothing in the result. (Planes rather than six floats a
+// droplet: adjacent fields made the compiler pair x with z in 2-wide vectors, which kept PoCL from
+// running 8 droplets in the lanes of one vector.)
+#define DROPLET_X 0
+#define DROPLET_Z 1
+#define DROPLET_DIR_X 2
+#define DROPLET_DIR_Z 3
+#define DROPLET_SPEED 4
+#define DROPLET_WATER 5
+#define FIELD(field) state[(field) * stride + d]
+
 __kernel void droplet_spawn(const int nx, const int ny, const ulong seed, const ulong first_droplet, const uint count,
-                            __global float* state, __global long* load, volatile __global long* counters,
-                            const __global float* rain_weight, const float spawn_x, const float spawn_z,
-                            const float spawn_radius) {
+                            const uint stride, __global float* state, __global long* load,
+                            volatile __global long* counters, const __global float* rain_weight, const float spawn_x,
+                            const float spawn_z, const float spawn_radius) {
   const uint d = get_global_id(0);
   if (d >= count) return;
-  __global float* s = state + 6 * d;
   const ulong id = first_droplet + d;
   if (spawn_radius > 0.0f) {  // painted rain (runnel-viewer): uniform on the disc, in cells
     const float r = spawn_radius * sqrt(rng_uniform(seed, DROPLET_STREAM, 2 * id));
     const float a = 6.2831853f * rng_uniform(seed, DROPLET_STREAM, 2 * id + 1);
-    s[0] = clamp(spawn_x + r * cos(a), 0.0f, (float)(nx - 1) - 1e-3f);
-    s[1] = clamp(spawn_z + r * sin(a), 0.0f, (float)(ny - 1) - 1e-3f);
+    FIELD(DROPLET_X) = clamp(spawn_x + r * cos(a), 0.0f, (float)(nx - 1) - 1e-3f);
+    FIELD(DROPLET_Z) = clamp(spawn_z + r * sin(a), 0.0f, (float)(ny - 1) - 1e-3f);
   } else {
-    s[0] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1), (float)(nx - 1) - 1e-3f);
-    s[1] = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1), (float)(ny - 1) - 1e-3f);
+    FIELD(DROPLET_X) = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id) * (float)(nx - 1), (float)(nx - 1) - 1e-3f);
+    FIELD(DROPLET_Z) = fmin(rng_uniform(seed, DROPLET_STREAM, 2 * id + 1) * (float)(ny - 1), (float)(ny - 1) - 1e-3f);
   }
-  s[2] = 0.0f;
-  s[3] = 0.0f;
-  s[4] = DROPLET_INITIAL_SPEED;
-  s[5] = DROPLET_INITIAL_WATER;
+  FIELD(DROPLET_DIR_X) = 0.0f;
+  FIELD(DROPLET_DIR_Z) = 0.0f;
+  FIELD(DROPLET_SPEED) = DROPLET_INITIAL_SPEED;
+  FIELD(DROPLET_WATER) = DROPLET_INITIAL_WATER;
   load[d] = 0;
 #if RAIN_MASK
   // The rain mask: a droplet falls at its place with the probability the mask gives there
   // (docs/layers.md); one that does not fall finishes at once, having done nothing.
-  const int spawn = (int)(s[1] + 0.5f) * nx + (int)(s[0] + 0.5f);
+  const int spawn = (int)(FIELD(DROPLET_Z) + 0.5f) * nx + (int)(FIELD(DROPLET_X) + 0.5f);
   if (rng_uniform(seed, DROPLET_MASK_STREAM, id) >= rain_weight[spawn]) {
-    s[5] = -1.0f;
+    FIELD(DROPLET_WATER) = -1.0f;
     atom_inc(&counters[2]);
   }
 #endif
 }
 
-// One step of every droplet of the batch, on heights nobody writes during it. What the droplet
-// changes goes to its plan, for droplet_apply: at its old place, `change.x` quanta deposited (> 0) or
-// eroded with the brush (< 0); at its new place, `change.y` quanta deposited at the end of its life.
+// One step of every droplet of the batch, on heights nobody writes during it; work-item w moves
+// droplets DROPLET_LANES·w .. DROPLET_LANES·w + DROPLET_LANES − 1 (the planes hold whole vectors). What a
+// droplet changes goes to its plan, two planes of `stride` for droplet_apply: the quanta deposited
+// (> 0) or eroded with the brush (< 0) at its old place, and the quanta it deposits at its new
+// place at the end of its life; the old place in plan_place's two. A droplet with changes counts
+// itself in its block and keeps its block and its number there in plan_bin's two planes
+// (NO_BLOCK: none). Lanes follow one droplet each through the branches as masks (−1: taken).
+#define NO_BLOCK 0xffffffffu
 __kernel void droplet_move(const __global long* height_fixed, const int nx, const int ny, const float quantum,
-                           const uint count, const int step_index, __global float* state, __global long* load,
-                           volatile __global long* counters, const __global float* erodibility,
-                           __global float2* plan_place, __global long2* plan_change) {
-  const uint d = get_global_id(0);
-  if (d >= count) return;
-  __global float* s = state + 6 * d;
-  plan_change[d] = (long2)(0, 0);
-  if (s[5] < 0.0f) return;
-  float x = s[0], z = s[1], speed = s[4], water = s[5];
-  long sediment = load[d];  // quanta of height
-  plan_place[d] = (float2)(x, z);
-  float gx, gz;
-  const float h_old = height_at(height_fixed, quantum, nx, x, z, &gx, &gz);
-  float dir_x = s[2] * DROPLET_INERTIA - gx * (1.0f - DROPLET_INERTIA);
-  float dir_z = s[3] * DROPLET_INERTIA - gz * (1.0f - DROPLET_INERTIA);
-  const float len = sqrt(dir_x * dir_x + dir_z * dir_z);
-  if (len == 0.0f) {  // flat: the droplet stops and deposits what it carries
-    plan_change[d] = (long2)(sediment, 0);
-    load[d] = 0;
-    s[5] = -1.0f;
-    return;
+                           const uint count, const uint stride, const int step_index, __global float* state,
+                           __global long* load, volatile __global long* counters, const __global float* erodibility,
+                           __global float* plan_place, __global long* plan, __global uint* plan_bin,
+                           volatile __global uint* block_count, const int blocks_x) {
+  const uint w = get_global_id(0);
+  if (w * DROPLET_LANES >= count) return;
+  const uint first = w * DROPLET_LANES;
+  const intv lane = (intv)(0, 1, 2, 3, 4, 5, 6, 7);
+  const floatv x = LOADV(w, state + DROPLET_X * stride), z = LOADV(w, state + DROPLET_Z * stride);
+  const floatv dir_x0 = LOADV(w, state + DROPLET_DIR_X * stride), dir_z0 = LOADV(w, state + DROPLET_DIR_Z * stride);
+  const floatv speed0 = LOADV(w, state + DROPLET_SPEED * stride), water0 = LOADV(w, state + DROPLET_WATER * stride);
+  const longv sediment0 = LOADV(w, load);
+  const intv live = ((intv)(int)(count - first) > lane) & (water0 >= 0.0f);
+  floatv gx, gz;
+  const floatv h_old = height_at(height_fixed, quantum, nx, x, z, live, &gx, &gz);
+  const floatv ux = dir_x0 * DROPLET_INERTIA - gx * (1.0f - DROPLET_INERTIA);
+  const floatv uz = dir_z0 * DROPLET_INERTIA - gz * (1.0f - DROPLET_INERTIA);
+  const floatv len = sqrt(ux * ux + uz * uz);
+  const intv flat = live & (len == 0.0f);  // the droplet stops and deposits what it carries
+  const floatv dir_x = ux / len, dir_z = uz / len;
+  const floatv nx_pos = x + dir_x, nz_pos = z + dir_z;
+  const intv out = live & ~flat &
+                   ((nx_pos < 0.0f) | (nz_pos < 0.0f) | (nx_pos >= (float)(nx - 1)) | (nz_pos >= (float)(ny - 1)));
+  const intv moves = live & ~flat & ~out;
+  floatv gx2, gz2;
+  const floatv h_new = height_at(height_fixed, quantum, nx, nx_pos, nz_pos, moves, &gx2, &gz2);
+  const floatv dh = h_new - h_old;  // m
+  const floatv capacity = fmax(-dh * speed0 * water0 * DROPLET_CAPACITY, DROPLET_MIN_CAPACITY);  // m of height
+  const floatv carried = CONVERT_FLOATV(sediment0) * quantum;
+  const intv deposits = moves & ((dh > 0.0f) | (carried > capacity));
+  const intv erodes = moves & ~deposits;
+  const floatv deposit_amount = select((carried - capacity) * DROPLET_DEPOSIT, fmin(dh, carried), dh > 0.0f);
+  const longv deposited = max((longv)0, min(sediment0, CONVERT_LONGV(floor(deposit_amount / quantum))));
+  const floatv erode_amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
+  longv taken = max((longv)0, CONVERT_LONGV(floor(erode_amount / quantum)));
+  if (GROUND || DROPLET_RADIUS <= 0.75f) {  // the brush's weights decide: one lane at a time
+    long t[DROPLET_LANES];
+    int e[DROPLET_LANES];
+    float px[DROPLET_LANES], pz[DROPLET_LANES], amount[DROPLET_LANES];
+    STOREV(erodes, 0, e);
+    STOREV(x, 0, px);
+    STOREV(z, 0, pz);
+    STOREV(erode_amount, 0, amount);
+    for (int l = 0; l < DROPLET_LANES; ++l)
+      t[l] = e[l] ? max(0L, brush_quanta(nx, ny, px[l], pz[l], amount[l], quantum, erodibility)) : 0;
+    taken = LOADV(0, t);
   }
-  dir_x /= len;
-  dir_z /= len;
-  const float nx_pos = x + dir_x, nz_pos = z + dir_z;
-  if (nx_pos < 0.0f || nz_pos < 0.0f || nx_pos >= (float)(nx - 1) || nz_pos >= (float)(ny - 1)) {
-    atom_add(&counters[1], sediment);  // carried out of the map
-    atom_inc(&counters[0]);
-    load[d] = 0;
-    s[5] = -1.0f;
-    return;
-  }
-  float gx2, gz2;
-  const float h_new = height_at(height_fixed, quantum, nx, nx_pos, nz_pos, &gx2, &gz2);
-  const float dh = h_new - h_old;  // m
-  const float capacity = fmax(-dh * speed * water * DROPLET_CAPACITY, DROPLET_MIN_CAPACITY);  // m of height
-  const float carried = (float)sediment * quantum;
-  long change = 0;
-  if (dh > 0.0f || carried > capacity) {
-    const float amount = dh > 0.0f ? fmin(dh, carried) : (carried - capacity) * DROPLET_DEPOSIT;
-    change = max(0L, min(sediment, (long)floor(amount / quantum)));
-    sediment -= change;
-  } else {
-    const float amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
-    const long taken = max(0L, brush_quanta(nx, ny, x, z, amount, quantum, erodibility));
-    sediment += taken;
-    change = -taken;
-  }
-  speed = sqrt(fmax(0.0f, speed * speed - dh * DROPLET_GRAVITY));
-  water *= 1.0f - DROPLET_EVAPORATE;
-  long final_deposit = 0;
+  // The new state of each kind of lane; a finished or missing droplet keeps its own.
+  const longv lmoves = CONVERT_LONGV(moves), ldeposits = CONVERT_LONGV(deposits), lerodes = CONVERT_LONGV(erodes);
+  const longv lflat = CONVERT_LONGV(flat), lout = CONVERT_LONGV(out);
+  longv change = select((longv)0, deposited, ldeposits);
+  change = select(change, -taken, lerodes);
+  change = select(change, sediment0, lflat);
+  longv sediment = select(sediment0, sediment0 - deposited, ldeposits);
+  sediment = select(sediment, sediment0 + taken, lerodes);
+  sediment = select(sediment, (longv)0, lflat | lout);
+  const floatv speed = select(speed0, sqrt(fmax(0.0f, speed0 * speed0 - dh * DROPLET_GRAVITY)), moves);
+  floatv water = select(water0, water0 * (1.0f - DROPLET_EVAPORATE), moves);
+  water = select(water, (floatv)(-1.0f), flat | out);
+  longv final_deposit = (longv)0;
   if (step_index == DROPLET_LIFETIME - 1) {  // the end of its life: it deposits what it still carries
-    final_deposit = sediment;
-    sediment = 0;
-    water = -1.0f;
+    final_deposit = select((longv)0, sediment, lmoves);
+    sediment = select(sediment, (longv)0, lmoves);
+    water = select(water, (floatv)(-1.0f), moves);
   }
-  plan_change[d] = (long2)(change, final_deposit);
-  s[0] = nx_pos;
-  s[1] = nz_pos;
-  s[2] = dir_x;
-  s[3] = dir_z;
-  s[4] = speed;
-  s[5] = water;
-  load[d] = sediment;
+  STOREV(select(x, nx_pos, moves), w, state + DROPLET_X * stride);
+  STOREV(select(z, nz_pos, moves), w, state + DROPLET_Z * stride);
+  STOREV(select(dir_x0, dir_x, moves), w, state + DROPLET_DIR_X * stride);
+  STOREV(select(dir_z0, dir_z, moves), w, state + DROPLET_DIR_Z * stride);
+  STOREV(speed, w, state + DROPLET_SPEED * stride);
+  STOREV(water, w, state + DROPLET_WATER * stride);
+  STOREV(sediment, w, load);
+  STOREV(change, w, plan);
+  STOREV(final_deposit, w, plan + stride);
+  STOREV(x, w, plan_place);
+  STOREV(z, w, plan_place + stride);
+  // Atomics, one lane at a time: the outflow counters, and each droplet's place in its block.
+  const intv busy = (CONVERT_INTV(change != 0) | CONVERT_INTV(final_deposit != 0)) & live;
+  const uintv block =
+      CONVERT_UINTV((CONVERT_INTV(z) / DROPLET_BLOCK_ROWS) * blocks_x + CONVERT_INTV(x) / DROPLET_BLOCK_WIDTH);
+  int is_out[DROPLET_LANES], is_busy[DROPLET_LANES];
+  long carried_out[DROPLET_LANES];
+  uint blocks[DROPLET_LANES], bin[2 * DROPLET_LANES];
+  STOREV(out, 0, is_out);
+  STOREV(busy, 0, is_busy);
+  STOREV(sediment0, 0, carried_out);
+  STOREV(block, 0, blocks);
+  for (int l = 0; l < DROPLET_LANES; ++l) {
+    if (is_out[l]) {
+      atom_add(&counters[1], carried_out[l]);  // carried out of the map
+      atom_inc(&counters[0]);
+    }
+    bin[l] = is_busy[l] ? blocks[l] : NO_BLOCK;
+    bin[DROPLET_LANES + l] = is_busy[l] ? atomic_inc(&block_count[blocks[l]]) : 0;
+  }
+  STOREV(LOADV(0, bin), w, plan_bin);
+  STOREV(LOADV(1, bin), w, plan_bin + stride);
 }
 
-// The changes droplet_move planned, added to the fixed heights; the droplet's state holds its new place.
-__kernel void droplet_apply(volatile __global long* height_fixed, __global uint* changed, const int tiles_x,
-                            const int nx, const int ny, const uint count, const __global float* state,
-                            const __global float* erodibility, const __global float2* plan_place,
-                            const __global long2* plan_change) {
-  const uint d = get_global_id(0);
-  if (d >= count) return;
-  const long2 change = plan_change[d];
-  if (change.x == 0 && change.y == 0) return;
-  const float2 at = plan_place[d];
-  if (change.x > 0) deposit_bilinear(height_fixed, changed, tiles_x, nx, at.x, at.y, change.x);
-  if (change.x < 0) erode_brush(height_fixed, changed, tiles_x, nx, ny, at.x, at.y, -change.x, erodibility);
-  deposit_bilinear(height_fixed, changed, tiles_x, nx, state[6 * d], state[6 * d + 1], change.y);
+// Lists the droplets with changes by block: block_start from block_count (an exclusive prefix sum),
+// then droplet d at block_start[its block] + its number there. One work-group of
+// DROPLET_BIN_GROUP work-items; the order within a block is the order droplet_move's atomics gave,
+// which changes no sum.
+__kernel void droplet_bin(const uint blocks, const __global uint* block_count, __global uint* block_start,
+                          const uint count, const uint stride, const __global uint* plan_bin,
+                          __global uint* block_list) {
+  __local uint sums[DROPLET_BIN_GROUP];
+  const uint lid = get_local_id(0);
+  const uint chunk = (blocks + DROPLET_BIN_GROUP - 1) / DROPLET_BIN_GROUP;
+  const uint begin = min(lid * chunk, blocks), end = min(begin + chunk, blocks);
+  uint sum = 0;
+  for (uint b = begin; b < end; ++b) sum += block_count[b];
+  sums[lid] = sum;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lid == 0) {
+    uint run = 0;
+    for (uint g = 0; g < DROPLET_BIN_GROUP; ++g) {
+      const uint n = sums[g];
+      sums[g] = run;
+      run += n;
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  uint run = sums[lid];
+  for (uint b = begin; b < end; ++b) {
+    block_start[b] = run;
+    run += block_count[b];
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (uint d = lid; d < count; d += DROPLET_BIN_GROUP) {
+    const uint block = plan_bin[d];
+    if (block != NO_BLOCK) block_list[block_start[block] + plan_bin[stride + d]] = d;
+  }
+}
+
+// The changes droplet_move planned for the droplets of one block, added to the fixed heights; the
+// blocks of one launch have the column and row parity `parity` (0..3), so none touches another's
+// vertices. A droplet's state holds its new place. The block's count is cleared for the next step.
+__kernel void droplet_apply(__global long* height_fixed, __global uint* changed, const int tiles_x, const int nx,
+                            const int ny, const uint stride, const __global float* state,
+                            const __global float* erodibility, const __global float* plan_place,
+                            const __global long* plan, const __global uint* block_start, __global uint* block_count,
+                            const __global uint* block_list, const int blocks_x, const int blocks_y,
+                            const int parity) {
+  const int g = get_global_id(0);
+  const int half_x = (blocks_x + 1) / 2;
+  const int bx = 2 * (g % half_x) + (parity & 1), by = 2 * (g / half_x) + (parity >> 1);
+  if (bx >= blocks_x || by >= blocks_y) return;
+  const int block = by * blocks_x + bx;
+  const uint first = block_start[block], n = block_count[block];
+  block_count[block] = 0;
+  for (uint k = first; k < first + n; ++k) {
+    const uint d = block_list[k];
+    const long change = plan[d], final_deposit = plan[stride + d];
+    const float x = plan_place[d], z = plan_place[stride + d];
+    if (change > 0) deposit_bilinear(height_fixed, changed, tiles_x, nx, x, z, change);
+    if (change < 0) erode_brush(height_fixed, changed, tiles_x, nx, ny, x, z, -change, erodibility);
+    deposit_bilinear(height_fixed, changed, tiles_x, nx, FIELD(DROPLET_X), FIELD(DROPLET_Z), final_deposit);
+  }
 }

@@ -18,6 +18,11 @@ namespace runnel {
 
 namespace {
 
+// droplet_bin's one work-group (DROPLET_BIN_GROUP).
+constexpr std::size_t kBinGroup = 64;
+// Droplets a work-item of droplet_move takes, in the lanes of its vectors (DROPLET_LANES).
+constexpr std::size_t kLanes = 8;
+
 // clang-format off
 const SettingsTable<DropletSettings> kDropletTable = {
       // droplet: Beyer 2015's particle droplets (models.md), in cells and metres of height
@@ -50,7 +55,9 @@ DropletSettings DropletSettings::from(const Parameters& p) {
 std::string DropletSettings::build_options() const {
   // The brush's extent in whole cells sizes its private weight array.
   return settings_defines(*this, kDropletTable) +
-         " -DDROPLET_RADIUS_CELLS=" + std::to_string(static_cast<int>(std::ceil(radius)));
+         " -DDROPLET_RADIUS_CELLS=" + std::to_string(static_cast<int>(std::ceil(radius))) +
+         " -DDROPLET_BIN_GROUP=" + std::to_string(kBinGroup) +
+         " -DDROPLET_LANES=" + std::to_string(kLanes);
 }
 
 const ModelInfo& DropletModel::model_info() {
@@ -68,10 +75,13 @@ const ModelInfo& DropletModel::model_info() {
 
 namespace {
 
-// The bytes of a batch's droplet state (6 floats each), refused with the key's name when one
-// device buffer cannot hold them.
+// Fields of a droplet's state: x, z, dir_x, dir_z, speed, water (droplet.cl's DROPLET_X ..).
+constexpr std::size_t kDropletFields = 6;
+
+// The bytes of a batch's droplet state (kDropletFields floats each), refused with the key's name
+// when one device buffer cannot hold them.
 std::size_t state_bytes(const ComputeContext& compute, long long batch) {
-  const double bytes = static_cast<double>(batch) * 6 * sizeof(float);
+  const double bytes = static_cast<double>(batch) * kDropletFields * sizeof(float);
   if (bytes > static_cast<double>(compute.info().max_alloc)) {
     throw input_error("droplet.batch: " + std::to_string(batch) + " droplets need " +
                       format_number(bytes / 1e6) + " MB in one device buffer; " +
@@ -82,9 +92,11 @@ std::size_t state_bytes(const ComputeContext& compute, long long batch) {
 }
 
 cl::Program& droplet_program(ComputeContext& compute, const DropletSettings& settings,
-                             const Parameters& params) {
+                             const DropletBlocks& blocks, const Parameters& params) {
   return compute.program({"cl/common.cl", "cl/models/droplet.cl"},
-                         settings.build_options() + ground_defines(params));
+                         settings.build_options() + ground_defines(params) +
+                             " -DDROPLET_BLOCK_ROWS=" + std::to_string(blocks.rows) +
+                             " -DDROPLET_BLOCK_WIDTH=" + std::to_string(blocks.width));
 }
 
 }  // namespace
@@ -94,34 +106,67 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
     : GridModel(compute, params, terrain),
       settings_(DropletSettings::from(params)),
       seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
-      spawn_kernel_(compute, droplet_program(compute, settings_, params), "droplet_spawn"),
-      move_kernel_(compute, droplet_program(compute, settings_, params), "droplet_move"),
-      apply_kernel_(compute, droplet_program(compute, settings_, params), "droplet_apply"),
+      blocks_(DropletBlocks::layout(terrain.nx, terrain.ny, settings_.radius,
+                                    compute.info().compute_units)),
+      spawn_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_spawn"),
+      move_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_move"),
+      bin_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_bin"),
+      apply_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_apply"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 3 * sizeof(cl_long)),
-      droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, batch_size())),
+      droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, plane_stride())),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
-                    static_cast<std::size_t>(batch_size()) * sizeof(cl_long)),
+                    static_cast<std::size_t>(plane_stride()) * sizeof(cl_long)),
       plan_place_(compute.context(), CL_MEM_READ_WRITE,
-                  static_cast<std::size_t>(batch_size()) * sizeof(cl_float2)),
-      plan_change_(compute.context(), CL_MEM_READ_WRITE,
-                   static_cast<std::size_t>(batch_size()) * sizeof(cl_long2)) {
+                  static_cast<std::size_t>(plane_stride()) * 2 * sizeof(cl_float)),
+      plan_(compute.context(), CL_MEM_READ_WRITE,
+            static_cast<std::size_t>(plane_stride()) * 2 * sizeof(cl_long)),
+      plan_bin_(compute.context(), CL_MEM_READ_WRITE,
+                static_cast<std::size_t>(plane_stride()) * 2 * sizeof(cl_uint)),
+      block_count_(compute.context(), CL_MEM_READ_WRITE, blocks_.count() * sizeof(cl_uint)),
+      block_start_(compute.context(), CL_MEM_READ_WRITE, blocks_.count() * sizeof(cl_uint)),
+      block_list_(compute.context(), CL_MEM_READ_WRITE,
+                  static_cast<std::size_t>(plane_stride()) * sizeof(cl_uint)) {
+  compute.queue().enqueueFillBuffer(block_count_, cl_uint{0}, 0, blocks_.count() * sizeof(cl_uint));
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
   const cl::Buffer& erodibility = bed() ? bed()->erodibility : placeholder_;
+  const auto stride = static_cast<cl_uint>(plane_stride());
   move_kernel_.set("erodibility", erodibility)
-      .set("counters", counters_)
+      .set("stride", stride)
       .set("state", droplet_state_)
       .set("load", droplet_load_)
+      .set("counters", counters_)
       .set("plan_place", plan_place_)
-      .set("plan_change", plan_change_);
+      .set("plan", plan_)
+      .set("plan_bin", plan_bin_)
+      .set("block_count", block_count_)
+      .set("blocks_x", blocks_.blocks_x);
+  bin_kernel_.set("blocks", static_cast<cl_uint>(blocks_.count()))
+      .set("block_count", block_count_)
+      .set("block_start", block_start_)
+      .set("stride", stride)
+      .set("plan_bin", plan_bin_)
+      .set("block_list", block_list_);
   apply_kernel_.set("erodibility", erodibility)
+      .set("stride", stride)
       .set("state", droplet_state_)
       .set("plan_place", plan_place_)
-      .set("plan_change", plan_change_);
+      .set("plan", plan_)
+      .set("block_start", block_start_)
+      .set("block_count", block_count_)
+      .set("block_list", block_list_)
+      .set("blocks_x", blocks_.blocks_x)
+      .set("blocks_y", blocks_.blocks_y);
   spawn_kernel_.set("rain_weight", rain_weight());
 }
 
 double DropletModel::scratch_bytes() const {
-  return buffer_bytes({&counters_, &droplet_state_, &droplet_load_, &plan_place_, &plan_change_});
+  return buffer_bytes({&counters_, &droplet_state_, &droplet_load_, &plan_place_, &plan_,
+                       &plan_bin_, &block_count_, &block_start_, &block_list_});
+}
+
+long long DropletModel::plane_stride() const {
+  return (batch_size() + static_cast<long long>(kLanes) - 1) / static_cast<long long>(kLanes) *
+         static_cast<long long>(kLanes);
 }
 
 long long DropletModel::batch_size() const {
@@ -168,6 +213,7 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
       .set("seed", static_cast<cl_ulong>(seed_))
       .set("first_droplet", static_cast<cl_ulong>(droplets_))
       .set("count", count)
+      .set("stride", static_cast<cl_uint>(plane_stride()))
       .set("state", droplet_state_)
       .set("load", droplet_load_)
       .set("counters", counters_)
@@ -183,11 +229,19 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
       .set("ny", terrain.ny())
       .set("quantum", static_cast<float>(terrain.quantum()))
       .set("count", count);
+  bin_kernel_.set("count", count);
   terrain.bind_fixed_changes(apply_kernel_);
-  apply_kernel_.set("nx", terrain.nx()).set("ny", terrain.ny()).set("count", count);
+  apply_kernel_.set("nx", terrain.nx()).set("ny", terrain.ny());
+  const std::size_t group = std::min(blocks_.group, apply_kernel_.max_group());
   for (int step = 0; step < settings_.lifetime; ++step) {
-    move_kernel_.set("step_index", static_cast<cl_int>(step)).launch(round_up_work(count));
-    apply_kernel_.launch(round_up_work(count));
+    move_kernel_.set("step_index", static_cast<cl_int>(step))
+        .launch(round_up_work((count + kLanes - 1) / kLanes));
+    bin_kernel_.launch_groups(1, kBinGroup);
+    for (cl_int parity = 0; parity < 4; ++parity) {
+      if (blocks_.has_parity(parity))
+        apply_kernel_.set("parity", parity)
+            .launch_groups((blocks_.per_parity() + group - 1) / group, group);
+    }
   }
   terrain.view_changed();
   droplets_ += count;
@@ -199,22 +253,22 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
 // (droplet.cl), since a droplet's number matters only to droplet_spawn's random numbers; the speed
 // does: random places miss the cache at every brush vertex.
 void DropletModel::order_by_place(cl_uint count) {
-  std::vector<cl_float> state(static_cast<std::size_t>(count) * 6);
+  const auto stride = static_cast<std::size_t>(plane_stride());  // one plane per field (droplet.cl)
+  std::vector<cl_float> state(kDropletFields * stride);
   compute_.queue().enqueueReadBuffer(droplet_state_, CL_TRUE, 0, state.size() * sizeof(cl_float),
                                      state.data());
   const auto nx = static_cast<std::uint64_t>(state_.terrain().nx());
   std::vector<std::uint64_t> keyed(count);  // vertex index << 32 | droplet
   for (cl_uint d = 0; d < count; ++d) {
-    const auto i = static_cast<std::uint64_t>(state[6 * d]),
-               j = static_cast<std::uint64_t>(state[6 * d + 1]);
+    const auto i = static_cast<std::uint64_t>(state[d]),  // x, then z: the first two planes
+        j = static_cast<std::uint64_t>(state[stride + d]);
     keyed[d] = (j * nx + i) << 32 | d;
   }
   std::sort(keyed.begin(), keyed.end());
   std::vector<cl_float> ordered(state.size());
-  for (cl_uint g = 0; g < count; ++g) {
-    const std::size_t d = keyed[g] & 0xffffffffu;
-    std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(6 * d), 6,
-                ordered.begin() + static_cast<std::ptrdiff_t>(6 * g));
+  for (std::size_t field = 0; field < kDropletFields; ++field) {
+    for (cl_uint g = 0; g < count; ++g)
+      ordered[field * stride + g] = state[field * stride + (keyed[g] & 0xffffffffu)];
   }
   compute_.queue().enqueueWriteBuffer(droplet_state_, CL_TRUE, 0, ordered.size() * sizeof(cl_float),
                                       ordered.data());

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "runnel/models/droplet_blocks.hpp"
 #include "runnel/models/grid_model.hpp"
 
 namespace runnel {
@@ -39,6 +40,9 @@ class DropletModel final : public GridModel {
   std::uint64_t droplets() const { return droplets_; }
   // Droplets per batch (droplet.batch, or one per 64 cells).
   long long batch_size() const;
+  // Droplets a plane of the per-droplet buffers holds: the batch, padded to whole vectors of
+  // droplet_move.
+  long long plane_stride() const;
   long long outflow_quanta() override;  // height quanta carried out of the map
   long long droplets_out();             // droplets that left the map
   long long droplets_fallen();          // droplets the rain mask let fall (all without one)
@@ -69,10 +73,14 @@ class DropletModel final : public GridModel {
   DropletSettings settings_;
   std::uint64_t seed_;
   std::uint64_t droplets_ = 0;
-  Kernel spawn_kernel_, move_kernel_, apply_kernel_;
+  DropletBlocks blocks_;  // what droplet_apply's work-items take
+  Kernel spawn_kernel_, move_kernel_, bin_kernel_, apply_kernel_;
   cl::Buffer counters_;  // {droplets out, outflow quanta, droplets the rain mask kept from falling}
   cl::Buffer droplet_state_, droplet_load_;  // per droplet of a batch, between its steps
-  cl::Buffer plan_place_, plan_change_;      // per droplet, from droplet_move to droplet_apply
+  // Per droplet, from droplet_move through droplet_bin to droplet_apply: its old place, its
+  // changes, its block and number there.
+  cl::Buffer plan_place_, plan_, plan_bin_;
+  cl::Buffer block_count_, block_start_, block_list_;  // the droplets with changes, by block
 };
 
 }  // namespace runnel
