@@ -7,7 +7,9 @@
 #include <cmath>
 #include <numeric>
 
+#include "runnel/core/error.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/models/droplet_blocks.hpp"
 #include "runnel/models/droplet_model.hpp"
 #include "runnel/models/droplet_reference.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -92,6 +94,42 @@ TEST(DropletModel, ABatchMatchesThePlainCppReference) {
   EXPECT_LT(worst, 0.05) << "of any vertex's change (+3 quanta)";
   EXPECT_NEAR(static_cast<double>(model.outflow_quanta()), static_cast<double>(outflow),
               3.0 + 1e-3 * outflow);
+}
+
+// droplet_apply's blocks decide only which work-item adds which droplet's changes: whole rows (a
+// CPU), short runs (a GPU's many compute units) and square blocks give the same heights and
+// outflow, bit for bit. Blocks too small to keep one launch's work-items apart are refused.
+TEST(DropletModel, TheResultDoesNotDependOnHowTheBlocksAreCut) {
+  const Heightmap hills = generate_terrain("fbm", 129, 97, 1.0, 6, {{"relief", 0.25}});
+  Parameters p;
+  p.set("run.seed", std::int64_t{11});
+  const double radius = DropletSettings::from(p).radius;
+  const auto cut_into = [&](int width) {
+    DropletBlocks b = DropletBlocks::layout(hills.nx, hills.ny, radius, 1);
+    b.width = width;
+    b.blocks_x = (hills.nx + width - 1) / width;
+    return b;
+  };
+  const DropletBlocks here = DropletBlocks::layout(hills.nx, hills.ny, radius, 2);
+  const DropletBlocks cuts[] = {cut_into(hills.nx), cut_into(20), cut_into(here.rows), here};
+  std::vector<std::vector<std::int64_t>> heights;
+  std::vector<long long> outflows;
+  for (const DropletBlocks& cut : cuts) {
+    DropletModel model(compute(), p, hills, cut);
+    for (int batch = 0; batch < 3; ++batch) model.step();
+    heights.push_back(model.state().terrain().download_fixed());
+    outflows.push_back(model.outflow_quanta());
+  }
+  EXPECT_NE(heights[0], DropletModel(compute(), p, hills).state().terrain().download_fixed())
+      << "the droplets change the terrain";
+  for (std::size_t c = 1; c < heights.size(); ++c) {
+    EXPECT_EQ(heights[c], heights[0]) << "cut " << c;
+    EXPECT_EQ(outflows[c], outflows[0]) << "cut " << c;
+  }
+  DropletBlocks thin = cuts[0];
+  thin.rows -= 1;
+  thin.blocks_y = (hills.ny + thin.rows - 1) / thin.rows;
+  EXPECT_THROW(DropletModel(compute(), p, hills, thin), Error);
 }
 
 }  // namespace

@@ -103,11 +103,17 @@ cl::Program& droplet_program(ComputeContext& compute, const DropletSettings& set
 
 DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
                            const Heightmap& terrain)
+    : DropletModel(
+          compute, params, terrain,
+          DropletBlocks::layout(terrain.nx, terrain.ny, DropletSettings::from(params).radius,
+                                compute.info().compute_units)) {}
+
+DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
+                           const Heightmap& terrain, const DropletBlocks& blocks)
     : GridModel(compute, params, terrain),
       settings_(DropletSettings::from(params)),
       seed_(static_cast<std::uint64_t>(params.integer("run.seed"))),
-      blocks_(DropletBlocks::layout(terrain.nx, terrain.ny, settings_.radius,
-                                    compute.info().compute_units)),
+      blocks_(blocks),
       spawn_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_spawn"),
       move_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_move"),
       bin_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_bin"),
@@ -126,6 +132,14 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       block_start_(compute.context(), CL_MEM_READ_WRITE, blocks_.count() * sizeof(cl_uint)),
       block_list_(compute.context(), CL_MEM_READ_WRITE,
                   static_cast<std::size_t>(plane_stride()) * sizeof(cl_uint)) {
+  const DropletBlocks least = DropletBlocks::layout(terrain.nx, terrain.ny, settings_.radius, 1);
+  if (blocks_.rows < least.rows || blocks_.width < least.rows ||
+      blocks_.blocks_x * blocks_.width < terrain.nx || blocks_.blocks_y * blocks_.rows < terrain.ny)
+    throw runtime_error("droplet blocks of " + std::to_string(blocks_.rows) + " × " +
+                        std::to_string(blocks_.width) +
+                        " cells would let droplet_apply's work-items " +
+                        "share a vertex or miss a droplet (at least " + std::to_string(least.rows) +
+                        " each way, covering the map)");
   compute.queue().enqueueFillBuffer(block_count_, cl_uint{0}, 0, blocks_.count() * sizeof(cl_uint));
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
   const cl::Buffer& erodibility = bed() ? bed()->erodibility : placeholder_;

@@ -35,6 +35,10 @@ class DropletModel final : public GridModel {
  public:
   static const ModelInfo& model_info();
   DropletModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
+  // With droplet_apply's blocks cut as `blocks` says instead of for this device (tests: the result
+  // does not depend on the cut).
+  DropletModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain,
+               const DropletBlocks& blocks);
   const ModelInfo& info() const override { return model_info(); }
 
   std::uint64_t droplets() const { return droplets_; }
