@@ -78,10 +78,10 @@ namespace {
 // Fields of a droplet's state: x, z, dir_x, dir_z, speed, water (droplet.cl's DROPLET_X ..).
 constexpr std::size_t kDropletFields = 6;
 
-// The bytes of a batch's droplet state (kDropletFields floats each), refused with the key's name
-// when one device buffer cannot hold them.
-std::size_t state_bytes(const ComputeContext& compute, long long batch) {
-  const double bytes = static_cast<double>(batch) * kDropletFields * sizeof(float);
+// The bytes of a batch's droplet state (kDropletFields planes of `stride` floats, the batch padded
+// to whole vectors), refused with the key's name when one device buffer cannot hold them.
+std::size_t state_bytes(const ComputeContext& compute, long long batch, long long stride) {
+  const double bytes = static_cast<double>(stride) * kDropletFields * sizeof(float);
   if (bytes > static_cast<double>(compute.info().max_alloc)) {
     throw input_error("droplet.batch: " + std::to_string(batch) + " droplets need " +
                       format_number(bytes / 1e6) + " MB in one device buffer; " +
@@ -119,7 +119,8 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       bin_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_bin"),
       apply_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_apply"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 3 * sizeof(cl_long)),
-      droplet_state_(compute.context(), CL_MEM_READ_WRITE, state_bytes(compute, plane_stride())),
+      droplet_state_(compute.context(), CL_MEM_READ_WRITE,
+                     state_bytes(compute, batch_size(), plane_stride())),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
                     static_cast<std::size_t>(plane_stride()) * sizeof(cl_long)),
       plan_place_(compute.context(), CL_MEM_READ_WRITE,
