@@ -34,6 +34,36 @@ inline float keyed_uniform(ulong key, uint counter) {
   return (float)(bits >> 8) * (1.0f / 16777216.0f);
 }
 
+// Lanes: kernels whose work-item takes LANES items (droplets, particles) in the lanes of OpenCL
+// vectors, where written for one item they would run one lane at a time: the compilers of CPUs
+// (PoCL's among them) do not vectorise branchy code or loops of varying length across work-items.
+// The host sets LANES (compute/launch.hpp's kLanes); the vector types below hold 8.
+#if LANES != 8
+#error "the lane types hold 8 items"
+#endif
+typedef float8 floatv;
+typedef int8 intv;
+typedef long8 longv;
+typedef uint8 uintv;
+#define LOADV(offset, p) vload8(offset, p)
+#define STOREV(v, offset, p) vstore8(v, offset, p)
+#define CONVERT_FLOATV convert_float8
+#define CONVERT_INTV convert_int8
+#define CONVERT_LONGV convert_long8
+#define CONVERT_UINTV convert_uint8
+#define LANE_INDEX ((intv)(0, 1, 2, 3, 4, 5, 6, 7))
+
+// The values at 8 indices.
+inline longv gather_long(const __global long* p, intv k) {
+  return (longv)(p[k.s0], p[k.s1], p[k.s2], p[k.s3], p[k.s4], p[k.s5], p[k.s6], p[k.s7]);
+}
+inline floatv gather_float(const __global float* p, intv k) {
+  return (floatv)(p[k.s0], p[k.s1], p[k.s2], p[k.s3], p[k.s4], p[k.s5], p[k.s6], p[k.s7]);
+}
+inline uintv gather_uint(const __global uint* p, intv k) {
+  return (uintv)(p[k.s0], p[k.s1], p[k.s2], p[k.s3], p[k.s4], p[k.s5], p[k.s6], p[k.s7]);
+}
+
 inline int grid_index(int i, int j, int nx) { return j * nx + i; }
 
 // Row of cell k in rows of nx cells, without an integer division (which does not vectorise across

@@ -118,16 +118,3 @@ inline float footprint_mean_float(const __global float* field, int nx, int ny, f
   }
   return sum / weights;
 }
-
-// The footprint-weighted mean of a vertex field (integer counts × unit) over the footprint f of
-// (x, z); 0 off the grid.
-inline float footprint_mean(const Footprint* f, const __global long* field, float unit, int nx, float cell, float x,
-                            float z) {
-  if (!(f->sum_x > 0.0f && f->sum_z > 0.0f)) return 0.0f;
-  float sum = 0.0f;
-  for (int j = f->j0; j <= f->j1; ++j) {
-    const float wz = footprint_weight((float)j * cell - z);
-    for (int i = f->i0; i <= f->i1; ++i) sum += wz * footprint_weight((float)i * cell - x) * (float)field[j * nx + i];
-  }
-  return sum * unit / (f->sum_x * f->sum_z);
-}

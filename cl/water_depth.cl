@@ -122,64 +122,62 @@ __kernel void water_depth_coarsen(__global long* levels, const uint fine_offset,
   levels[coarse_offset + J * cnx + I] = sum;
 }
 
+// water_depth_gather takes LANES particles a work-item (common.cl: its loops of varying length kept
+// PoCL from vectorising it across work-items). Each lane runs footprint.cl's arithmetic in the same
+// order as for one particle, a vertex beyond its own footprint adding an exact 0: the same bits as
+// the scalar code it replaced.
+
+// footprint_weight, lane by lane.
+inline floatv footprint_weight_v(floatv d) {
+  const floatv t = fmax(0.0f, 1.0f - d * d * (1.0f / (FOOTPRINT_RADIUS * FOOTPRINT_RADIUS)));
+  return t * t;
+}
+
 // The water depth at (x, z) read on level l (nx × ny vertices, each the mean of the fine vertices of
 // its block, standing at the block's centre) with the footprint scaled by 2^l, and the depth the
 // particle's own water alone gives there: its volume over the footprint, V·Σ ŵ_k²/A_k, A_k the area
-// of vertex k's block (cell_l², less where the block is cut by the grid's edge).
-typedef struct {
-  float depth, own;
-} LevelReading;
-
-inline LevelReading level_reading(const __global long* field, int l, int fnx, int fny, int nx, int ny, float fcell,
-                                  float x, float z) {
+// of vertex k's block (cell_l², less where the block is cut by the grid's edge). Lane by lane;
+// lanes outside `active` read vertex 0 and give nothing meaningful. (Each column's weight factor
+// and fine vertices once, not once a row: the divisions were most of the films' reading time.)
+inline void level_reading_v(const __global long* field, int l, int fnx, int fny, int nx, int ny, float fcell,
+                            floatv x, floatv z, intv active, floatv* depth, floatv* own) {
   const int span = 1 << l;
   const float cell = fcell * (float)span, radius = FOOTPRINT_RADIUS * (float)span;
-  const float lx = x - 0.5f * (float)(span - 1) * fcell, lz = z - 0.5f * (float)(span - 1) * fcell;
-  const int i0 = max(0, (int)ceil((lx - radius) / cell)), i1 = min(nx - 1, (int)floor((lx + radius) / cell));
-  const int j0 = max(0, (int)ceil((lz - radius) / cell)), j1 = min(ny - 1, (int)floor((lz + radius) / cell));
-  // Each column's weight factor and fine vertices once, not once a row: the divisions were most of
-  // the films' reading time.
-  float column_weight[FOOTPRINT_SIDE];
-  int column_cover[FOOTPRINT_SIDE];
-  for (int i = i0; i <= i1; ++i) {
-    column_weight[i - i0] = fmax(0.0f, 1.0f - ((float)i * cell - lx) * ((float)i * cell - lx) / (radius * radius));
-    column_cover[i - i0] = min(fnx, span * (i + 1)) - span * i;
+  const floatv lx = x - 0.5f * (float)(span - 1) * fcell, lz = z - 0.5f * (float)(span - 1) * fcell;
+  const intv i0 = max(0, CONVERT_INTV(ceil((lx - radius) / cell)));
+  const intv i1 = min(nx - 1, CONVERT_INTV(floor((lx + radius) / cell)));
+  const intv j0 = max(0, CONVERT_INTV(ceil((lz - radius) / cell)));
+  const intv j1 = min(ny - 1, CONVERT_INTV(floor((lz + radius) / cell)));
+  floatv column_weight[FOOTPRINT_SIDE];
+  intv column_cover[FOOTPRINT_SIDE];
+  for (int a = 0; a < FOOTPRINT_SIDE; ++a) {
+    const intv i = i0 + a;
+    const floatv fi = CONVERT_FLOATV(i);
+    column_weight[a] = fmax(0.0f, 1.0f - (fi * cell - lx) * (fi * cell - lx) / (radius * radius));
+    column_cover[a] = min(fnx, span * (i + 1)) - span * i;
   }
-  float sum = 0.0f, weights = 0.0f, squares = 0.0f;
-  for (int j = j0; j <= j1; ++j) {
-    const float t = fmax(0.0f, 1.0f - ((float)j * cell - lz) * ((float)j * cell - lz) / (radius * radius));
-    const int cover_z = min(fny, span * (j + 1)) - span * j;
-    for (int i = i0; i <= i1; ++i) {
-      const float u = column_weight[i - i0];
-      const float w = t * t * u * u;
-      const float covered = (float)(column_cover[i - i0] * cover_z);  // fine vertices: fewer at the far edges
-      sum += w * (float)field[j * nx + i] / covered;
+  floatv sum = 0.0f, weights = 0.0f, squares = 0.0f;
+  for (int b = 0; b < FOOTPRINT_SIDE; ++b) {
+    const intv j = j0 + b;
+    const intv row = active & (j <= j1);
+    if (!any(row)) break;
+    const floatv fj = CONVERT_FLOATV(j);
+    const floatv t = fmax(0.0f, 1.0f - (fj * cell - lz) * (fj * cell - lz) / (radius * radius));
+    const intv cover_z = min(fny, span * (j + 1)) - span * j;
+    for (int a = 0; a < FOOTPRINT_SIDE; ++a) {
+      const intv in = row & (i0 + a <= i1);
+      const floatv u = column_weight[a];
+      const floatv w = select((floatv)0.0f, t * t * u * u, in);
+      const floatv covered = select((floatv)1.0f, CONVERT_FLOATV(column_cover[a] * cover_z), in);
+      const floatv count = CONVERT_FLOATV(gather_long(field, select((intv)0, j * nx + i0 + a, in)));
+      sum += w * select((floatv)0.0f, count, in) / covered;
       weights += w;
       squares += w * w / covered;
     }
   }
-  LevelReading r = {0.0f, 0.0f};
-  if (weights > 0.0f) {
-    r.depth = sum * WATER_QUANTUM / weights;
-    r.own = WATER_PARTICLE_VOLUME * squares / (weights * weights * fcell * fcell);
-  }
-  return r;
-}
-
-// The depth a particle's own water alone gives on its fine footprint f, V·Σŵ²/cell²: the weights
-// are separable, and so is the sum of their squares (cheap enough to ask of every particle).
-inline float own_fine_depth(const Footprint* f, float x, float z, float cell) {
-  if (!(f->sum_x > 0.0f && f->sum_z > 0.0f)) return 0.0f;
-  float squares_x = 0.0f, squares_z = 0.0f;
-  for (int i = f->i0; i <= f->i1; ++i) {
-    const float w = footprint_weight((float)i * cell - x);
-    squares_x += w * w;
-  }
-  for (int j = f->j0; j <= f->j1; ++j) {
-    const float w = footprint_weight((float)j * cell - z);
-    squares_z += w * w;
-  }
-  return WATER_PARTICLE_VOLUME * squares_x * squares_z / (f->sum_x * f->sum_x * f->sum_z * f->sum_z * cell * cell);
+  const intv some = weights > 0.0f;
+  *depth = select((floatv)0.0f, sum * WATER_QUANTUM / weights, some);
+  *own = select((floatv)0.0f, WATER_PARTICLE_VOLUME * squares / (weights * weights * fcell * fcell), some);
 }
 
 // D at each particle. Where the water is resolved (the footprint holds FILM_NEIGHBOURS particles'
@@ -194,28 +192,65 @@ inline float own_fine_depth(const Footprint* f, float x, float z, float cell) {
 __kernel void water_depth_gather(const __global float* x, const __global float* z, const __global uint* id,
                                  const uint n, const __global long* water, const int tnx, const int tny,
                                  const float tcell, const int levels, __global float* depth) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  if (id[i] & DEAD_FLAG) {
-    depth[i] = 0.0f;
-    return;
+  const uint first = get_global_id(0) * LANES;
+  if (first >= n) return;
+  const intv present = (intv)(int)(n - first) > LANE_INDEX;
+  const intv k = select((intv)(int)first, (int)first + LANE_INDEX, present);  // the last work-item's spare lanes
+  const floatv px = gather_float(x, k), pz = gather_float(z, k);
+  const uintv flags = gather_uint(id, k);
+  const intv live = present & (CONVERT_INTV(flags & DEAD_FLAG) == 0);
+  // The footprint (footprint_of), the fine field's footprint mean, and the depth the particle's own
+  // water alone gives on it, V·Σŵ²/cell² (the weights are separable, and so is the sum of their
+  // squares).
+  const intv i0 = max(0, CONVERT_INTV(ceil((px - FOOTPRINT_RADIUS) / tcell)));
+  const intv i1 = min(tnx - 1, CONVERT_INTV(floor((px + FOOTPRINT_RADIUS) / tcell)));
+  const intv j0 = max(0, CONVERT_INTV(ceil((pz - FOOTPRINT_RADIUS) / tcell)));
+  const intv j1 = min(tny - 1, CONVERT_INTV(floor((pz + FOOTPRINT_RADIUS) / tcell)));
+  floatv sum_x = 0.0f, sum_z = 0.0f, squares_x = 0.0f, squares_z = 0.0f;
+  for (int a = 0; a < FOOTPRINT_SIDE; ++a) {
+    const floatv wx = select((floatv)0.0f, footprint_weight_v(CONVERT_FLOATV(i0 + a) * tcell - px), i0 + a <= i1);
+    const floatv wz = select((floatv)0.0f, footprint_weight_v(CONVERT_FLOATV(j0 + a) * tcell - pz), j0 + a <= j1);
+    sum_x += wx;
+    sum_z += wz;
+    squares_x += wx * wx;
+    squares_z += wz * wz;
   }
-  const Footprint f = footprint_of(x[i], z[i], tnx, tny, tcell);
-  const float fine = footprint_mean(&f, water, WATER_QUANTUM, tnx, tcell, x[i], z[i]);
-  float d = fine;
-  if (levels > 0 && fine < (FILM_NEIGHBOURS + 1.0f) * own_fine_depth(&f, x[i], z[i], tcell)) {
+  const intv reaches = live & (sum_x > 0.0f) & (sum_z > 0.0f);
+  floatv sum = 0.0f;
+  for (int b = 0; b < FOOTPRINT_SIDE; ++b) {
+    const intv row = reaches & (j0 + b <= j1);
+    if (!any(row)) break;
+    const floatv wz = footprint_weight_v(CONVERT_FLOATV(j0 + b) * tcell - pz);
+    for (int a = 0; a < FOOTPRINT_SIDE; ++a) {
+      const intv in = row & (i0 + a <= i1);
+      const floatv w = select((floatv)0.0f, wz * footprint_weight_v(CONVERT_FLOATV(i0 + a) * tcell - px), in);
+      const floatv count = CONVERT_FLOATV(gather_long(water, select((intv)0, (j0 + b) * tnx + i0 + a, in)));
+      sum += w * select((floatv)0.0f, count, in);
+    }
+  }
+  const floatv fine = select((floatv)0.0f, sum * WATER_QUANTUM / (sum_x * sum_z), reaches);
+  const floatv own_fine = select(
+      (floatv)0.0f, WATER_PARTICLE_VOLUME * squares_x * squares_z / (sum_x * sum_x * sum_z * sum_z * tcell * tcell),
+      reaches);
+  floatv d = fine;
+  intv searching = live & (fine < (FILM_NEIGHBOURS + 1.0f) * own_fine);
+  if (levels > 0 && any(searching)) {
     uint offset = 0;
     int nx = tnx, ny = tny;
     for (int l = 1; l <= levels; ++l) {
       offset += (uint)(nx * ny);
       nx = (nx + 1) / 2;
       ny = (ny + 1) / 2;
-      const LevelReading r = level_reading(water + offset, l, tnx, tny, nx, ny, tcell, x[i], z[i]);
-      if (r.depth - r.own >= FILM_NEIGHBOURS * r.own) {
-        d = r.depth - r.own;
-        break;
-      }
+      floatv r_depth, r_own;
+      level_reading_v(water + offset, l, tnx, tny, nx, ny, tcell, px, pz, searching, &r_depth, &r_own);
+      const intv found = searching & (r_depth - r_own >= FILM_NEIGHBOURS * r_own);
+      d = select(d, r_depth - r_own, found);
+      searching &= ~found;
+      if (!any(searching)) break;
     }
   }
-  depth[i] = d;
+  d = select((floatv)0.0f, d, live);
+  const float out[LANES] = {d.s0, d.s1, d.s2, d.s3, d.s4, d.s5, d.s6, d.s7};
+  const int count = min((int)LANES, (int)(n - first));
+  for (int l = 0; l < count; ++l) depth[first + l] = out[l];
 }

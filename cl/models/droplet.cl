@@ -28,28 +28,6 @@
 #define DROPLET_STREAM 0x64726f70UL  // "drop"
 #define DROPLET_MASK_STREAM 0x64726d6bUL  // "drmk"
 
-// droplet_move takes DROPLET_LANES droplets a work-item, in the lanes of OpenCL vectors: the
-// compilers of CPUs (PoCL's among them) do not vectorise its branchy code across work-items, and
-// written for one droplet it ran a lane at a time. The host sets DROPLET_LANES (it pads the planes).
-#if DROPLET_LANES != 8
-#error "droplet_move's vector types hold 8 droplets"
-#endif
-typedef float8 floatv;
-typedef int8 intv;
-typedef long8 longv;
-typedef uint8 uintv;
-#define LOADV(offset, p) vload8(offset, p)
-#define STOREV(v, offset, p) vstore8(v, offset, p)
-#define CONVERT_FLOATV convert_float8
-#define CONVERT_INTV convert_int8
-#define CONVERT_LONGV convert_long8
-#define CONVERT_UINTV convert_uint8
-
-// The heights at 8 vertices.
-inline longv gather_heights(const __global long* h, intv k) {
-  return (longv)(h[k.s0], h[k.s1], h[k.s2], h[k.s3], h[k.s4], h[k.s5], h[k.s6], h[k.s7]);
-}
-
 // fixed_height_view (common.cl), lane by lane: the same expression, the same bits.
 inline floatv fixed_height_view_v(longv h, float quantum) {
   const longv high = h >> 20;
@@ -64,10 +42,10 @@ inline floatv height_at(const __global long* h, float quantum, int nx, floatv x,
   const intv i = CONVERT_INTV(x), j = CONVERT_INTV(z);
   const floatv u = x - CONVERT_FLOATV(i), v = z - CONVERT_FLOATV(j);
   const intv k = select((intv)0, j * nx + i, valid);
-  const floatv h00 = fixed_height_view_v(gather_heights(h, k), quantum),
-               h10 = fixed_height_view_v(gather_heights(h, k + 1), quantum),
-               h01 = fixed_height_view_v(gather_heights(h, k + nx), quantum),
-               h11 = fixed_height_view_v(gather_heights(h, k + nx + 1), quantum);
+  const floatv h00 = fixed_height_view_v(gather_long(h, k), quantum),
+               h10 = fixed_height_view_v(gather_long(h, k + 1), quantum),
+               h01 = fixed_height_view_v(gather_long(h, k + nx), quantum),
+               h11 = fixed_height_view_v(gather_long(h, k + nx + 1), quantum);
   *gx = (h10 - h00) * (1.0f - v) + (h11 - h01) * v;
   *gz = (h01 - h00) * (1.0f - u) + (h11 - h10) * u;
   return h00 * (1.0f - u) * (1.0f - v) + h10 * u * (1.0f - v) + h01 * (1.0f - u) * v + h11 * u * v;
@@ -258,7 +236,7 @@ __kernel void droplet_spawn(const int nx, const int ny, const ulong seed, const 
 }
 
 // One step of every droplet of the batch, on heights nobody writes during it; work-item w moves
-// droplets DROPLET_LANES·w .. DROPLET_LANES·w + DROPLET_LANES − 1 (the planes hold whole vectors). What a
+// droplets LANES·w .. LANES·w + LANES − 1 (the planes hold whole vectors). What a
 // droplet changes goes to its plan, two planes of `stride` for droplet_apply: the quanta deposited
 // (> 0) or eroded with the brush (< 0) at its old place, and the quanta it deposits at its new
 // place at the end of its life; the old place in plan_place's two. A droplet with changes counts
@@ -271,14 +249,13 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
                            __global float* plan_place, __global long* plan, __global uint* plan_bin,
                            volatile __global uint* block_count, const int blocks_x) {
   const uint w = get_global_id(0);
-  if (w * DROPLET_LANES >= count) return;
-  const uint first = w * DROPLET_LANES;
-  const intv lane = (intv)(0, 1, 2, 3, 4, 5, 6, 7);
+  if (w * LANES >= count) return;
+  const uint first = w * LANES;
   const floatv x = LOADV(w, state + DROPLET_X * stride), z = LOADV(w, state + DROPLET_Z * stride);
   const floatv dir_x0 = LOADV(w, state + DROPLET_DIR_X * stride), dir_z0 = LOADV(w, state + DROPLET_DIR_Z * stride);
   const floatv speed0 = LOADV(w, state + DROPLET_SPEED * stride), water0 = LOADV(w, state + DROPLET_WATER * stride);
   const longv sediment0 = LOADV(w, load);
-  const intv live = ((intv)(int)(count - first) > lane) & (water0 >= 0.0f);
+  const intv live = ((intv)(int)(count - first) > LANE_INDEX) & (water0 >= 0.0f);
   floatv gx, gz;
   const floatv h_old = height_at(height_fixed, quantum, nx, x, z, live, &gx, &gz);
   const floatv ux = dir_x0 * DROPLET_INERTIA - gx * (1.0f - DROPLET_INERTIA);
@@ -302,14 +279,14 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
   const floatv erode_amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
   longv taken = max((longv)0, CONVERT_LONGV(floor(erode_amount / quantum)));
   if (GROUND || DROPLET_RADIUS <= 0.75f) {  // the brush's weights decide: one lane at a time
-    long t[DROPLET_LANES];
-    int e[DROPLET_LANES];
-    float px[DROPLET_LANES], pz[DROPLET_LANES], amount[DROPLET_LANES];
+    long t[LANES];
+    int e[LANES];
+    float px[LANES], pz[LANES], amount[LANES];
     STOREV(erodes, 0, e);
     STOREV(x, 0, px);
     STOREV(z, 0, pz);
     STOREV(erode_amount, 0, amount);
-    for (int l = 0; l < DROPLET_LANES; ++l)
+    for (int l = 0; l < LANES; ++l)
       t[l] = e[l] ? max(0L, brush_quanta(nx, ny, px[l], pz[l], amount[l], quantum, erodibility)) : 0;
     taken = LOADV(0, t);
   }
@@ -346,20 +323,20 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
   const intv busy = (CONVERT_INTV(change != 0) | CONVERT_INTV(final_deposit != 0)) & live;
   const uintv block =
       CONVERT_UINTV((CONVERT_INTV(z) / DROPLET_BLOCK_ROWS) * blocks_x + CONVERT_INTV(x) / DROPLET_BLOCK_WIDTH);
-  int is_out[DROPLET_LANES], is_busy[DROPLET_LANES];
-  long carried_out[DROPLET_LANES];
-  uint blocks[DROPLET_LANES], bin[2 * DROPLET_LANES];
+  int is_out[LANES], is_busy[LANES];
+  long carried_out[LANES];
+  uint blocks[LANES], bin[2 * LANES];
   STOREV(out, 0, is_out);
   STOREV(busy, 0, is_busy);
   STOREV(sediment0, 0, carried_out);
   STOREV(block, 0, blocks);
-  for (int l = 0; l < DROPLET_LANES; ++l) {
+  for (int l = 0; l < LANES; ++l) {
     if (is_out[l]) {
       atom_add(&counters[1], carried_out[l]);  // carried out of the map
       atom_inc(&counters[0]);
     }
     bin[l] = is_busy[l] ? blocks[l] : NO_BLOCK;
-    bin[DROPLET_LANES + l] = is_busy[l] ? atomic_inc(&block_count[blocks[l]]) : 0;
+    bin[LANES + l] = is_busy[l] ? atomic_inc(&block_count[blocks[l]]) : 0;
   }
   STOREV(LOADV(0, bin), w, plan_bin);
   STOREV(LOADV(1, bin), w, plan_bin + stride);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "runnel/compute/kernel_sources.hpp"
+#include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 
 namespace runnel {
@@ -156,7 +157,9 @@ cl::Program ComputeContext::build_source(const std::string& source, const std::s
   // Fixed math options so every device computes the same way: no fast-math, denormals as the device
   // has them.
   // -cl-kernel-arg-info: so Kernel can check its argument names against the compiler's.
-  const std::string all_options = "-cl-std=CL1.2 -cl-kernel-arg-info " + options;
+  // -DLANES: the items a work-item of a lane kernel takes (cl/common.cl).
+  const std::string all_options =
+      "-cl-std=CL1.2 -cl-kernel-arg-info -DLANES=" + std::to_string(kLanes) + " " + options;
   try {
     program.build({device_}, all_options.c_str());
   } catch (const cl::Error& e) {

@@ -20,8 +20,6 @@ namespace {
 
 // droplet_bin's one work-group (DROPLET_BIN_GROUP).
 constexpr std::size_t kBinGroup = 64;
-// Droplets a work-item of droplet_move takes, in the lanes of its vectors (DROPLET_LANES).
-constexpr std::size_t kLanes = 8;
 
 // clang-format off
 const SettingsTable<DropletSettings> kDropletTable = {
@@ -56,8 +54,7 @@ std::string DropletSettings::build_options() const {
   // The brush's extent in whole cells sizes its private weight array.
   return settings_defines(*this, kDropletTable) +
          " -DDROPLET_RADIUS_CELLS=" + std::to_string(static_cast<int>(std::ceil(radius))) +
-         " -DDROPLET_BIN_GROUP=" + std::to_string(kBinGroup) +
-         " -DDROPLET_LANES=" + std::to_string(kLanes);
+         " -DDROPLET_BIN_GROUP=" + std::to_string(kBinGroup);
 }
 
 const ModelInfo& DropletModel::model_info() {

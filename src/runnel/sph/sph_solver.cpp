@@ -35,6 +35,7 @@ std::string footprint_options(const SphSettings& s, double terrain_cell) {
   return float_define("FOOTPRINT_RADIUS", radius) + " -DFOOTPRINT_SIDE=" + std::to_string(side) +
          float_define("WATER_PARTICLE_VOLUME", s.spacing * s.spacing * s.spacing) +
          " -DWATER_RUN=" + std::to_string(kWaterRun) + "u" +
+
          float_define("FILM_NEIGHBOURS", kFilmNeighbours);
 }
 
@@ -147,7 +148,7 @@ void SphSolver::measure_water_depth() {
   coarsen_water(levels);
   store_.bind(depth_gather_, {kDepth});
   depth_gather_.set("levels", levels);
-  depth_gather_.launch(round_up_work(n));
+  depth_gather_.launch(round_up_work((n + kLanes - 1) / kLanes));
 }
 
 // The water counted on coarser grids, each from the one below, for the films' depth
