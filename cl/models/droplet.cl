@@ -138,13 +138,17 @@ inline Brush brush_weights(int nx, int ny, float x, float z, const __global floa
   return b;
 }
 
+// Whether the brush's mean erodibility is exactly 1 and it always reaches a vertex: no layer stack,
+// and a radius above √½, which reaches the nearest corner of the droplet's cell. (A conditional, not
+// a logical operator, between the two constants: the compiler warns of `&&` on a constant.)
+#define PLAIN_BRUSH ((GROUND ? 0.0f : DROPLET_RADIUS) > 0.75f)
+
 // The quanta the brush takes for `amount` m of erosion: floor(amount·ē/quantum), with ē the mean
 // erodibility under the brush.
 inline long brush_quanta(int nx, int ny, float x, float z, float amount, float quantum,
                          const __global float* erodibility) {
-  // Every erodibility 1 makes ē exactly 1, and a radius above √½ always reaches the nearest corner
-  // of the droplet's cell: then the weights need not be computed here (the same quanta, bit for bit).
-  if (!GROUND && DROPLET_RADIUS > 0.75f) return (long)floor(amount / quantum);
+  // A plain brush's ē is exactly 1: the weights need not be computed (the same quanta, bit for bit).
+  if (PLAIN_BRUSH) return (long)floor(amount / quantum);
   float weight[BRUSH_SIDE * BRUSH_SIDE];
   const Brush b = brush_weights(nx, ny, x, z, erodibility, weight);
   const long quanta = b.plain_total > 0.0f ? (long)floor(amount * (b.total / b.plain_total) / quantum) : 0;
@@ -278,7 +282,7 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
   const longv deposited = max((longv)0, min(sediment0, CONVERT_LONGV(floor(deposit_amount / quantum))));
   const floatv erode_amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
   longv taken = max((longv)0, CONVERT_LONGV(floor(erode_amount / quantum)));
-  if (GROUND || DROPLET_RADIUS <= 0.75f) {  // the brush's weights decide: one lane at a time
+  if (!PLAIN_BRUSH) {  // the brush's weights decide: one lane at a time
     long t[LANES];
     int e[LANES];
     float px[LANES], pz[LANES], amount[LANES];
