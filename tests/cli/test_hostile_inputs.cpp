@@ -176,6 +176,23 @@ TEST(HostileInputs, TerrainsTooSmallForTheSphModelAreRefusedWithTheSmallestSize)
             0);
 }
 
+// An error found after the first launches: with an empty kernel cache PoCL (the suite's device)
+// compiles a kernel for its first launch in a worker thread, and the process used to exit under
+// that compile, a segmentation fault (exit 139) in about half the runs instead of exit 2 and the
+// error's line. Several runs, each with a cache of its own.
+TEST(HostileInputs, AnErrorWhileAKernelStillCompilesExitsWithItsLine) {
+  for (int run = 0; run < 4; ++run) {
+    ScratchDir dir;
+    const auto r =
+        run_cli({"run", "--generate", "plane", "--steps", "1", "--out", dir.path("o"), "--set",
+                 "terrain.size=33", "--set", "rain.region=\"disc\"", "--set", "rain.disc_x=500",
+                 "--set", "rain.disc_z=500", "--set", "rain.disc_radius=5"},
+                "POCL_CACHE_DIR=" + dir.path("kernels"));
+    expect_refused(r, {"rain.disc", "off the terrain"},
+                   "a cold kernel cache, run " + std::to_string(run));
+  }
+}
+
 TEST(HostileInputs, ScenarioContradictionsAreRefusedWithTheirKeys) {
   ScratchDir dir;
   const std::vector<std::string> base = {"run", "--generate", "plane",      "--steps",

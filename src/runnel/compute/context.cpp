@@ -145,6 +145,13 @@ ComputeContext::ComputeContext(const std::string& device_spec) {
   queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
 }
 
+ComputeContext::~ComputeContext() {
+  try {
+    queue_.finish();
+  } catch (const cl::Error&) {  // a failed device has nothing left to wait for
+  }
+}
+
 std::string embedded_source(const std::string& path) {
   for (const auto& source : kernel_sources()) {
     if (path == source.path) return "#line 1 \"" + path + "\"\n" + source.text + "\n";

@@ -38,6 +38,12 @@ DeviceInfo select_device(const std::string& spec);
 class ComputeContext {
  public:
   explicit ComputeContext(const std::string& device_spec = "");
+  // Waits for what is still queued: an error thrown between launches must not let the process exit
+  // while the device works (PoCL compiles a kernel for its first launch in a worker thread, and an
+  // exit under that compile crashed with a segmentation fault instead of the error's exit 2).
+  ~ComputeContext();
+  ComputeContext(const ComputeContext&) = delete;
+  ComputeContext& operator=(const ComputeContext&) = delete;
 
   const DeviceInfo& info() const { return info_; }
   cl::Context& context() { return context_; }
