@@ -16,5 +16,9 @@ inline constexpr unsigned kLanes = 8;
 inline std::size_t round_up_work(std::size_t n) {
   return (n + kWorkMultiple - 1) / kWorkMultiple * kWorkMultiple;
 }
+// The work size of a lane kernel over n items: a work-item per kLanes of them.
+inline std::size_t lane_work(std::size_t n) {
+  return round_up_work((n + kLanes - 1) / kLanes);
+}
 
 }  // namespace runnel

@@ -6,10 +6,14 @@
 
 namespace runnel {
 
+int DropletBlocks::rows_for(double radius) {
+  const int reach = std::max(1, static_cast<int>(std::ceil(radius)));
+  return 2 * reach + 1;
+}
+
 DropletBlocks DropletBlocks::layout(int nx, int ny, double radius, unsigned compute_units) {
   DropletBlocks b;
-  const int reach = std::max(1, static_cast<int>(std::ceil(radius)));
-  b.rows = 2 * reach + 1;
+  b.rows = rows_for(radius);
   b.blocks_y = (ny + b.rows - 1) / b.rows;
   // Whole rows keep a work-item's brushes in a band of the map the cache holds; a device with
   // many compute units gets more, shorter runs.

@@ -20,6 +20,8 @@ struct DropletBlocks {
   // does not (a GPU), never narrower than `rows`; groups small enough that every compute unit
   // gets about 32.
   static DropletBlocks layout(int nx, int ny, double radius, unsigned compute_units);
+  // The fewest rows (and columns) a block may have for a brush of `radius` cells: 2·reach + 1.
+  static int rows_for(double radius);
   std::size_t count() const {
     return static_cast<std::size_t>(blocks_x) * static_cast<std::size_t>(blocks_y);
   }

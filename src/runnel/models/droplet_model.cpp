@@ -130,13 +130,13 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       block_start_(compute.context(), CL_MEM_READ_WRITE, blocks_.count() * sizeof(cl_uint)),
       block_list_(compute.context(), CL_MEM_READ_WRITE,
                   static_cast<std::size_t>(plane_stride()) * sizeof(cl_uint)) {
-  const DropletBlocks least = DropletBlocks::layout(terrain.nx, terrain.ny, settings_.radius, 1);
-  if (blocks_.rows < least.rows || blocks_.width < least.rows ||
+  const int least = DropletBlocks::rows_for(settings_.radius);
+  if (blocks_.rows < least || blocks_.width < least ||
       blocks_.blocks_x * blocks_.width < terrain.nx || blocks_.blocks_y * blocks_.rows < terrain.ny)
     throw runtime_error("droplet blocks of " + std::to_string(blocks_.rows) + " × " +
                         std::to_string(blocks_.width) +
                         " cells would let droplet_apply's work-items " +
-                        "share a vertex or miss a droplet (at least " + std::to_string(least.rows) +
+                        "share a vertex or miss a droplet (at least " + std::to_string(least) +
                         " each way, covering the map)");
   compute.queue().enqueueFillBuffer(block_count_, cl_uint{0}, 0, blocks_.count() * sizeof(cl_uint));
   compute.queue().enqueueFillBuffer(counters_, cl_long{0}, 0, 3 * sizeof(cl_long));
@@ -177,8 +177,7 @@ double DropletModel::scratch_bytes() const {
 }
 
 long long DropletModel::plane_stride() const {
-  return (batch_size() + static_cast<long long>(kLanes) - 1) / static_cast<long long>(kLanes) *
-         static_cast<long long>(kLanes);
+  return (batch_size() + kLanes - 1) / kLanes * kLanes;
 }
 
 long long DropletModel::batch_size() const {
@@ -246,8 +245,7 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
   apply_kernel_.set("nx", terrain.nx()).set("ny", terrain.ny());
   const std::size_t group = std::min(blocks_.group, apply_kernel_.max_group());
   for (int step = 0; step < settings_.lifetime; ++step) {
-    move_kernel_.set("step_index", static_cast<cl_int>(step))
-        .launch(round_up_work((count + kLanes - 1) / kLanes));
+    move_kernel_.set("step_index", static_cast<cl_int>(step)).launch(lane_work(count));
     bin_kernel_.launch_groups(1, kBinGroup);
     for (cl_int parity = 0; parity < 4; ++parity) {
       if (blocks_.has_parity(parity))

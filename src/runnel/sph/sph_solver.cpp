@@ -148,7 +148,7 @@ void SphSolver::measure_water_depth() {
   coarsen_water(levels);
   store_.bind(depth_gather_, {kDepth});
   depth_gather_.set("levels", levels);
-  depth_gather_.launch(round_up_work((n + kLanes - 1) / kLanes));
+  depth_gather_.launch(lane_work(n));
 }
 
 // The water counted on coarser grids, each from the one below, for the films' depth
