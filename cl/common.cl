@@ -2,6 +2,15 @@
 // Shared helpers for every runnel kernel: counter-based random numbers (the same functions as
 // src/runnel/core/rng.hpp, bit for bit) and grid indexing.
 
+// Lets the vectoriser reassociate a pass's sums (8 or 16 candidates at a time). The order is still
+// fixed by the code, so results stay bitwise reproducible on one device. clang 12's pragma; other
+// compilers (NVIDIA's knows only `clang fp contract`) keep the order as written.
+#if defined(__clang_major__) && __clang_major__ >= 12 && !defined(__NV_CL_C_VERSION)
+#define REASSOCIATE_SUMS _Pragma("clang fp reassociate(on)")
+#else
+#define REASSOCIATE_SUMS
+#endif
+
 // splitmix64 finaliser: a bijective 64-bit mix.
 inline ulong splitmix64(ulong z) {
   z += 0x9E3779B97F4A7C15UL;

@@ -23,8 +23,7 @@
 // Branch-free, so that the candidate loop vectorises.
 inline void add_pair_continuity(float* drho, float* ghost_drho, float* shepard, float dx, float dy, float dz,
                                 float vdotx, float rhoi, float rhoj, float volume_j, float others, float ghost) {
-  // Reassociated by the vectoriser: a fixed order still, so bitwise reproducible on one device.
-#pragma clang fp reassociate(on)
+  REASSOCIATE_SUMS
   const float eta2 = 0.01f * SPH_H * SPH_H;
   const float diffusion = 2.0f * SPH_DELTA * SPH_H * SPH_C0;
   const float hydrostatic_gradient = SPH_RHO0 * SPH_GRAVITY / (SPH_C0 * SPH_C0);  // kg/m⁴

@@ -75,9 +75,7 @@ __kernel void forces_inputs(const __global float* rho, const uint n, __global fl
 inline void add_pair_force(ForceSums* s, float dx, float dy, float dz, float dvx, float dvy, float dvz, float rhoi,
                            float pres_i, float pi_over_rho2, float rhoj, float pres_j, float p_over_rho2_j,
                            float volume_j, float others, float ghost) {
-  // The sums may be reassociated: the vectoriser adds 8 or 16 candidates at a time. The order is
-  // still fixed by the code, so results stay bitwise reproducible on one device.
-#pragma clang fp reassociate(on)
+  REASSOCIATE_SUMS
   const float r2 = dx * dx + dy * dy + dz * dz;
   const float r = sqrt(r2);
   const float f = wendland_grad_factor(r);
