@@ -151,7 +151,9 @@ inline long brush_quanta(int nx, int ny, float x, float z, float amount, float q
   if (PLAIN_BRUSH) return (long)floor(amount / quantum);
   float weight[BRUSH_SIDE * BRUSH_SIDE];
   const Brush b = brush_weights(nx, ny, x, z, erodibility, weight);
-  const long quanta = b.plain_total > 0.0f ? (long)floor(amount * (b.total / b.plain_total) / quantum) : 0;
+  // ē of a brush whose every erodibility is 1 is 1 on any device (a GPU's division need not give x/x = 1).
+  const float mean = b.total == b.plain_total ? 1.0f : b.total / b.plain_total;
+  const long quanta = b.plain_total > 0.0f ? (long)floor(amount * mean / quantum) : 0;
   return b.total > 0.0f ? quanta : 0;
 }
 

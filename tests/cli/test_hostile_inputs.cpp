@@ -209,10 +209,17 @@ TEST(HostileInputs, ScenarioContradictionsAreRefusedWithTheirKeys) {
                  "density_min = density_max");
   expect_refused(with({"terrain.size=33", "rain.spawn_height=1e6"}), {"rain.spawn_height"},
                  "spawn height 1e6");
-  // 10^8 particles of 132 bytes (20 GB) fit no device this suite runs on; refused with the figures.
-  expect_refused(with({"terrain.size=33", "rain.max_particles=100000000"}),
-                 {"rain.max_particles", "MB of device memory"},
-                 "a particle budget beyond the device");
+  // 10^8 particles (the key's largest value) need more than 1.5 · 10^8 · 128 bytes (with the
+  // store's growth margin): beyond a CPU's share or most GPUs, refused with the figures. A device
+  // with more memory (an H200: 150 GB) rightly runs them.
+  if (1.5e8 * 128 > static_cast<double>(test::compute().info().global_memory)) {
+    expect_refused(with({"terrain.size=33", "rain.max_particles=100000000"}),
+                   {"rain.max_particles", "MB of device memory"},
+                   "a particle budget beyond the device");
+  } else {
+    std::printf("note: rain.max_particles 1e8 not checked: this device has %.0f MB\n",
+                static_cast<double>(test::compute().info().global_memory) / 1e6);
+  }
   // 10^8 droplets (the key's largest value) need 2.4 GB in one buffer: beyond PoCL's usual largest
   // allocation (a quarter of its memory), but a device that allows more would rightly run them (for
   // a long time), so the case is checked only where it must be refused.

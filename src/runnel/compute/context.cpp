@@ -162,11 +162,17 @@ std::string embedded_source(const std::string& path) {
 cl::Program ComputeContext::build_source(const std::string& source, const std::string& options) {
   cl::Program program(context_, source);
   // Fixed math options so every device computes the same way: no fast-math, denormals as the device
-  // has them.
+  // has them, and divisions and square roots correctly rounded wherever the device offers it (a
+  // GPU's default division is within 2.5 ulp: x / x need not be 1, and the kernels would part from
+  // their C++ oracles and from the CPU's bits; measured on an H200, docs/gpu.md).
   // -cl-kernel-arg-info: so Kernel can check its argument names against the compiler's.
   // -DLANES: the items a work-item of a lane kernel takes (cl/common.cl).
+  const bool exact_division =
+      (device_.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   const std::string all_options =
-      "-cl-std=CL1.2 -cl-kernel-arg-info -DLANES=" + std::to_string(kLanes) + " " + options;
+      std::string("-cl-std=CL1.2 -cl-kernel-arg-info ") +
+      (exact_division ? "-cl-fp32-correctly-rounded-divide-sqrt " : "") +
+      "-DLANES=" + std::to_string(kLanes) + " " + options;
   try {
     program.build({device_}, all_options.c_str());
   } catch (const cl::Error& e) {
