@@ -180,15 +180,18 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
 // max |v|², max |a|², min ρ, max ρ, number of non-finite values, max |dρ/dt|.
 // The host reduces the rows (max and min do not depend on order). One launch for both: on a CPU
 // device each launch costs a wake-up of every worker thread.
+// Block b takes the particles b·chunk_stride + k·stride, k < chunk: a contiguous run on a CPU
+// (chunk_stride = chunk, stride = 1), every blocks-th particle on a GPU (1 and blocks), so that
+// neighbouring work-items read neighbouring particles.
 __kernel void step_stats(__global float* vx, __global float* vy, __global float* vz, const __global float* ax,
                          const __global float* ay, const __global float* az, const __global float* rho,
-                         const __global float* drho, const uint n, const uint chunk, const uint kick,
-                         const float half_dt, __global float* stats) {
+                         const __global float* drho, const uint n, const uint chunk, const uint chunk_stride,
+                         const uint stride, const uint blocks, const uint kick, const float half_dt,
+                         __global float* stats) {
   const uint block = get_global_id(0);
-  const uint begin = block * chunk;
-  const uint end = min(begin + chunk, n);
+  if (block >= blocks) return;
   float v2max = 0.0f, a2max = 0.0f, rmin = INFINITY, rmax = -INFINITY, bad = 0.0f, drmax = 0.0f;
-  for (uint i = begin; i < end; ++i) {
+  for (uint k = 0, i = block * chunk_stride; k < chunk && i < n; ++k, i += stride) {
     if (kick) {
       vx[i] = kicked(vx[i], ax[i], half_dt);
       vy[i] = kicked(vy[i], ay[i], half_dt);

@@ -3,9 +3,10 @@
 // LSD radix sort (8 bits per pass), the reordering of the particle arrays, the cell start/end
 // tables and the tiles of the neighbour passes (physics.md §2, "Neighbour search").
 //
-// Determinism: the sort splits the particles into RADIX_BLOCKS contiguous chunks. Each chunk's
-// digit histogram, one serial exclusive scan in (digit, chunk) order, then each chunk scatters its
-// elements in order. No atomics: the permutation is a pure function of the keys.
+// Determinism: the sort splits the particles into contiguous chunks (a few long ones on a CPU,
+// thousands of short ones on a GPU). Each chunk's digit histogram, one exclusive scan in (digit,
+// chunk) order, then each chunk scatters its elements in order. No atomics: the permutation is a
+// pure function of the keys (a stable sort has one result, however the chunks are cut).
 
 #define RADIX 256
 
@@ -35,15 +36,42 @@ __kernel void radix_histogram(const __global uint* key, const uint n, const uint
   for (int d = 0; d < RADIX; ++d) hist[d * blocks + block] = counts[d];
 }
 
-// Exclusive prefix sum over the whole histogram, in place. One work-item: the table is small.
-__kernel void radix_scan(__global uint* hist, const uint count) {
-  if (get_global_id(0) != 0) return;
-  uint sum = 0;
-  for (uint k = 0; k < count; ++k) {
-    const uint v = hist[k];
-    hist[k] = sum;
+// Exclusive prefix sum of a[0, count) in place by one work-group (`sums`: items + 1 uints): each
+// work-item sums a contiguous segment, one scans the segments' sums, each writes its segment's
+// prefixes. Integer sums: a serial scan's result whatever the group's size (1 on a CPU, where one
+// thread walking the table is fastest; hundreds on a GPU, where one thread would take milliseconds).
+// Returns the total to every work-item.
+inline uint group_exclusive_scan(__global uint* a, const uint count, __local uint* sums) {
+  const uint item = get_local_id(0), items = get_local_size(0);
+  const uint per = (count + items - 1) / items;
+  const uint begin = min(item * per, count), end = min(begin + per, count);
+  uint total = 0;
+  for (uint k = begin; k < end; ++k) total += a[k];
+  sums[item] = total;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (item == 0) {
+    uint sum = 0;
+    for (uint k = 0; k < items; ++k) {
+      const uint v = sums[k];
+      sums[k] = sum;
+      sum += v;
+    }
+    sums[items] = sum;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  uint sum = sums[item];
+  for (uint k = begin; k < end; ++k) {
+    const uint v = a[k];
+    a[k] = sum;
     sum += v;
   }
+  return sums[items];
+}
+
+// The histogram's exclusive prefix sum, in (digit, block) order: where each block's keys of each
+// digit go.
+__kernel void radix_scan(__global uint* hist, const uint count, __local uint* sums) {
+  group_exclusive_scan(hist, count, sums);
 }
 
 __kernel void radix_scatter(const __global uint* key_in, const __global uint* value_in, __global uint* key_out,
@@ -140,7 +168,7 @@ __kernel void neighbour_list(const __global float* x, const __global float* y, c
 // and barriers cost more than their few candidates, and a pass takes them one work-item a tile
 // (the passes' _direct kernels, sph_boundary.cl).
 // The list is a compaction of the particles that start a tile, in sorted order: per-chunk counts,
-// one serial scan, per-chunk writes, as in the radix sort (no atomics, one result).
+// one scan, per-chunk writes, as in the radix sort (no atomics, one result).
 inline uint tile_size_at(const __global uint* key, const __global uint* cell_start, const __global uint* cell_end,
                          uint i, uint tile) {
   const uint first = cell_start[key[i]];
@@ -171,17 +199,15 @@ __kernel void tile_count(const __global uint* key, const __global uint* cell_sta
 // Exclusive scan of the 3·blocks counts in place: the large tiles first, then the small ones, then
 // the lone ones. The totals go to summary[1] (large), summary[2] (small) and summary[3] (lone);
 // summary[0] is the live count, so the host reads them all at once.
-__kernel void tile_scan(__global uint* counts, const uint blocks, __global uint* summary) {
-  if (get_global_id(0) != 0) return;
-  uint sum = 0;
-  for (uint b = 0; b < 3 * blocks; ++b) {
-    const uint v = counts[b];
-    counts[b] = sum;
-    sum += v;
-    if ((b + 1) % blocks == 0) summary[1 + b / blocks] = sum;
+__kernel void tile_scan(__global uint* counts, const uint blocks, __global uint* summary, __local uint* sums) {
+  const uint total = group_exclusive_scan(counts, 3 * blocks, sums);
+  barrier(CLK_GLOBAL_MEM_FENCE);  // every work-item's prefixes written
+  if (get_local_id(0) == 0) {
+    const uint large = counts[blocks], large_and_small = counts[2 * blocks];
+    summary[1] = large;
+    summary[2] = large_and_small - large;
+    summary[3] = total - large_and_small;
   }
-  summary[3] -= summary[2];
-  summary[2] -= summary[1];
 }
 
 __kernel void tile_scatter(const __global uint* key, const __global uint* cell_start, const __global uint* cell_end,

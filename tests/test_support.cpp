@@ -88,6 +88,14 @@ ComputeContext& compute() {
   return context;
 }
 
+ComputeContext& compute_cut_the_other_way() {
+  static ComputeContext context(
+      std::getenv("RUNNEL_TEST_DEVICE") ? std::getenv("RUNNEL_TEST_DEVICE") : "cpu");
+  static const bool flipped = (context.set_wide(!context.wide()), true);
+  (void)flipped;
+  return context;
+}
+
 double json_number(const std::string& json, const std::string& key) {
   const auto at = json.find("\"" + key + "\": ");
   if (at == std::string::npos) return -1e300;

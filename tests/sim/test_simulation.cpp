@@ -82,6 +82,30 @@ TEST(Simulation, SameSeedGivesIdenticalTerrainAndParticles) {
   EXPECT_NE(heights[0], heights[2]) << "another seed must give another run";
 }
 
+// A GPU cuts the sort, the tile list and the step statistics into thousands of short runs and
+// scans in a wide work-group; a CPU into a few long ones. The results must be the same bits.
+TEST(Simulation, TheSortAndStatisticsCutAsAGpuCutsThemGiveTheSameBits) {
+  const Heightmap terrain = generate_terrain("fbm", 41, 41, 1.0, 2, {{"relief", 0.25}});
+  std::vector<std::vector<std::int64_t>> heights;
+  std::vector<HostParticles> particles;
+  ASSERT_NE(test::compute_cut_the_other_way().wide(), compute().wide());
+  for (ComputeContext* c : {&compute(), &test::compute_cut_the_other_way()}) {
+    Simulation sim(*c, busy_parameters(), terrain);
+    for (int k = 0; k < 300; ++k) sim.step();
+    heights.push_back(sim.solver().terrain().download_fixed());
+    particles.push_back(sim.solver().particles().download());
+  }
+  ASSERT_GT(particles[0].size(), 500u) << "enough particles for many runs of the GPU's cut";
+  EXPECT_EQ(heights[0], heights[1]);
+  ASSERT_EQ(particles[0].size(), particles[1].size());
+  for (int f = 0; f < kPersistentFieldCount; ++f) {
+    const auto field = static_cast<ParticleField>(f);
+    EXPECT_EQ(
+        0, std::memcmp(particles[0].data(field), particles[1].data(field), particles[0].size() * 4))
+        << f;
+  }
+}
+
 TEST(Simulation, NoParticleBelowTheSurfaceAfterALongRunOnRoughTerrain) {
   const Heightmap rough =
       generate_terrain("diamond-square", 49, 49, 1.0, 8, {{"relief", 0.35}, {"roughness", 0.5}});

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,12 @@ class ComputeContext {
   ComputeContext& operator=(const ComputeContext&) = delete;
 
   const DeviceInfo& info() const { return info_; }
+  // Whether the device wants thousands of work-items in flight (a GPU) rather than a few long ones
+  // (a CPU, whose threads each take whole work-groups): passes made of serial runs (the sort, the
+  // step statistics) cut their work by it, and the result does not depend on the cut.
+  bool wide() const { return wide_override_ ? *wide_override_ : info_.type != "CPU"; }
+  // Tests run a GPU's cut on the CPU (the results must be the same bits).
+  void set_wide(bool wide) { wide_override_ = wide; }
   cl::Context& context() { return context_; }
   cl::Device& device() { return device_; }
   cl::CommandQueue& queue() { return queue_; }
@@ -60,6 +67,7 @@ class ComputeContext {
 
  private:
   DeviceInfo info_;
+  std::optional<bool> wide_override_;
   cl::Context context_;
   cl::Device device_;
   cl::CommandQueue queue_;

@@ -56,7 +56,13 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   tile_scan_ = Kernel(compute, program, "tile_scan");
   tile_scatter_ = Kernel(compute, program, "tile_scatter");
   auto& ctx = compute.context();
-  hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * kRadixBlocks * sizeof(cl_uint));
+  // The sort's chunks (and the tile compaction's): a CPU's threads each walk a few long runs, a
+  // GPU wants thousands of short ones in flight; the scans run in one work-group as wide as that.
+  least_chunk_ = compute.wide() ? 32 : 512;
+  most_blocks_ = compute.wide() ? 4096 : 256;
+  scan_group_ =
+      compute.wide() ? std::min<std::size_t>({1024, scan_.max_group(), tile_scan_.max_group()}) : 1;
+  hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * most_blocks_ * sizeof(cl_uint));
   summary_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * sizeof(cl_uint));
   cell_start_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
   cell_end_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
@@ -120,17 +126,21 @@ void SpatialHash::begin_build(ParticleStore& store) {
   hash_keys_.set("key", keys_[0]).set("index", values_[0]).set("dead_key", dead_key_);
   hash_keys_.launch(round_up_work(n));
 
-  // 2. Stable LSD radix sort of (key, index), 8 bits per pass. The blocks' count follows n (about
-  // 512 keys each, at most kRadixBlocks): a handful of particles must not pay for 256 histograms.
-  // The permutation does not depend on it (a stable sort has one result).
-  const cl_uint blocks = std::clamp<cl_uint>((n + 511) / 512, 1, kRadixBlocks);
-  const cl_uint chunk = (n + blocks - 1) / blocks;
+  // 2. Stable LSD radix sort of (key, index), 8 bits per pass. The blocks' count follows n (at
+  // least least_chunk_ keys each, at most most_blocks_): a handful of particles must not pay for
+  // many histograms. The permutation does not depend on it (a stable sort has one result).
+  const SerialRuns runs = serial_runs(n, least_chunk_, most_blocks_);
+  const cl_uint blocks = static_cast<cl_uint>(runs.runs), chunk = static_cast<cl_uint>(runs.length);
+  const cl::LocalSpaceArg scan_sums = cl::Local((scan_group_ + 1) * sizeof(cl_uint));
   int in = 0;
   for (int pass = 0; pass < passes_; ++pass) {
     const cl_uint shift = 8 * pass;
     histogram_.set("key", keys_[in]).set("n", n).set("shift", shift).set("chunk", chunk);
     histogram_.set("hist", hist_).launch(blocks);
-    scan_.set("hist", hist_).set("count", static_cast<cl_uint>(256 * blocks)).launch(1);
+    scan_.set("hist", hist_)
+        .set("count", static_cast<cl_uint>(256 * blocks))
+        .set("sums", scan_sums);
+    scan_.launch_groups(1, scan_group_);
     scatter_.set("key_in", keys_[in]).set("value_in", values_[in]);
     scatter_.set("key_out", keys_[1 - in]).set("value_out", values_[1 - in]);
     scatter_.set("hist", hist_).set("n", n).set("shift", shift).set("chunk", chunk);
@@ -174,7 +184,11 @@ void SpatialHash::begin_build(ParticleStore& store) {
     k->set("counts", hist_);
   }
   tile_count_.launch(blocks);
-  tile_scan_.set("counts", hist_).set("blocks", blocks).set("summary", summary_).launch(1);
+  tile_scan_.set("counts", hist_)
+      .set("blocks", blocks)
+      .set("summary", summary_)
+      .set("sums", scan_sums);
+  tile_scan_.launch_groups(1, scan_group_);
   tile_scatter_.set("tile_first", tile_first_).launch(blocks);
 
   q.enqueueReadBuffer(summary_, CL_FALSE, 0, sizeof(summary_host_), summary_host_, nullptr,

@@ -68,7 +68,6 @@ class SpatialHash {
   // Neighbour ids within `radius` of every particle, in the store's (sorted) order. For tests.
   std::vector<std::vector<std::uint32_t>> neighbour_lists(ParticleStore& store, float radius);
 
-  static constexpr std::uint32_t kRadixBlocks = 256;
   // A cell of bulk water at h = 1.2 dx holds 8 to 27 particles (2.4 dx a side): one tile.
   static constexpr std::uint32_t kDefaultTile = 32;
   // A cell of a sheet of water one or two particles deep: its own, narrower work-groups.
@@ -84,6 +83,7 @@ class SpatialHash {
   int passes_;
   std::uint32_t tile_;
   std::uint32_t lone_ = kLoneTile;
+  std::size_t least_chunk_, most_blocks_, scan_group_;  // the sort's cut for this device
   cl_uint summary_host_[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
   cl::Event summary_read_;
   bool summary_pending_ = false;

@@ -17,8 +17,10 @@ const std::vector<std::string> kSphSources = {
     "cl/common.cl",         "cl/counters.cl",     "cl/grid.cl",      "cl/sph_kernel.cl",
     "cl/terrain_sample.cl", "cl/sph_boundary.cl", "cl/collide.cl",   "cl/sph_forces.cl",
     "cl/sph_continuity.cl", "cl/integrate.cl",    "cl/footprint.cl", "cl/water_depth.cl"};
-constexpr cl_uint kStatBlocks = 256;
 constexpr int kStatColumns = 6;
+// step_stats' rows: on a CPU at most 256 contiguous runs; on a GPU at most 16384 interleaved ones
+// of at least 64 particles (a thread per row, and rows enough to keep the GPU busy).
+constexpr cl_uint kStatBlocksCpu = 256, kStatBlocksGpu = 16384, kStatLeastRunGpu = 64;
 
 // Particles a work-item of water_depth_scatter_runs counts (cl/water_depth.cl), and the particles
 // per tile of the hash from which the solver takes that kernel: a sheet of water has about one
@@ -87,8 +89,9 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   depth_coarsen_ = Kernel(compute, program, "water_depth_coarsen");
   water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE,
                       film_level_vertices(floor.nx, floor.ny) * sizeof(cl_long));
+  stat_blocks_ = compute.wide() ? kStatBlocksGpu : kStatBlocksCpu;
   stats_buffer_ =
-      cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kStatBlocks * kStatColumns * sizeof(float));
+      cl::Buffer(compute.context(), CL_MEM_READ_WRITE, stat_blocks_ * kStatColumns * sizeof(float));
   counters_buffer_ =
       cl::Buffer(compute.context(), CL_MEM_READ_WRITE, kCounterCount * sizeof(cl_long));
   const cl_long zero = 0;
@@ -260,17 +263,24 @@ void SphSolver::choose_next_dt(bool closing_kick) {
     dt_ = std::min(s.cfl * s.h / s.c0, s.dt_max);
     return;
   }
-  const cl_uint chunk = (n + kStatBlocks - 1) / kStatBlocks;
+  // A CPU: a few contiguous runs; a GPU: thousands of interleaved ones (step_stats in
+  // integrate.cl).
+  const bool wide = compute_.wide();
+  const SerialRuns runs = serial_runs(n, wide ? kStatLeastRunGpu : 1, stat_blocks_);
+  const cl_uint blocks = static_cast<cl_uint>(runs.runs), chunk = static_cast<cl_uint>(runs.length);
   store_.bind(stats_, {kVx, kVy, kVz, kAx, kAy, kAz, kRho, kDrho});
   stats_.set("kick", cl_uint{closing_kick}).set("half_dt", static_cast<float>(0.5 * dt_));
-  stats_.set("chunk", chunk).set("stats", stats_buffer_).launch(kStatBlocks);
-  float rows[kStatBlocks * kStatColumns];
-  compute_.queue().enqueueReadBuffer(stats_buffer_, CL_TRUE, 0, sizeof(rows), rows);
+  stats_.set("chunk", chunk).set("chunk_stride", wide ? 1 : chunk).set("stride", wide ? blocks : 1);
+  stats_.set("blocks", blocks).set("stats", stats_buffer_).launch(round_up_work(blocks));
+  // Rows past the particles keep the neutral values (0, 0, ∞, −∞, 0, 0) and are not read.
+  const cl_uint used = std::min(blocks, (n + chunk - 1) / chunk);
+  stat_rows_.resize(std::size_t{used} * kStatColumns);
+  compute_.queue().enqueueReadBuffer(stats_buffer_, CL_TRUE, 0, stat_rows_.size() * sizeof(float),
+                                     stat_rows_.data());
   double v2 = 0, a2 = 0, rmin = INFINITY, rmax = -INFINITY, drmax = 0;
   long long bad = 0;
-  for (cl_uint b = 0; b < kStatBlocks; ++b) {
-    const float* r = rows + kStatColumns * b;
-    if (b * chunk >= n) break;
+  for (cl_uint b = 0; b < used; ++b) {
+    const float* r = stat_rows_.data() + kStatColumns * b;
     v2 = std::max(v2, double(r[0]));
     a2 = std::max(a2, double(r[1]));
     rmin = std::min(rmin, double(r[2]));

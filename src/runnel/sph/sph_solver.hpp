@@ -110,6 +110,8 @@ class SphSolver {
   // (cl/water_depth.cl).
   cl::Buffer water_;
   cl::Buffer stats_buffer_, counters_buffer_;
+  cl_uint stat_blocks_;           // step_stats' rows at most (a CPU: a few, a GPU: many)
+  std::vector<float> stat_rows_;  // their values, read each step
   bool rates_ready_ = false;
   bool hash_stale_ = true;
   double time_ = 0.0;
