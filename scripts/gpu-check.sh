@@ -1,34 +1,70 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# One prepared run on a machine with a GPU (issue 15): builds runnel, lists the OpenCL devices, runs
-# `runnel bench sph` at 1 M and 4 M particles, the grid benchmarks at 4096² and the noise generators at
-# 4097² on the GPU, the test
-# suite with its OpenCL tests on the GPU, and reports the viewer's frame rate where a display is
-# there; each step under its own time limit so the whole fits in 8 minutes. Writes
-# ${OUT:-gpu-check-out}/gpu-check.json (one object: each step's JSON, or why it did not run).
-#   DEVICE=gpu        the device to measure (see `runnel devices`)
-#   SCALE=1           1: the sizes above; e.g. SCALE=0.01 for a dry run on a CPU
+# One prepared run on a machine with a GPU (issue 15): lists the OpenCL devices, runs `runnel bench
+# sph` at 1 M, 4 M (and 100 k) particles, the grid benchmarks at 4096² and the noise generators at 4097², a
+# 30-s and a whole default run, the test suite with its OpenCL tests on the GPU, and the viewer's
+# frame rate where a display is there. Each step has its own time limit and the whole run a budget
+# (the steps are in order of importance; one that no longer fits is skipped and says so).
+# Writes ${OUT:-gpu-check-out}/gpu-check.json after every step (one object: each step's JSON, or why
+# it did not run), the log beside it, and the test suite's output in tests.log.
+#
+# runnel comes from .gpu/bundle.tar.xz when there is one (scripts/gpu-bundle.sh, made on a Debian
+# machine: the GPU machine may have no network and none of the -dev packages), else it is built.
+#   DEVICE=gpu           the device to measure (see `runnel devices`)
+#   SCALE=1              1: the sizes above; e.g. SCALE=0.002 for a dry run on a CPU
+#   GPU_CHECK_SECONDS    the whole run's budget (default 480)
+#   GPU_CHECK_SKIP       steps to leave out, by the first word of their names ("pipe olsen tests")
+#   GPU_CHECK_TESTS      only the tests whose names match this regular expression (ctest -R)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-gpu-check-out}"
 device="${DEVICE:-gpu}"
 scale="${SCALE:-1}"
+deadline=$(($(date +%s) + ${GPU_CHECK_SECONDS:-480}))
 mkdir -p "$out"
+out=$(cd "$out" && pwd)
 summary="$out/gpu-check.json"
 log="$out/gpu-check.log"
 : >"$log"
 entries=()
 
-# Runs a step under a time limit; its stdout (JSON) becomes the entry, else the reason it failed.
+write_summary() {
+  {
+    echo "{"
+    echo "  \"device\": \"$device\", \"scale\": $scale, \"date\": \"$(date -u +%FT%TZ)\","
+    for k in "${!entries[@]}"; do
+      sep=","
+      [ "$k" -eq $((${#entries[@]} - 1)) ] && sep=""
+      echo "  ${entries[$k]}$sep"
+    done
+    echo "}"
+  } >"$summary"
+}
+
+# Runs a step under a time limit (cut to what is left of the budget); its stdout (JSON) becomes the
+# entry, else the reason it failed.
 step() {
   local name="$1" limit="$2"
   shift 2
-  local start end output rc
+  local left=$((deadline - $(date +%s)))
+  if [[ " ${GPU_CHECK_SKIP:-} " == *" ${name%%_*} "* ]]; then
+    entries+=("\"$name\": {\"skipped\": \"left out (GPU_CHECK_SKIP)\"}")
+    write_summary
+    return
+  fi
+  if [ "$left" -lt 15 ]; then
+    entries+=("\"$name\": {\"skipped\": \"the run's budget was spent\"}")
+    echo "gpu-check: $name: skipped, out of time" >&2
+    write_summary
+    return
+  fi
+  [ "$limit" -gt "$left" ] && limit=$left
+  local start end output rc seconds
+  echo "== $name (limit $limit s)" >>"$log"
   start=$(date +%s.%N)
   output=$(timeout "$limit" "$@" 2>>"$log")
   rc=$?
   end=$(date +%s.%N)
-  local seconds
   seconds=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f", b - a }')
   if [ $rc -eq 0 ] && [ -n "$output" ]; then
     entries+=("\"$name\": {\"seconds\": $seconds, \"result\": $output}")
@@ -38,26 +74,60 @@ step() {
     entries+=("\"$name\": {\"seconds\": $seconds, \"failed\": \"$why (see gpu-check.log)\"}")
   fi
   echo "gpu-check: $name: rc $rc, $seconds s" >&2
+  write_summary
 }
 scaled() { awk -v n="$1" -v s="$scale" 'BEGIN { v = int(n * s); if (v < 1) v = 1; print v }'; }
 
-# 1. Build (no package installation: the machine may have no network; missing tools are reported; it
-# needs the packages of scripts/setup.sh, KissFFT among them).
-if ! command -v cmake >/dev/null; then
-  echo '{"failed": "cmake is not installed on this machine"}' >"$summary"
+# The machine, for the record.
+{
+  echo "== machine"
+  grep -E '^(PRETTY_NAME)=' /etc/os-release 2>/dev/null
+  ldd --version 2>&1 | head -1
+  nproc
+  command -v nvidia-smi >/dev/null &&
+    nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm --format=csv
+} >>"$log" 2>&1
+
+# The NVIDIA OpenCL driver, for an ICD loader that has no vendor file for it (containers often
+# mount the driver's libraries without one in /etc/OpenCL/vendors): the machine's vendor files
+# and one for NVIDIA's library, in a folder of our own.
+icd=$(find /usr/local/nvidia /usr/lib/x86_64-linux-gnu /usr/lib64 /usr/lib /lib /opt -maxdepth 4 \
+  -name 'libnvidia-opencl.so*' 2>/dev/null | sort | head -1)
+echo "gpu-check: NVIDIA's OpenCL library: ${icd:-not found}; vendor files: $(cat /etc/OpenCL/vendors/*.icd 2>/dev/null | tr '\n' ' ')" >>"$log"
+[ -n "$icd" ] || ls /usr/local/nvidia/lib64 /usr/local/nvidia/lib 2>/dev/null | tr '\n' ' ' >>"$log"
+if [ -n "$icd" ] && ! grep -qs nvidia /etc/OpenCL/vendors/*.icd; then
+  mkdir -p /tmp/runnel-icd
+  cp /etc/OpenCL/vendors/*.icd /tmp/runnel-icd/ 2>/dev/null
+  echo "$icd" >/tmp/runnel-icd/nvidia.icd
+  export OCL_ICD_VENDORS=/tmp/runnel-icd
+fi
+
+# 1. runnel: unpacked from the bundle, else built (needs the packages of scripts/setup.sh).
+if [ -f .gpu/bundle.tar.xz ]; then
+  # The binaries look for data/ and for each other in the tree they were built in.
+  step unpack 60 bash -c 'tar -xJf .gpu/bundle.tar.xz && built_in=$(cat .gpu/built-in) &&
+    { [ -e "$built_in" ] || { mkdir -p "$(dirname "$built_in")" && ln -s "$PWD" "$built_in"; }; } &&
+    { [ "$built_in" -ef . ] || echo "gpu-check: the tests read $built_in, not this tree" >&2; } &&
+    ! ldd build/runnel | grep -i "not found" >&2 &&
+    build/runnel --version >&2 && echo "{\"ok\": true}"'
+  build=build
+elif command -v cmake >/dev/null; then
+  # scripts/build.sh: the same configuration as the README's commands, into build-gpu/ with the viewer.
+  step build 240 bash -c 'RUNNEL_BUILD_DIR=build-gpu RUNNEL_CMAKE_ARGS=-DRUNNEL_BUILD_VIEWER=ON bash scripts/build.sh >&2 &&
+    echo "{\"ok\": true}"'
+  build=build-gpu
+else
+  entries+=("\"build\": {\"failed\": \"no .gpu/bundle.tar.xz and no cmake on this machine\"}")
+  write_summary
   exit 1
 fi
-# scripts/build.sh: the same configuration as the README's commands (the Python tests in the
-# package's virtual environment), into build-gpu/ with the viewer.
-step build 240 bash -c 'RUNNEL_BUILD_DIR=build-gpu RUNNEL_CMAKE_ARGS=-DRUNNEL_BUILD_VIEWER=ON bash scripts/build.sh >&2 &&
-  echo "{\"ok\": true}"'
-runnel=build-gpu/runnel
+runnel=$build/runnel
 
 # 2. Devices.
-step devices 30 bash -c "$runnel devices --json 2>/dev/null || $runnel devices | python3 -c 'import json,sys; print(json.dumps(sys.stdin.read()))'"
+step devices 30 "$runnel" devices --json
 
-# 3. SPH at 1 M and 4 M particles.
-for n in 1000000 4000000; do
+# 3. SPH at 1 M and 4 M particles, and at the 100 k of the CPU figures.
+for n in 1000000 4000000 100000; do
   step "sph_$n" 120 "$runnel" bench sph --particles "$(scaled $n)" --steps 20 --device "$device"
 done
 
@@ -73,47 +143,72 @@ gsize=$(scaled 4097)
 [ "$gsize" -lt 64 ] && gsize=64
 step "generate_${gsize}" 60 "$runnel" bench generate --size "$gsize" --steps 2 --device "$device"
 
-# 5. The test suite, its OpenCL tests on the GPU (the CLI picks the first GPU by itself). The Python
+# 5. The default scenario: 30 s of simulated time, then the whole run (the figures of its
+# metrics.json that say where the time went and that the physics held).
+default_run() {
+  local dir
+  dir=$(mktemp -d)
+  "$runnel" run data/scenarios/default.toml --device "$device" --out "$dir" --quiet "$@" >&2 || return 1
+  python3 - "$dir/metrics.json" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+top = sorted(m["kernel_seconds"].items(), key=lambda kv: -kv[1])[:8]
+keys = ["device", "steps", "sim_time", "wall_seconds", "particle_steps_per_second", "device_idle_seconds",
+        "rain_volume", "eroded_volume", "deposited_volume", "mass_balance_rel"]
+print(json.dumps({**{k: m[k] for k in keys}, "kernel_seconds_total": sum(m["kernel_seconds"].values()),
+                  "kernel_launches": sum(m["kernel_launches"].values()), "top_kernels": dict(top)}))
+PY
+}
+step default_30s 90 bash -c "$(declare -f default_run); runnel=$runnel device=$device default_run --sim-time $(scaled 30)"
+
+# 6. The test suite, its OpenCL tests on the GPU (the CLI picks the first GPU by itself). The Python
 # package's tests need its virtual environment (scripts/setup-python.sh, from PyPI): without one
 # they are left out, and the log says so.
-skip_python=()
+exclude=""
 if [ ! -x .venv/bin/python ]; then
-  skip_python=(-E '^Python\.')
+  exclude='^Python\.'
   echo "gpu-check: tests: no .venv (scripts/setup-python.sh), the Python package's tests left out" >>"$log"
 fi
-step tests 180 bash -c "cd build-gpu && RUNNEL_TEST_DEVICE=$device ctest -j \"\$(nproc)\" -LE fuzz ${skip_python[*]} >&2 &&
-  echo '{\"all_passed\": true}'"
+run_tests() {
+  local rc
+  (cd "$build" && RUNNEL_TEST_DEVICE=$device ctest -j "$(nproc)" --timeout 150 --output-on-failure -LE fuzz ${exclude:+-E "$exclude"} ${GPU_CHECK_TESTS:+-R "$GPU_CHECK_TESTS"}) \
+    >"$out/tests.log" 2>&1
+  rc=$?
+  tail -3 "$out/tests.log" >&2
+  grep -E '^[0-9]+% tests passed' "$out/tests.log" | python3 -c \
+    'import json, sys; print(json.dumps({"all_passed": sys.argv[1] == "0", "summary": sys.stdin.read().strip()}))' "$rc"
+}
+step tests 200 bash -c "$(declare -f run_tests); build=$build device=$device out=$out exclude='$exclude' \
+  GPU_CHECK_TESTS='${GPU_CHECK_TESTS:-}'; run_tests"
 
-# 6. The viewer at 1280x800 (issue 21): with the GPU's own OpenGL when there is a display; otherwise
+# 7. The whole default run.
+step default_run 300 bash -c "$(declare -f default_run); runnel=$runnel device=$device default_run"
+
+# 8. The viewer at 1280x800 (issue 21): with the GPU's own OpenGL when there is a display; otherwise
 # under Xvfb, where the simulation runs on the GPU's OpenCL but the drawing is Mesa's software
 # rasteriser (the entry says which). 20,000 particles from a short run of the default scenario.
 viewer_fps() {
+  local dir
+  dir=$(mktemp -d)
   "$runnel" run data/scenarios/default.toml --set rain.rate=10000 --set rain.max_particles=20000 \
-    --sim-time 2.5 --device "$device" --out "$out/p20k" >/dev/null 2>&1 || return 1
+    --sim-time 2.5 --device "$device" --out "$dir" >/dev/null 2>&1 || return 1
   local running paused  # the last stats line of each: frames/s simulating, and drawing only
-  running=$(build-gpu/runnel-viewer "$out/p20k/final.h5" --device "$device" --size 1280x800 \
+  running=$("$viewer" "$dir/final.h5" --device "$device" --size 1280x800 \
     --frames 120 --stats-every 60 2>/dev/null | tail -1)
-  paused=$(build-gpu/runnel-viewer "$out/p20k/final.h5" --device "$device" --size 1280x800 \
+  paused=$("$viewer" "$dir/final.h5" --device "$device" --size 1280x800 \
     --frames 120 --stats-every 60 --paused 2>/dev/null | tail -1)
   [ -n "$running" ] && [ -n "$paused" ] && echo "{\"simulating\": $running, \"paused\": $paused}"
 }
-if [ -n "${DISPLAY:-}" ]; then
-  step viewer_gpu_gl 150 bash -c "$(declare -f viewer_fps); runnel=$runnel device=$device out=$out viewer_fps"
+viewer=$build/runnel-viewer
+if [ ! -x "$viewer" ]; then
+  entries+=("\"viewer\": {\"skipped\": \"runnel-viewer is not in this build (the bundle leaves it out: no display here)\"}")
+elif [ -n "${DISPLAY:-}" ]; then
+  step viewer_gpu_gl 150 bash -c "$(declare -f viewer_fps); runnel=$runnel viewer=$viewer device=$device viewer_fps"
 elif command -v Xvfb >/dev/null; then
   step viewer_xvfb_software_gl 150 bash -c "Xvfb :97 -screen 0 1280x900x24 -nolisten tcp >/dev/null 2>&1 & x=\$!;
-    until DISPLAY=:97 xdpyinfo >/dev/null 2>&1; do sleep 0.2; done; export DISPLAY=:97; $(declare -f viewer_fps); runnel=$runnel device=$device out=$out viewer_fps; kill \$x"
+    until DISPLAY=:97 xdpyinfo >/dev/null 2>&1; do sleep 0.2; done; export DISPLAY=:97; $(declare -f viewer_fps); runnel=$runnel viewer=$viewer device=$device viewer_fps; kill \$x"
 else
   entries+=("\"viewer\": {\"skipped\": \"no display and no Xvfb on this machine\"}")
 fi
-
-{
-  echo "{"
-  echo "  \"device\": \"$device\", \"scale\": $scale, \"date\": \"$(date -u +%FT%TZ)\","
-  for k in "${!entries[@]}"; do
-    sep=","
-    [ "$k" -eq $((${#entries[@]} - 1)) ] && sep=""
-    echo "  ${entries[$k]}$sep"
-  done
-  echo "}"
-} >"$summary"
+write_summary
 echo "gpu-check: wrote $summary" >&2

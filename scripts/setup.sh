@@ -20,6 +20,7 @@ packages=(
   xvfb xdotool x11-utils libgl1-mesa-dri
   clang-format
   clang libclang-rt-14-dev  # scripts/sanitize.sh: ASan + UBSan build and the libFuzzer targets
+  patchelf  # scripts/gpu-bundle.sh: the bundle's binaries find their libraries through an RPATH
 )
 
 missing=()
