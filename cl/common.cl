@@ -11,6 +11,38 @@
 #define REASSOCIATE_SUMS
 #endif
 
+// Exclusive prefix sum of in[0, count) into out (which may be in) by one work-group (`sums`: a
+// uint per work-item and one more): each work-item sums a contiguous segment, one scans the
+// segments' sums, each writes its segment's prefixes. Integer sums: a serial scan's result whatever
+// the group's size (1 on a CPU, where one thread walking the table is fastest; hundreds on a GPU,
+// where one thread would take milliseconds). Returns the total to every work-item.
+inline uint group_exclusive_scan(const __global uint* in, __global uint* out, const uint count, __local uint* sums) {
+  const uint item = get_local_id(0), items = get_local_size(0);
+  const uint per = (count + items - 1) / items;
+  const uint begin = min(item * per, count), end = min(begin + per, count);
+  uint total = 0;
+  for (uint k = begin; k < end; ++k) total += in[k];
+  sums[item] = total;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (item == 0) {
+    uint sum = 0;
+    for (uint k = 0; k < items; ++k) {
+      const uint v = sums[k];
+      sums[k] = sum;
+      sum += v;
+    }
+    sums[items] = sum;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  uint sum = sums[item];
+  for (uint k = begin; k < end; ++k) {
+    const uint v = in[k];
+    out[k] = sum;
+    sum += v;
+  }
+  return sums[items];
+}
+
 // splitmix64 finaliser: a bijective 64-bit mix.
 inline ulong splitmix64(ulong z) {
   z += 0x9E3779B97F4A7C15UL;

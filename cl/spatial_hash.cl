@@ -36,42 +36,10 @@ __kernel void radix_histogram(const __global uint* key, const uint n, const uint
   for (int d = 0; d < RADIX; ++d) hist[d * blocks + block] = counts[d];
 }
 
-// Exclusive prefix sum of a[0, count) in place by one work-group (`sums`: items + 1 uints): each
-// work-item sums a contiguous segment, one scans the segments' sums, each writes its segment's
-// prefixes. Integer sums: a serial scan's result whatever the group's size (1 on a CPU, where one
-// thread walking the table is fastest; hundreds on a GPU, where one thread would take milliseconds).
-// Returns the total to every work-item.
-inline uint group_exclusive_scan(__global uint* a, const uint count, __local uint* sums) {
-  const uint item = get_local_id(0), items = get_local_size(0);
-  const uint per = (count + items - 1) / items;
-  const uint begin = min(item * per, count), end = min(begin + per, count);
-  uint total = 0;
-  for (uint k = begin; k < end; ++k) total += a[k];
-  sums[item] = total;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (item == 0) {
-    uint sum = 0;
-    for (uint k = 0; k < items; ++k) {
-      const uint v = sums[k];
-      sums[k] = sum;
-      sum += v;
-    }
-    sums[items] = sum;
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
-  uint sum = sums[item];
-  for (uint k = begin; k < end; ++k) {
-    const uint v = a[k];
-    a[k] = sum;
-    sum += v;
-  }
-  return sums[items];
-}
-
 // The histogram's exclusive prefix sum, in (digit, block) order: where each block's keys of each
 // digit go.
 __kernel void radix_scan(__global uint* hist, const uint count, __local uint* sums) {
-  group_exclusive_scan(hist, count, sums);
+  group_exclusive_scan(hist, hist, count, sums);
 }
 
 __kernel void radix_scatter(const __global uint* key_in, const __global uint* value_in, __global uint* key_out,
@@ -200,7 +168,7 @@ __kernel void tile_count(const __global uint* key, const __global uint* cell_sta
 // the lone ones. The totals go to summary[1] (large), summary[2] (small) and summary[3] (lone);
 // summary[0] is the live count, so the host reads them all at once.
 __kernel void tile_scan(__global uint* counts, const uint blocks, __global uint* summary, __local uint* sums) {
-  const uint total = group_exclusive_scan(counts, 3 * blocks, sums);
+  const uint total = group_exclusive_scan(counts, counts, 3 * blocks, sums);
   barrier(CLK_GLOBAL_MEM_FENCE);  // every work-item's prefixes written
   if (get_local_id(0) == 0) {
     const uint large = counts[blocks], large_and_small = counts[2 * blocks];

@@ -355,28 +355,9 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
 __kernel void droplet_bin(const uint blocks, const __global uint* block_count, __global uint* block_start,
                           const uint count, const uint stride, const __global uint* plan_bin,
                           __global uint* block_list) {
-  __local uint sums[DROPLET_BIN_GROUP];
+  __local uint sums[DROPLET_BIN_GROUP + 1];
   const uint lid = get_local_id(0);
-  const uint chunk = (blocks + DROPLET_BIN_GROUP - 1) / DROPLET_BIN_GROUP;
-  const uint begin = min(lid * chunk, blocks), end = min(begin + chunk, blocks);
-  uint sum = 0;
-  for (uint b = begin; b < end; ++b) sum += block_count[b];
-  sums[lid] = sum;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (lid == 0) {
-    uint run = 0;
-    for (uint g = 0; g < DROPLET_BIN_GROUP; ++g) {
-      const uint n = sums[g];
-      sums[g] = run;
-      run += n;
-    }
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
-  uint run = sums[lid];
-  for (uint b = begin; b < end; ++b) {
-    block_start[b] = run;
-    run += block_count[b];
-  }
+  group_exclusive_scan(block_count, block_start, blocks, sums);
   barrier(CLK_GLOBAL_MEM_FENCE);
   for (uint d = lid; d < count; d += DROPLET_BIN_GROUP) {
     const uint block = plan_bin[d];

@@ -59,6 +59,15 @@ TEST(Simulation, NonConservingDepositFractionIsBookedAsLost) {
   EXPECT_EQ(m.residual_quanta, 0) << m.json().str();
 }
 
+// Every persistent field of two particle sets, bit for bit.
+void expect_same_particles(const HostParticles& a, const HostParticles& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (int f = 0; f < kPersistentFieldCount; ++f) {
+    const auto field = static_cast<ParticleField>(f);
+    EXPECT_EQ(0, std::memcmp(a.data(field), b.data(field), a.size() * 4)) << f;
+  }
+}
+
 TEST(Simulation, SameSeedGivesIdenticalTerrainAndParticles) {
   const Heightmap terrain = generate_terrain("fbm", 41, 41, 1.0, 2, {{"relief", 0.25}});
   std::vector<std::vector<std::int64_t>> heights;
@@ -72,13 +81,7 @@ TEST(Simulation, SameSeedGivesIdenticalTerrainAndParticles) {
     particles.push_back(sim.solver().particles().download());
   }
   EXPECT_EQ(heights[0], heights[1]);
-  ASSERT_EQ(particles[0].size(), particles[1].size());
-  for (int f = 0; f < kPersistentFieldCount; ++f) {
-    const auto field = static_cast<ParticleField>(f);
-    EXPECT_EQ(
-        0, std::memcmp(particles[0].data(field), particles[1].data(field), particles[0].size() * 4))
-        << f;
-  }
+  expect_same_particles(particles[0], particles[1]);
   EXPECT_NE(heights[0], heights[2]) << "another seed must give another run";
 }
 
@@ -97,13 +100,7 @@ TEST(Simulation, TheSortAndStatisticsCutAsAGpuCutsThemGiveTheSameBits) {
   }
   ASSERT_GT(particles[0].size(), 500u) << "enough particles for many runs of the GPU's cut";
   EXPECT_EQ(heights[0], heights[1]);
-  ASSERT_EQ(particles[0].size(), particles[1].size());
-  for (int f = 0; f < kPersistentFieldCount; ++f) {
-    const auto field = static_cast<ParticleField>(f);
-    EXPECT_EQ(
-        0, std::memcmp(particles[0].data(field), particles[1].data(field), particles[0].size() * 4))
-        << f;
-  }
+  expect_same_particles(particles[0], particles[1]);
 }
 
 TEST(Simulation, NoParticleBelowTheSurfaceAfterALongRunOnRoughTerrain) {
