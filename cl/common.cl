@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Shared helpers for every runnel kernel: counter-based random numbers (the same functions as
-// src/runnel/core/rng.hpp, bit for bit) and grid indexing.
+// src/runnel/core/rng.hpp, bit for bit), grid indexing, a work-group scan, the lane types and
+// the reassociation pragma.
 
 // Lets the vectoriser reassociate a pass's sums (8 or 16 candidates at a time). The order is still
 // fixed by the code, so results stay bitwise reproducible on one device. clang 12's pragma; other

@@ -81,16 +81,21 @@ std::string source_dir() {
 
 namespace runnel::test {
 
+namespace {
+// RUNNEL_TEST_DEVICE runs the OpenCL tests on another device (scripts/gpu-check.sh: the GPU).
+std::string test_device() {
+  const char* device = std::getenv("RUNNEL_TEST_DEVICE");
+  return device ? device : "cpu";
+}
+}  // namespace
+
 ComputeContext& compute() {
-  // RUNNEL_TEST_DEVICE runs the OpenCL tests on another device (scripts/gpu-check.sh: the GPU).
-  static ComputeContext context(
-      std::getenv("RUNNEL_TEST_DEVICE") ? std::getenv("RUNNEL_TEST_DEVICE") : "cpu");
+  static ComputeContext context(test_device());
   return context;
 }
 
 ComputeContext& compute_cut_the_other_way() {
-  static ComputeContext context(
-      std::getenv("RUNNEL_TEST_DEVICE") ? std::getenv("RUNNEL_TEST_DEVICE") : "cpu");
+  static ComputeContext context(test_device());
   static const bool flipped = (context.set_wide(!context.wide()), true);
   (void)flipped;
   return context;
