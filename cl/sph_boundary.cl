@@ -172,7 +172,20 @@ inline LoneTile lone_tile(const __global uint* tile_first, uint tile_offset, uin
 
 // Visits the candidates of a lone tile as the tiled passes see them: every image of every
 // neighbourhood candidate, row by row; `image_` the image (0: the candidate itself), j its sorted
-// index. Usage: LONE_CANDIDATES_BEGIN(lone) {...} LONE_CANDIDATES_END, `lone` a LoneTile
+// index. Usage: LONE_CANDIDATES_BEGIN(lone) {...} LONE_CANDIDATES_END, `lone` a LoneTile.
+// On a wide device (SPH_SKIP_FAR, host -D) the direct passes skip a candidate at r² ≥
+// BEYOND_SUPPORT2 before reading the rest of its fields: about five in six are, and a GPU's
+// per-particle passes then read only their positions. The bound is 2h with a margin of 1.25·10⁻⁵
+// over the rounding of r and q = r/h, so every kernel factor of a skipped candidate is exactly 0.
+// A CPU keeps the branch-free loop, which PoCL widens across the candidates (with the branch the
+// sums run in another order: other bits).
+#define BEYOND_SUPPORT2 (4.0001f * SPH_H * SPH_H)
+#if SPH_SKIP_FAR
+#define SKIP_BEYOND_SUPPORT(r2) \
+  if ((r2) >= BEYOND_SUPPORT2) continue;  // NaN goes on, into the sums and the health check
+#else
+#define SKIP_BEYOND_SUPPORT(r2)
+#endif
 #define LONE_CANDIDATES_BEGIN(lone)                                                      \
   for (uint m_ = 0; m_ < (lone).images.count; ++m_) {                                    \
     const uint image_ = (lone).images.image[m_];                                         \

@@ -178,8 +178,9 @@ __kernel void sph_continuity_direct(
     float drho_i = 0.0f, drho_ghosts = 0.0f, shepard = 0.0f;
     LONE_CANDIDATES_BEGIN(t)
     const float3 mid = image_position(image_, (float3)(mid_x[j], mid_y[j], mid_z[j]), domain_x, domain_z);
-    const float3 v = image_velocity(image_, (float3)(drift_vx[j], drift_vy[j], drift_vz[j]));
     const float dx = mid_i.x - mid.x, dy = mid_i.y - mid.y, dz = mid_i.z - mid.z;
+    SKIP_BEYOND_SUPPORT(dx * dx + dy * dy + dz * dz)
+    const float3 v = image_velocity(image_, (float3)(drift_vx[j], drift_vy[j], drift_vz[j]));
     const float vdotx = (vi.x - v.x) * dx + (vi.y - v.y) * dy + (vi.z - v.z) * dz;
     add_pair_continuity(&drho_i, &drho_ghosts, &shepard, dx, dy, dz, vdotx, rhoi, rho[j], volume[j],
                         image_ != 0 || j != i ? 1.0f : 0.0f, image_ != 0 ? 1.0f : 0.0f);

@@ -246,8 +246,10 @@ __kernel void sph_forces_direct(
     ForceSums sum = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
     LONE_CANDIDATES_BEGIN(t)
     const float3 p = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+    const float dx = pi.x - p.x, dy = pi.y - p.y, dz = pi.z - p.z;
+    SKIP_BEYOND_SUPPORT(dx * dx + dy * dy + dz * dz)
     const float3 v = image_velocity(image_, (float3)(vx[j], vy[j], vz[j]));
-    add_pair_force(&sum, pi.x - p.x, pi.y - p.y, pi.z - p.z, vi.x - v.x, vi.y - v.y, vi.z - v.z, rhoi, pres_i,
+    add_pair_force(&sum, dx, dy, dz, vi.x - v.x, vi.y - v.y, vi.z - v.z, rhoi, pres_i,
                    pi_over_rho2, rho[j], pressure[j], p_over_rho2[j], volume[j],
                    image_ != 0 || j != i ? 1.0f : 0.0f, image_ != 0 ? 1.0f : 0.0f);
     LONE_CANDIDATES_END

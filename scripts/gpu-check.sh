@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # One prepared run on a machine with a GPU (issue 15): lists the OpenCL devices, runs `runnel bench
-# sph` at 1 M, 4 M (and 100 k) particles, the grid benchmarks at 4096² and the noise generators at 4097², a
+# sph` at 1 M, 4 M, 16 M (and 100 k) particles, the grid benchmarks at 4096² and the noise generators at 4097², a
 # 30-s and a whole default run, the test suite with its OpenCL tests on the GPU, and the viewer's
 # frame rate where a display is there. Each step has its own time limit and the whole run a budget
 # (the steps are in order of importance; one that no longer fits is skipped and says so).
@@ -126,10 +126,14 @@ runnel=$build/runnel
 # 2. Devices.
 step devices 30 "$runnel" devices --json
 
-# 3. SPH at 1 M and 4 M particles, and at the 100 k of the CPU figures.
-for n in 1000000 4000000 100000; do
+# 3. SPH at 1 M, 4 M and 16 M particles, and at the 100 k of the CPU figures; then at 4 M with the
+# CPU's tiles (a work-group of a cell's particles sharing candidates in local memory) beside the
+# GPU's own passes (a work-item a particle).
+for n in 1000000 4000000 16000000 100000; do
   step "sph_$n" 120 "$runnel" bench sph --particles "$(scaled $n)" --steps 20 --device "$device"
 done
+step sph_4000000_tile32 120 "$runnel" bench sph --particles "$(scaled 4000000)" --steps 20 --tile 32 \
+  --device "$device"
 
 # 4. Grid models at 4096².
 size=$(scaled 4096)

@@ -15,6 +15,7 @@ void add_bench_command(CLI::App& app) {
     long long particles = 100000;
     int size = 1024;
     int steps = 20;
+    int tile = 0;
     std::vector<std::string> sets;
   };
   auto opt = std::make_shared<Options>();
@@ -34,6 +35,10 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--particles", opt->particles, "number of particles")->capture_default_str();
   cmd->add_option("--steps", opt->steps, "timed steps (after 3 warm-up steps)")
       ->capture_default_str();
+  cmd->add_option("--tile", opt->tile,
+                  "sph: particles of a cell one work-group of the neighbour passes takes; 1 gives "
+                  "every particle its own work-item; 0: the device's choice (a CPU 32, a GPU 1)")
+      ->capture_default_str();
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->add_option("--trace", opt->trace,
@@ -44,6 +49,7 @@ void add_bench_command(CLI::App& app) {
     if (opt->particles < 8 || opt->particles > 100000000)
       throw input_error("--particles: must be in 8..1e8");
     if (opt->steps < 1 || opt->steps > 1000000) throw input_error("--steps: must be in 1..1e6");
+    if (opt->tile < 0 || opt->tile > 256) throw input_error("--tile: must be in 0..256");
     Parameters params;
     apply_overrides(params, opt->sets);
     ComputeContext compute(opt->device);
@@ -59,7 +65,8 @@ void add_bench_command(CLI::App& app) {
                 << "\n";
       return;
     }
-    std::cout << benchmark_sph(compute, opt->particles, opt->steps, params).str() << "\n";
+    std::cout << benchmark_sph(compute, opt->particles, opt->steps, params, opt->tile).str()
+              << "\n";
   });
 }
 

@@ -44,6 +44,7 @@ TEST(HostileInputs, BadFlagValuesAreRefusedNotIgnored) {
   expect_refused(run_cli({"generate", "fbm", "--cell", "1e300", "-o", dir.path("t.asc")}),
                  {"--cell", "1e300"}, "generate --cell 1e300");
   EXPECT_FALSE(std::filesystem::exists(dir.path("t.asc")));
+  expect_refused(run_cli({"bench", "sph", "--tile", "-1"}), {"--tile"}, "bench --tile -1");
   expect_refused(
       run_cli({"generate", "fbm", "--size", "9", "--range", "0:1", "-o", dir.path("t.npy")}),
       {"--range"}, "generate --range for npy");

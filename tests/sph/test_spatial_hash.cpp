@@ -172,6 +172,33 @@ TEST(SpatialHash, SortIsByCellAndDeterministic) {
   }
 }
 
+// The sort against std::stable_sort of the particles' cells, cut as a CPU cuts it (a few long runs,
+// one work-item scanning the histogram) and as a GPU does (thousands of short runs, the histogram
+// of a million counts scanned over many work-groups): the same order, the reference's.
+TEST(SpatialHash, SortMatchesAStableSortOnEitherDevicesCut) {
+  std::mt19937 rng(11);
+  std::normal_distribution<float> clump(1.3f, 0.2f);  // crowded cells and empty ones
+  HostParticles p = uniform_particles(rng, 150000);
+  for (int i = 0; i < 50000; ++i) p.push(clump(rng), clump(rng), clump(rng), 0, 0, 0, 1000, 1);
+  auto cell = [](float v) { return std::clamp(static_cast<int>(v / 0.25f), 0, 15); };
+  std::vector<std::uint32_t> expected(p.size());
+  for (std::uint32_t i = 0; i < expected.size(); ++i) expected[i] = i;
+  auto key = [&](std::uint32_t i) {
+    return cell(p.f[kX][i]) + 16 * (cell(p.f[kY][i]) + 16 * cell(p.f[kZ][i]));
+  };
+  std::stable_sort(expected.begin(), expected.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  for (bool wide : {false, true}) {
+    ComputeContext compute("cpu");
+    compute.set_wide(wide);
+    ParticleStore store(compute);
+    store.append(p);
+    SpatialHash hash(compute, test_grid());
+    hash.build(store);
+    ASSERT_EQ(store.download().id, expected) << (wide ? "a GPU's cut" : "a CPU's cut");
+  }
+}
+
 // The build in two halves: until finish_build() the store still counts the dead particles, sorted
 // to its end with their flag, and the tile counts are the last build's; then it holds the live
 // ones in the order build() leaves them.

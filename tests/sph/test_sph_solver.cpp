@@ -168,20 +168,31 @@ TEST(SphSolver, ContinuityMatchesTheCppReferenceForTheDrift) {
 }
 
 // The direct kernels, which the neighbour passes take for tiles of at most kLoneTile particles (a
-// film), on the cases above with every tile sent to them: the bulk, the floor, the walls' ghosts,
-// the corners and the fullness ramp, against the reference as before.
+// film), and for every particle on a GPU (a tile of 1), on the cases above with every tile sent to
+// them: the bulk, the floor, the walls' ghosts, the corners and the fullness ramp, against the
+// reference as before. Tiles of 32 walked by one work-item each, then of one particle each; with
+// the programs of this device and of the other kind (a GPU's skip the candidates beyond 2h).
 TEST(SphSolver, DirectPassesMatchTheCppReference) {
   const SphSettings s = settings();
-  for (int c = 0; c < 2; ++c) {
-    SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);
-    solver.hash().set_lone_tile(SpatialHash::kDefaultTile);
-    solver.add(c == 0 ? block_on_floor(3) : packed_corner_block(6));
-    solver.prepare();
-    ASSERT_EQ(solver.hash().lone_tile_count(), solver.hash().tile_count()) << c;
-    ASSERT_NO_FATAL_FAILURE(check_accelerations(solver, s)) << c;
-    DriftRates rates;
-    ASSERT_NO_FATAL_FAILURE(check_continuity(solver, s, rates)) << c;
-  }
+  for (ComputeContext* device : {&compute(), &test::compute_cut_the_other_way()})
+    for (std::uint32_t tile : {SpatialHash::kDefaultTile, 1u}) {
+      for (int c = 0; c < 2; ++c) {
+        SphSolver solver(*device, s, flat_floor(20, 20, 0.1), 2.0);
+        solver.hash().set_tile(tile);
+        solver.hash().set_lone_tile(tile);
+        solver.add(c == 0 ? block_on_floor(3) : packed_corner_block(6));
+        solver.prepare();
+        ASSERT_EQ(solver.hash().lone_tile_count(), solver.hash().tile_count()) << c;
+        if (tile == 1) {
+          ASSERT_EQ(solver.hash().tile_count(), solver.particles().size());
+        }
+        const std::string where = std::to_string(c) + ", tile " + std::to_string(tile) +
+                                  (device->wide() ? ", a GPU's program" : ", a CPU's program");
+        ASSERT_NO_FATAL_FAILURE(check_accelerations(solver, s)) << where;
+        DriftRates rates;
+        ASSERT_NO_FATAL_FAILURE(check_continuity(solver, s, rates)) << where;
+      }
+    }
 }
 
 TEST(SphSolver, PairForcesAreAntisymmetric) {

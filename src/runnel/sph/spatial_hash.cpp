@@ -40,13 +40,16 @@ int GridSpec::key_bits() const {
 }
 
 SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uint32_t tile)
-    : compute_(compute), grid_(grid), tile_(tile) {
+    : compute_(compute), grid_(grid), tile_(tile > 0 ? tile : device_tile(compute)) {
   dead_key_ = static_cast<std::uint32_t>(grid.cell_count());  // one past every live cell
   passes_ = (grid.key_bits() + 7) / 8;
   cl::Program& program = compute.program(kHashSources);
   hash_keys_ = Kernel(compute, program, "hash_keys");
   histogram_ = Kernel(compute, program, "radix_histogram");
   scan_ = Kernel(compute, program, "radix_scan");
+  slice_totals_kernel_ = Kernel(compute, program, "scan_slice_totals");
+  scan_totals_ = Kernel(compute, program, "scan_totals");
+  scan_slices_ = Kernel(compute, program, "scan_slices");
   scatter_ = Kernel(compute, program, "radix_scatter");
   reorder_ = Kernel(compute, program, "reorder_words");
   cell_bounds_ = Kernel(compute, program, "cell_bounds");
@@ -63,12 +66,23 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   scan_group_ =
       compute.wide() ? std::min<std::size_t>({1024, scan_.max_group(), tile_scan_.max_group()}) : 1;
   hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * most_blocks_ * sizeof(cl_uint));
+  if (compute.wide()) {
+    slice_group_ = 1;
+    const std::size_t most =
+        std::min<std::size_t>({256, slice_totals_kernel_.max_group(), scan_slices_.max_group()});
+    while (slice_group_ * 2 <= most) slice_group_ *= 2;
+    slice_totals_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, scan_group_ * sizeof(cl_uint));
+  }
   summary_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * sizeof(cl_uint));
   cell_start_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
   cell_end_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, grid.cell_count() * sizeof(cl_uint));
   // Once: afterwards each build empties only the cells its predecessor filled.
   compute.queue().enqueueFillBuffer(cell_start_, kEmptyCell, 0,
                                     grid.cell_count() * sizeof(cl_uint));
+}
+
+std::uint32_t SpatialHash::device_tile(const ComputeContext& compute) {
+  return compute.wide() ? 1 : kDefaultTile;
 }
 
 void SpatialHash::bind_grid(Kernel& k) const {
@@ -92,6 +106,29 @@ void SpatialHash::launch_tiled(Kernel& tiled, Kernel& direct) const {
   tiled.set("tile_offset", tiles_).launch_groups(small_tiles_, kSmallTile);
   direct.set("tile_offset", tiles_ + small_tiles_).set("tiles", lone_tiles_).set("tile", tile_);
   if (lone_tiles_ > 0) direct.launch(round_up_work(lone_tiles_));
+}
+
+void SpatialHash::scan_histogram(cl_uint count) {
+  if (slice_group_ == 0) {
+    scan_.set("hist", hist_).set("count", count);
+    scan_.set("sums", cl::Local((scan_group_ + 1) * sizeof(cl_uint))).launch_groups(1, scan_group_);
+    return;
+  }
+  // Slices of at least four rounds of the group, and at most as many as one group scans the
+  // totals of. All three kernels are timed as radix_scan, the one they stand for.
+  const SerialRuns slices = serial_runs(count, 4 * slice_group_, scan_group_);
+  const cl_uint groups = static_cast<cl_uint>(slices.runs),
+                per = static_cast<cl_uint>(slices.length);
+  const cl::LocalSpaceArg slice_sums = cl::Local(slice_group_ * sizeof(cl_uint));
+  slice_totals_kernel_.set("data", hist_).set("count", count).set("per", per);
+  slice_totals_kernel_.set("totals", slice_totals_).set("sums", slice_sums);
+  slice_totals_kernel_.launch_groups(groups, slice_group_, "radix_scan");
+  scan_totals_.set("totals", slice_totals_).set("groups", groups);
+  scan_totals_.set("sums", cl::Local((scan_group_ + 1) * sizeof(cl_uint)));
+  scan_totals_.launch_groups(1, scan_group_, "radix_scan");
+  scan_slices_.set("data", hist_).set("count", count).set("per", per);
+  scan_slices_.set("totals", slice_totals_).set("sums", slice_sums);
+  scan_slices_.launch_groups(groups, slice_group_, "radix_scan");
 }
 
 void SpatialHash::ensure_capacity(std::size_t n) {
@@ -131,16 +168,12 @@ void SpatialHash::begin_build(ParticleStore& store) {
   // many histograms. The permutation does not depend on it (a stable sort has one result).
   const SerialRuns runs = serial_runs(n, least_chunk_, most_blocks_);
   const cl_uint blocks = static_cast<cl_uint>(runs.runs), chunk = static_cast<cl_uint>(runs.length);
-  const cl::LocalSpaceArg scan_sums = cl::Local((scan_group_ + 1) * sizeof(cl_uint));
   int in = 0;
   for (int pass = 0; pass < passes_; ++pass) {
     const cl_uint shift = 8 * pass;
     histogram_.set("key", keys_[in]).set("n", n).set("shift", shift).set("chunk", chunk);
     histogram_.set("hist", hist_).launch(blocks);
-    scan_.set("hist", hist_)
-        .set("count", static_cast<cl_uint>(256 * blocks))
-        .set("sums", scan_sums);
-    scan_.launch_groups(1, scan_group_);
+    scan_histogram(static_cast<cl_uint>(256 * blocks));
     scatter_.set("key_in", keys_[in]).set("value_in", values_[in]);
     scatter_.set("key_out", keys_[1 - in]).set("value_out", values_[1 - in]);
     scatter_.set("hist", hist_).set("n", n).set("shift", shift).set("chunk", chunk);
@@ -184,6 +217,7 @@ void SpatialHash::begin_build(ParticleStore& store) {
     k->set("counts", hist_);
   }
   tile_count_.launch(blocks);
+  const cl::LocalSpaceArg scan_sums = cl::Local((scan_group_ + 1) * sizeof(cl_uint));
   tile_scan_.set("counts", hist_)
       .set("blocks", blocks)
       .set("summary", summary_)

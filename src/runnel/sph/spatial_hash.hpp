@@ -27,8 +27,17 @@ struct GridSpec {
 // data (CompactNSearch's lesson): it only computes an order and cell ranges for the store.
 class SpatialHash {
  public:
-  // tile: the most particles of one cell a neighbour pass's work-group takes (its size).
-  SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uint32_t tile = kDefaultTile);
+  // tile: the most particles of one cell a neighbour pass's work-group takes (its size); 0 for the
+  // device's own (device_tile()).
+  SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uint32_t tile = 0);
+
+  // The neighbour passes' tile on this device. A CPU: kDefaultTile, a cell's particles sharing the
+  // candidates they copy into local memory, so that its vector lanes run over them. A wide device
+  // (a GPU): 1, so that every particle is a lone tile and the direct kernels give each its own
+  // work-item reading its neighbours from global memory, as GPU SPH codes do (DualSPHysics): the
+  // device's caches share the candidates among neighbouring work-items, and it has work-items for
+  // every particle instead of idle lanes in groups of a cell's 8 to 27.
+  static std::uint32_t device_tile(const ComputeContext& compute);
 
   // Sorts and reorders `store` in place; afterwards store.size() counts live particles only.
   void build(ParticleStore& store);
@@ -48,6 +57,8 @@ class SpatialHash {
   // tile_first()[t] is the sorted index of tile t's first particle; the tile size and its cell's
   // cell_end bound it.
   std::uint32_t tile_size() const { return tile_; }
+  // Sets the tile size (from the next build on). Tests run a device's passes as another would.
+  void set_tile(std::uint32_t tile) { tile_ = tile; }
   std::uint32_t tile_count() const { return tiles_ + small_tiles_ + lone_tiles_; }
   std::uint32_t small_tile_count() const { return small_tiles_; }
   std::uint32_t lone_tile_count() const { return lone_tiles_; }
@@ -77,6 +88,9 @@ class SpatialHash {
 
  private:
   void ensure_capacity(std::size_t n);
+  // The exclusive scan of the sort's histogram (`count` counts): one work-group on a CPU, many on a
+  // wide device (cl/spatial_hash.cl).
+  void scan_histogram(cl_uint count);
   ComputeContext& compute_;
   GridSpec grid_;
   std::uint32_t dead_key_;
@@ -84,6 +98,7 @@ class SpatialHash {
   std::uint32_t tile_;
   std::uint32_t lone_ = kLoneTile;
   std::size_t least_chunk_, most_blocks_, scan_group_;  // the sort's cut for this device
+  std::size_t slice_group_ = 0;  // a wide device's scan: work-items a slice, a power of two
   cl_uint summary_host_[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
   cl::Event summary_read_;
   bool summary_pending_ = false;
@@ -92,9 +107,10 @@ class SpatialHash {
   cl_uint sorted_ = 0;  // keys in keys_[sorted_in_] from the last build: their cells are filled
   int sorted_in_ = 0;
   static constexpr cl_uint kEmptyCell = 0xFFFFFFFFu;
-  cl::Buffer keys_[2], values_[2], hist_, summary_, cell_start_, cell_end_, tile_first_;
-  Kernel hash_keys_, histogram_, scan_, scatter_, reorder_, cell_bounds_, clear_cells_,
-      neighbour_list_, tile_count_, tile_scan_, tile_scatter_;
+  cl::Buffer keys_[2], values_[2], hist_, slice_totals_, summary_, cell_start_, cell_end_,
+      tile_first_;
+  Kernel hash_keys_, histogram_, scan_, slice_totals_kernel_, scan_totals_, scan_slices_, scatter_,
+      reorder_, cell_bounds_, clear_cells_, neighbour_list_, tile_count_, tile_scan_, tile_scatter_;
 };
 
 }  // namespace runnel

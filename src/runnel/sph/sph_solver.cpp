@@ -64,7 +64,8 @@ cl::Program& sph_program(ComputeContext& compute, const SphSettings& settings,
                          double terrain_cell) {
   return compute.program(kSphSources,
                          settings.build_options() + footprint_options(settings, terrain_cell) +
-                             " -DSPH_CHUNK=" + std::to_string(candidate_chunk(compute)));
+                             " -DSPH_CHUNK=" + std::to_string(candidate_chunk(compute)) +
+                             " -DSPH_SKIP_FAR=" + (compute.wide() ? "1" : "0"));
 }
 
 SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor,

@@ -10,7 +10,7 @@
 namespace runnel {
 
 JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps,
-                         const Parameters& params_in) {
+                         const Parameters& params_in, unsigned tile) {
   // A block twice as wide as it is high, filling the tank's floor: the water is 1 m deep.
   const int high = std::max(2, static_cast<int>(std::lround(std::cbrt(particles / 4.0))));
   const int wide =
@@ -21,6 +21,7 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
   const SphSettings s =
       SphSettings::from(params, dx, std::sqrt(params.real("sph.gravity") * depth));
   SphSolver solver(compute, s, flat_floor(1, 1, wide * dx), 1.5 * depth);
+  if (tile > 0) solver.hash().set_tile(tile);
   solver.add(hydrostatic_block(s, wide * dx, depth, wide * dx));
   const long long n = static_cast<long long>(solver.particles().size());
 
@@ -52,6 +53,7 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
       .add("particle_steps_per_second", n * static_cast<double>(steps) / seconds)
       .add("spacing", dx)
       .add("h_factor", s.h / s.spacing)
+      .add("tile", static_cast<long long>(solver.hash().tile_size()))
       .add("bytes_per_particle", static_cast<long long>(ParticleStore::bytes_per_particle()))
       .add("kernel_seconds_total", kernel_total)
       .add("device_idle_seconds", profiler.idle_seconds())

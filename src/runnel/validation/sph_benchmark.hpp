@@ -9,9 +9,10 @@
 namespace runnel {
 
 // `runnel bench sph`: a block of N particles settling under gravity in a closed tank, timed over
-// S steps after a warm-up, with per-kernel times from OpenCL profiling events.
+// S steps after a warm-up, with per-kernel times from OpenCL profiling events. `tile`: the
+// neighbour passes' tile (SpatialHash), 0 for the device's.
 JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps,
-                         const Parameters& params);
+                         const Parameters& params, unsigned tile = 0);
 
 // `runnel bench droplet|pipe|olsen|thermal`: `steps` steps of a registered model on an fBm
 // terrain of size × size vertices after one warm-up step; cell_steps_per_second (or
