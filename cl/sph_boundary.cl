@@ -162,7 +162,8 @@ inline LoneTile lone_tile(const __global uint* tile_first, uint tile_offset, uin
                           const __global uint* cell_start, const __global uint* cell_end, float domain_x,
                           float domain_z) {
   LoneTile t;
-  t.first = tile_first[tile_offset + get_global_id(0)];
+  // Tiles of one particle are every particle in order: the hash builds no list for them.
+  t.first = tile == 1 ? tile_offset + get_global_id(0) : tile_first[tile_offset + get_global_id(0)];
   const int3 cell = cell_of((float3)(x[t.first], y[t.first], z[t.first]), grid);
   t.last = min(t.first + tile, cell_end[linear_cell(cell, grid)]);
   t.nb = cell_neighbourhood(cell, grid, cell_start, cell_end);

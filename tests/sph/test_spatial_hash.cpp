@@ -266,6 +266,7 @@ TEST(SpatialHash, TilesCoverEachCellInRunsOfTheTileSize) {
     ASSERT_EQ(hash.small_tile_count(), small.size()) << "tile " << tile;
     ASSERT_EQ(hash.lone_tile_count(), lone.size()) << "tile " << tile;
     ASSERT_EQ(hash.tile_count(), large.size() + small.size() + lone.size()) << "tile " << tile;
+    if (tile == 1) continue;  // every particle its own lone tile: the list is not built
     std::vector<std::uint32_t> first(hash.tile_count());
     compute.queue().enqueueReadBuffer(hash.tile_first(), CL_TRUE, 0, first.size() * 4,
                                       first.data());

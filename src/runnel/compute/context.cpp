@@ -159,15 +159,16 @@ std::string embedded_source(const std::string& path) {
   throw runtime_error("no embedded OpenCL source '" + path + "'");
 }
 
-cl::Program ComputeContext::build_source(const std::string& source, const std::string& options) {
+cl::Program ComputeContext::build_source(const std::string& source, const std::string& options,
+                                         Division division) {
   cl::Program program(context_, source);
   // Fixed math options so every device computes the same way: no fast-math, denormals as the device
-  // has them, and divisions and square roots correctly rounded wherever the device offers it (a
-  // GPU's default division is within 2.5 ulp: x / x need not be 1, and the kernels would part from
-  // their C++ oracles and from the CPU's bits; measured on an H200, docs/gpu.md).
+  // has them, and divisions and square roots correctly rounded wherever the device offers it unless
+  // the program asks for the device's own (Division; measured on an H200, docs/gpu.md).
   // -cl-kernel-arg-info: so Kernel can check its argument names against the compiler's.
   // -DLANES: the items a work-item of a lane kernel takes (cl/common.cl).
   const bool exact_division =
+      division == Division::exact &&
       (device_.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
   const std::string all_options =
       std::string("-cl-std=CL1.2 -cl-kernel-arg-info ") +
@@ -198,14 +199,14 @@ cl::Program ComputeContext::build_source(const std::string& source, const std::s
 }
 
 cl::Program& ComputeContext::program(const std::vector<std::string>& files,
-                                     const std::string& options) {
-  std::string key = options;
+                                     const std::string& options, Division division) {
+  std::string key = options + (division == Division::exact ? "|exact" : "|device");
   for (auto& f : files) key += "|" + f;
   auto it = programs_.find(key);
   if (it != programs_.end()) return it->second;
   std::string source;
   for (auto& f : files) source += embedded_source(f);
-  return programs_.emplace(key, build_source(source, options)).first->second;
+  return programs_.emplace(key, build_source(source, options, division)).first->second;
 }
 
 const char* cl_error_name(int code) {

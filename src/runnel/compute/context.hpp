@@ -59,11 +59,19 @@ class ComputeContext {
   // Every kernel launch goes through here, so profiling can time each one (`runnel bench`).
   KernelProfiler& profiler() { return profiler_; }
 
+  // How a program divides and takes square roots. exact: correctly rounded wherever the device
+  // offers it, so that the kernels agree with their C++ oracles and with a CPU bit for bit (a GPU's
+  // default division is within 2.5 ulp: x / x need not be 1). device: the device's own, for a
+  // program whose results are compared within tolerances and are another device's bits anyway
+  // (the SPH passes on a GPU sum in another order). PoCL rounds correctly either way.
+  enum class Division { exact, device };
   // Builds (once, then cached) a program from embedded files, e.g. {"cl/common.cl", "cl/hash.cl"}.
   // A compile error throws with the compiler log; its lines name the file and line of the fault.
-  cl::Program& program(const std::vector<std::string>& files, const std::string& options = "");
+  cl::Program& program(const std::vector<std::string>& files, const std::string& options = "",
+                       Division division = Division::exact);
   // Builds a program from source text (used by tests to check error reporting).
-  cl::Program build_source(const std::string& source, const std::string& options = "");
+  cl::Program build_source(const std::string& source, const std::string& options = "",
+                           Division division = Division::exact);
 
  private:
   DeviceInfo info_;

@@ -55,7 +55,8 @@ class SpatialHash {
   // Each occupied cell's particles in tiles of at most tile_size(), in sorted order, those of more
   // than kSmallTile particles first, then those of more than kLoneTile, then the rest:
   // tile_first()[t] is the sorted index of tile t's first particle; the tile size and its cell's
-  // cell_end bound it.
+  // cell_end bound it. With a tile of 1 every particle is a lone tile and the list, the identity,
+  // is not built (tile_first() then holds nothing of use).
   std::uint32_t tile_size() const { return tile_; }
   // Sets the tile size (from the next build on). Tests run a device's passes as another would.
   void set_tile(std::uint32_t tile) { tile_ = tile; }
@@ -91,6 +92,8 @@ class SpatialHash {
   // The exclusive scan of the sort's histogram (`count` counts): one work-group on a CPU, many on a
   // wide device (cl/spatial_hash.cl).
   void scan_histogram(cl_uint count);
+  // The tile list of the sort's result in keys_[in], cut into the sort's blocks.
+  void build_tiles(int in, cl_uint blocks, cl_uint chunk);
   ComputeContext& compute_;
   GridSpec grid_;
   std::uint32_t dead_key_;
@@ -102,6 +105,7 @@ class SpatialHash {
   cl_uint summary_host_[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
   cl::Event summary_read_;
   bool summary_pending_ = false;
+  bool per_particle_ = false;  // the last build's tiles are single particles: no list
   std::uint32_t tiles_ = 0, small_tiles_ = 0, lone_tiles_ = 0;
   std::size_t capacity_ = 0;
   cl_uint sorted_ = 0;  // keys in keys_[sorted_in_] from the last build: their cells are filled

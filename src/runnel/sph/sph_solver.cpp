@@ -60,12 +60,16 @@ GridSpec fluid_grid(const SphSettings& s, const Heightmap& floor, double top) {
 
 }  // namespace
 
+// The device's own division: on a GPU the correctly rounded one made water_depth_gather five
+// times slower and the neighbour passes' square roots and divisions cost (docs/gpu.md), and their
+// results are checked against the C++ reference within tolerances.
 cl::Program& sph_program(ComputeContext& compute, const SphSettings& settings,
                          double terrain_cell) {
   return compute.program(kSphSources,
                          settings.build_options() + footprint_options(settings, terrain_cell) +
                              " -DSPH_CHUNK=" + std::to_string(candidate_chunk(compute)) +
-                             " -DSPH_SKIP_FAR=" + (compute.wide() ? "1" : "0"));
+                             " -DSPH_SKIP_FAR=" + (compute.wide() ? "1" : "0"),
+                         ComputeContext::Division::device);
 }
 
 SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const Heightmap& floor,
