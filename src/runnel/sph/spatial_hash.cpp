@@ -60,11 +60,10 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   tile_scatter_ = Kernel(compute, program, "tile_scatter");
   auto& ctx = compute.context();
   // The sort's chunks (and the tile compaction's): a CPU's threads each walk a few long runs, a
-  // GPU wants thousands of short ones in flight (on an H200 a key cost 10 ns of the sort's 20 steps
-  // in runs of 245 keys, 15 in runs of 977: runs of about 250 up to 4 M particles); the histogram
-  // scans run over many work-groups there, the tile scan in one as wide as the device allows.
+  // GPU wants thousands of short ones in flight; the histogram scans run over many work-groups
+  // there, the tile scan in one as wide as the device allows.
   least_chunk_ = compute.wide() ? 32 : 512;
-  most_blocks_ = compute.wide() ? 16384 : 256;
+  most_blocks_ = compute.wide() ? 4096 : 256;
   scan_group_ =
       compute.wide() ? std::min<std::size_t>({1024, scan_.max_group(), tile_scan_.max_group()}) : 1;
   hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * most_blocks_ * sizeof(cl_uint));
