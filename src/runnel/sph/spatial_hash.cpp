@@ -47,7 +47,7 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   hash_keys_ = Kernel(compute, program, "hash_keys");
   histogram_ = Kernel(compute, program, "radix_histogram");
   scan_ = Kernel(compute, program, "radix_scan");
-  slice_totals_kernel_ = Kernel(compute, program, "scan_slice_totals");
+  scan_slice_totals_ = Kernel(compute, program, "scan_slice_totals");
   scan_totals_ = Kernel(compute, program, "scan_totals");
   scan_slices_ = Kernel(compute, program, "scan_slices");
   scatter_ = Kernel(compute, program, "radix_scatter");
@@ -70,7 +70,7 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   if (compute.wide()) {
     slice_group_ = 1;
     const std::size_t most =
-        std::min<std::size_t>({256, slice_totals_kernel_.max_group(), scan_slices_.max_group()});
+        std::min<std::size_t>({256, scan_slice_totals_.max_group(), scan_slices_.max_group()});
     while (slice_group_ * 2 <= most) slice_group_ *= 2;
     slice_totals_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, scan_group_ * sizeof(cl_uint));
   }
@@ -121,9 +121,9 @@ void SpatialHash::scan_histogram(cl_uint count) {
   const cl_uint groups = static_cast<cl_uint>(slices.runs),
                 per = static_cast<cl_uint>(slices.length);
   const cl::LocalSpaceArg slice_sums = cl::Local(slice_group_ * sizeof(cl_uint));
-  slice_totals_kernel_.set("data", hist_).set("count", count).set("per", per);
-  slice_totals_kernel_.set("totals", slice_totals_).set("sums", slice_sums);
-  slice_totals_kernel_.launch_groups(groups, slice_group_, "radix_scan");
+  scan_slice_totals_.set("data", hist_).set("count", count).set("per", per);
+  scan_slice_totals_.set("totals", slice_totals_).set("sums", slice_sums);
+  scan_slice_totals_.launch_groups(groups, slice_group_, "radix_scan");
   scan_totals_.set("totals", slice_totals_).set("groups", groups);
   scan_totals_.set("sums", cl::Local((scan_group_ + 1) * sizeof(cl_uint)));
   scan_totals_.launch_groups(1, scan_group_, "radix_scan");
