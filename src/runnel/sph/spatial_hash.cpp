@@ -13,7 +13,10 @@ namespace {
 constexpr int kMaxCellsPerAxis =
     1024;  // 2^30 cells at most: a linear key (and the dead key) fits 31 bits
 
-const std::vector<std::string> kHashSources = {"cl/common.cl", "cl/grid.cl", "cl/spatial_hash.cl"};
+const std::vector<std::string> kHashSources = {"cl/common.cl", "cl/grid.cl", "cl/spatial_hash.cl",
+                                               "cl/radix_tiles.cl"};
+// cl/radix_tiles.cl's work-group and tile.
+constexpr std::size_t kRadixGroup = 256, kRadixTile = 1024;
 
 }  // namespace
 
@@ -51,6 +54,8 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   scan_totals_ = Kernel(compute, program, "scan_totals");
   scan_slices_ = Kernel(compute, program, "scan_slices");
   scatter_ = Kernel(compute, program, "radix_scatter");
+  sort_tiles_ = Kernel(compute, program, "radix_sort_tiles");
+  scatter_tiles_ = Kernel(compute, program, "radix_scatter_tiles");
   reorder_ = Kernel(compute, program, "reorder_words");
   cell_bounds_ = Kernel(compute, program, "cell_bounds");
   clear_cells_ = Kernel(compute, program, "clear_cells");
@@ -67,6 +72,8 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   scan_group_ =
       compute.wide() ? std::min<std::size_t>({1024, scan_.max_group(), tile_scan_.max_group()}) : 1;
   hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * most_blocks_ * sizeof(cl_uint));
+  sort_in_tiles_ = compute.wide() && sort_tiles_.max_group() >= kRadixGroup &&
+                   scatter_tiles_.max_group() >= kRadixGroup;
   if (compute.wide()) {
     slice_group_ = 1;
     const std::size_t most =
@@ -109,9 +116,9 @@ void SpatialHash::launch_tiled(Kernel& tiled, Kernel& direct) const {
   if (lone_tiles_ > 0) direct.launch(round_up_work(lone_tiles_));
 }
 
-void SpatialHash::scan_histogram(cl_uint count) {
+void SpatialHash::scan_histogram(const cl::Buffer& hist, cl_uint count) {
   if (slice_group_ == 0) {
-    scan_.set("hist", hist_).set("count", count);
+    scan_.set("hist", hist).set("count", count);
     scan_.set("sums", cl::Local((scan_group_ + 1) * sizeof(cl_uint))).launch_groups(1, scan_group_);
     return;
   }
@@ -121,13 +128,13 @@ void SpatialHash::scan_histogram(cl_uint count) {
   const cl_uint groups = static_cast<cl_uint>(slices.runs),
                 per = static_cast<cl_uint>(slices.length);
   const cl::LocalSpaceArg slice_sums = cl::Local(slice_group_ * sizeof(cl_uint));
-  scan_slice_totals_.set("data", hist_).set("count", count).set("per", per);
+  scan_slice_totals_.set("data", hist).set("count", count).set("per", per);
   scan_slice_totals_.set("totals", slice_totals_).set("sums", slice_sums);
   scan_slice_totals_.launch_groups(groups, slice_group_, "radix_scan");
   scan_totals_.set("totals", slice_totals_).set("groups", groups);
   scan_totals_.set("sums", cl::Local((scan_group_ + 1) * sizeof(cl_uint)));
   scan_totals_.launch_groups(1, scan_group_, "radix_scan");
-  scan_slices_.set("data", hist_).set("count", count).set("per", per);
+  scan_slices_.set("data", hist).set("count", count).set("per", per);
   scan_slices_.set("totals", slice_totals_).set("sums", slice_sums);
   scan_slices_.launch_groups(groups, slice_group_, "radix_scan");
 }
@@ -169,18 +176,7 @@ void SpatialHash::begin_build(ParticleStore& store) {
   // many histograms. The permutation does not depend on it (a stable sort has one result).
   const SerialRuns runs = serial_runs(n, least_chunk_, most_blocks_);
   const cl_uint blocks = static_cast<cl_uint>(runs.runs), chunk = static_cast<cl_uint>(runs.length);
-  int in = 0;
-  for (int pass = 0; pass < passes_; ++pass) {
-    const cl_uint shift = 8 * pass;
-    histogram_.set("key", keys_[in]).set("n", n).set("shift", shift).set("chunk", chunk);
-    histogram_.set("hist", hist_).launch(blocks);
-    scan_histogram(static_cast<cl_uint>(256 * blocks));
-    scatter_.set("key_in", keys_[in]).set("value_in", values_[in]);
-    scatter_.set("key_out", keys_[1 - in]).set("value_out", values_[1 - in]);
-    scatter_.set("hist", hist_).set("n", n).set("shift", shift).set("chunk", chunk);
-    scatter_.launch(blocks);
-    in = 1 - in;
-  }
+  const int in = sort_in_tiles_ ? sort_in_tiles(n, store) : sort_in_runs(n, blocks, chunk);
 
   // 3. Gather every persistent field into the sorted order (as 4-byte words: bit-exact for floats
   // too), six fields a launch through the store's free buffers. A short last group repeats its last
@@ -218,6 +214,45 @@ void SpatialHash::begin_build(ParticleStore& store) {
   q.enqueueReadBuffer(summary_, CL_FALSE, 0, sizeof(summary_host_), summary_host_, nullptr,
                       &summary_read_);
   summary_pending_ = true;
+}
+
+int SpatialHash::sort_in_runs(cl_uint n, cl_uint blocks, cl_uint chunk) {
+  int in = 0;
+  for (int pass = 0; pass < passes_; ++pass) {
+    const cl_uint shift = 8 * pass;
+    histogram_.set("key", keys_[in]).set("n", n).set("shift", shift).set("chunk", chunk);
+    histogram_.set("hist", hist_).launch(blocks);
+    scan_histogram(hist_, static_cast<cl_uint>(256 * blocks));
+    scatter_.set("key_in", keys_[in]).set("value_in", values_[in]);
+    scatter_.set("key_out", keys_[1 - in]).set("value_out", values_[1 - in]);
+    scatter_.set("hist", hist_).set("n", n).set("shift", shift).set("chunk", chunk);
+    scatter_.launch(blocks);
+    in = 1 - in;
+  }
+  return in;
+}
+
+// Each pass sorts the tiles of keys_[0] into keys_[1] and scatters them back: the result stays in
+// keys_[0]. Timed under the serial sort's kernel names, which they stand for. The tiles' counts
+// (one per 4 keys) go in a spare buffer of the store (free until the gather), so the sort needs no
+// memory of its own that grows with the particles; a store of a few hundred particles, too small
+// for them, lends hist_ instead.
+int SpatialHash::sort_in_tiles(cl_uint n, ParticleStore& store) {
+  const cl_uint tiles = static_cast<cl_uint>((n + kRadixTile - 1) / kRadixTile);
+  const cl::Buffer& hist = store.capacity() >= 256u * tiles ? store.temporary(0) : hist_;
+  for (int pass = 0; pass < passes_; ++pass) {
+    const cl_uint shift = 8 * pass;
+    for (Kernel* k : {&sort_tiles_, &scatter_tiles_})
+      k->set("hist", hist).set("n", n).set("shift", shift);
+    sort_tiles_.set("key_in", keys_[0]).set("value_in", values_[0]);
+    sort_tiles_.set("key_out", keys_[1]).set("value_out", values_[1]);
+    sort_tiles_.launch_groups(tiles, kRadixGroup, "radix_histogram");
+    scan_histogram(hist, static_cast<cl_uint>(256 * tiles));
+    scatter_tiles_.set("key_in", keys_[1]).set("value_in", values_[1]);
+    scatter_tiles_.set("key_out", keys_[0]).set("value_out", values_[0]);
+    scatter_tiles_.launch_groups(tiles, kRadixGroup, "radix_scatter");
+  }
+  return 0;
 }
 
 void SpatialHash::build_tiles(int in, cl_uint blocks, cl_uint chunk) {

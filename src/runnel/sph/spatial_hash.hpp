@@ -89,9 +89,14 @@ class SpatialHash {
 
  private:
   void ensure_capacity(std::size_t n);
-  // The exclusive scan of the sort's histogram (`count` counts): one work-group on a CPU, many on a
+  // The radix sort's passes over keys_[0] and values_[0]; each returns which of the two buffers
+  // holds the result. In runs: `blocks` work-items each walking `chunk` keys (cl/spatial_hash.cl;
+  // a CPU's). In tiles: work-groups sorting tiles in local memory (cl/radix_tiles.cl; a GPU's).
+  int sort_in_runs(cl_uint n, cl_uint blocks, cl_uint chunk);
+  int sort_in_tiles(cl_uint n, ParticleStore& store);
+  // The exclusive scan of `count` counts of a sort's histogram: one work-group on a CPU, many on a
   // wide device (cl/spatial_hash.cl).
-  void scan_histogram(cl_uint count);
+  void scan_histogram(const cl::Buffer& hist, cl_uint count);
   // The tile list of the sort's result in keys_[in], cut into the sort's blocks.
   void build_tiles(int in, cl_uint blocks, cl_uint chunk);
   ComputeContext& compute_;
@@ -102,6 +107,7 @@ class SpatialHash {
   std::uint32_t lone_ = kLoneTile;
   std::size_t least_chunk_, most_blocks_, scan_group_;  // the sort's cut for this device
   std::size_t slice_group_ = 0;  // a wide device's scan: work-items a slice, a power of two
+  bool sort_in_tiles_ = false;   // a wide device's sort (cl/radix_tiles.cl)
   cl_uint summary_host_[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
   cl::Event summary_read_;
   bool summary_pending_ = false;
@@ -114,7 +120,8 @@ class SpatialHash {
   cl::Buffer keys_[2], values_[2], hist_, slice_totals_, summary_, cell_start_, cell_end_,
       tile_first_;
   Kernel hash_keys_, histogram_, scan_, scan_slice_totals_, scan_totals_, scan_slices_, scatter_,
-      reorder_, cell_bounds_, clear_cells_, neighbour_list_, tile_count_, tile_scan_, tile_scatter_;
+      sort_tiles_, scatter_tiles_, reorder_, cell_bounds_, clear_cells_, neighbour_list_,
+      tile_count_, tile_scan_, tile_scatter_;
 };
 
 }  // namespace runnel
