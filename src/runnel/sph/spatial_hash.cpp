@@ -171,9 +171,10 @@ void SpatialHash::begin_build(ParticleStore& store) {
   hash_keys_.set("key", keys_[0]).set("index", values_[0]).set("dead_key", dead_key_);
   hash_keys_.launch(round_up_work(n));
 
-  // 2. Stable LSD radix sort of (key, index), 8 bits per pass. The blocks' count follows n (at
-  // least least_chunk_ keys each, at most most_blocks_): a handful of particles must not pay for
-  // many histograms. The permutation does not depend on it (a stable sort has one result).
+  // 2. Stable LSD radix sort of (key, index), 8 bits per pass: on a CPU in serial runs, on a GPU in
+  // tiles sorted by work-groups. The runs' count follows n (at least least_chunk_ keys each, at
+  // most most_blocks_; the tile list below is cut the same way): a handful of particles must not
+  // pay for many histograms. The permutation depends on neither (a stable sort has one result).
   const SerialRuns runs = serial_runs(n, least_chunk_, most_blocks_);
   const cl_uint blocks = static_cast<cl_uint>(runs.runs), chunk = static_cast<cl_uint>(runs.length);
   const int in = sort_in_tiles_ ? sort_in_tiles(n, store) : sort_in_runs(n, blocks, chunk);
@@ -233,10 +234,9 @@ int SpatialHash::sort_in_runs(cl_uint n, cl_uint blocks, cl_uint chunk) {
 }
 
 // Each pass sorts the tiles of keys_[0] into keys_[1] and scatters them back: the result stays in
-// keys_[0]. Timed under the serial sort's kernel names, which they stand for. The tiles' counts
-// (one per 4 keys) go in a spare buffer of the store (free until the gather), so the sort needs no
-// memory of its own that grows with the particles; a store of a few hundred particles, too small
-// for them, lends hist_ instead.
+// keys_[0]. The tiles' counts (one per 4 keys) go in a spare buffer of the store (free until the
+// gather), so the sort needs no memory of its own that grows with the particles; a store of a few
+// hundred particles, too small for them, lends hist_ instead.
 int SpatialHash::sort_in_tiles(cl_uint n, ParticleStore& store) {
   const cl_uint tiles = static_cast<cl_uint>((n + kRadixTile - 1) / kRadixTile);
   const cl::Buffer& hist = store.capacity() >= 256u * tiles ? store.temporary(0) : hist_;
@@ -246,11 +246,11 @@ int SpatialHash::sort_in_tiles(cl_uint n, ParticleStore& store) {
       k->set("hist", hist).set("n", n).set("shift", shift);
     sort_tiles_.set("key_in", keys_[0]).set("value_in", values_[0]);
     sort_tiles_.set("key_out", keys_[1]).set("value_out", values_[1]);
-    sort_tiles_.launch_groups(tiles, kRadixGroup, "radix_histogram");
+    sort_tiles_.launch_groups(tiles, kRadixGroup);
     scan_histogram(hist, static_cast<cl_uint>(256 * tiles));
     scatter_tiles_.set("key_in", keys_[1]).set("value_in", values_[1]);
     scatter_tiles_.set("key_out", keys_[0]).set("value_out", values_[0]);
-    scatter_tiles_.launch_groups(tiles, kRadixGroup, "radix_scatter");
+    scatter_tiles_.launch_groups(tiles, kRadixGroup);
   }
   return 0;
 }
