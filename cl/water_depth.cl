@@ -108,18 +108,45 @@ __kernel void water_depth_scatter_runs(const __global float* x, const __global f
 
 // The water on coarser grids, for films (docs/erosion.md, "Films"): level l has vertices 2^l cells
 // apart, vertex (I, J) holding the sum of the counts on the fine vertices [2^l I, 2^l (I + 1)) ×
-// [2^l J, 2^l (J + 1)), built from the level below. Integer sums, so the levels are as
-// independent of the order of the work-items as the fine field. `levels` holds every level, the
-// fine field first, each after the one below.
-__kernel void water_depth_coarsen(__global long* levels, const uint fine_offset, const int fnx, const int fny,
-                                  const uint coarse_offset, const int cnx, const int cny) {
-  const int k = get_global_id(0);
-  if (k >= cnx * cny) return;
-  const int I = k % cnx, J = k / cnx;
-  long sum = 0;
-  for (int j = 2 * J; j < min(2 * J + 2, fny); ++j)
-    for (int i = 2 * I; i < min(2 * I + 2, fnx); ++i) sum += levels[fine_offset + j * fnx + i];
-  levels[coarse_offset + J * cnx + I] = sum;
+// [2^l J, 2^l (J + 1)). Integer sums, so the levels are as independent of the order of the work-items
+// as the fine field. `water` holds every level, the fine field (nx × ny) first, each after the one
+// below. One launch builds them all: work-group g takes the block of fine vertices under the coarsest
+// level's vertex g and sums it level by level in local memory (a launch per level cost more than
+// the sums on a CPU's two cores: 6 of a step's 37 launches). FILM_LEVELS_MAX (host -D): the most
+// levels, so a block is at most FILM_BLOCK_MAX fine vertices a side.
+#define FILM_BLOCK_MAX (1 << FILM_LEVELS_MAX)
+__kernel void water_depth_coarsen(__global long* water, const int nx, const int ny, const int levels) {
+  __local long odd[(FILM_BLOCK_MAX / 2) * (FILM_BLOCK_MAX / 2)], even[(FILM_BLOCK_MAX / 4) * (FILM_BLOCK_MAX / 4)];
+  int dims_x[FILM_LEVELS_MAX + 1], dims_y[FILM_LEVELS_MAX + 1];
+  uint offset[FILM_LEVELS_MAX + 1];
+  dims_x[0] = nx, dims_y[0] = ny, offset[0] = 0;
+  for (int l = 1; l <= levels; ++l) {
+    dims_x[l] = (dims_x[l - 1] + 1) / 2, dims_y[l] = (dims_y[l - 1] + 1) / 2;
+    offset[l] = offset[l - 1] + (uint)(dims_x[l - 1] * dims_y[l - 1]);
+  }
+  const int item = get_local_id(0), items = get_local_size(0);
+  const int block_x = get_group_id(0) % dims_x[levels], block_y = get_group_id(0) / dims_x[levels];
+  for (int l = 1; l <= levels; ++l) {
+    const int side = 1 << (levels - l);  // this level's vertices a side of the block
+    __local long* out = l % 2 ? odd : even;
+    const __local long* in = l % 2 ? even : odd;  // level l − 1's, 2·side a side (from level 2 on)
+    for (int k = item; k < side * side; k += items) {
+      const int i = k % side, j = k / side, I = block_x * side + i, J = block_y * side + j;
+      long sum = 0;  // a vertex past the level's edge holds nothing for the level above
+      if (I < dims_x[l] && J < dims_y[l]) {
+        if (l == 1) {
+          for (int fj = 2 * J; fj < min(2 * J + 2, ny); ++fj)
+            for (int fi = 2 * I; fi < min(2 * I + 2, nx); ++fi) sum += water[fj * nx + fi];
+        } else {
+          for (int dj = 0; dj < 2; ++dj)
+            for (int di = 0; di < 2; ++di) sum += in[(2 * j + dj) * (2 * side) + 2 * i + di];
+        }
+        water[offset[l] + J * dims_x[l] + I] = sum;
+      }
+      out[k] = sum;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
 }
 
 // water_depth_gather takes LANES particles a work-item (common.cl: its loops of varying length kept

@@ -27,6 +27,8 @@ constexpr cl_uint kStatBlocksCpu = 256, kStatBlocksGpu = 16384, kStatLeastRunGpu
 // particle to a tile, whose footprints seldom overlap, a deep pool 8 to 27.
 constexpr unsigned kWaterRun = 16;
 constexpr unsigned kDeepWaterPerTile = 4;
+// Work-items of a water_depth_coarsen group (a block's first level has up to 32 × 32 vertices).
+constexpr std::size_t kCoarsenGroup = 64;
 
 // The footprint and the particle volume for the water depth pass (cl/water_depth.cl).
 std::string footprint_options(const SphSettings& s, double terrain_cell) {
@@ -38,7 +40,8 @@ std::string footprint_options(const SphSettings& s, double terrain_cell) {
          float_define("WATER_PARTICLE_VOLUME", s.spacing * s.spacing * s.spacing) +
          " -DWATER_RUN=" + std::to_string(kWaterRun) + "u" +
 
-         float_define("FILM_NEIGHBOURS", kFilmNeighbours);
+         float_define("FILM_NEIGHBOURS", kFilmNeighbours) +
+         " -DFILM_LEVELS_MAX=" + std::to_string(kFilmLevelsMax);
 }
 
 // Candidates a tiled neighbour pass holds in local memory at once: as many as half the device's
@@ -159,18 +162,14 @@ void SphSolver::measure_water_depth() {
   depth_gather_.launch(lane_work(n));
 }
 
-// The water counted on coarser grids, each from the one below, for the films' depth
-// (water_depth_reference.hpp).
+// The water counted on coarser grids for the films' depth (water_depth_reference.hpp), in one
+// launch: a work-group per vertex of the coarsest level (cl/water_depth.cl).
 void SphSolver::coarsen_water(int levels) {
-  cl_uint offset = 0;
-  for (int l = 1, nx = terrain_.nx(), ny = terrain_.ny(); l <= levels; ++l) {
-    const int coarse_nx = (nx + 1) / 2, coarse_ny = (ny + 1) / 2;
-    depth_coarsen_.set("levels", water_).set("fine_offset", offset).set("fnx", nx).set("fny", ny);
-    offset += static_cast<cl_uint>(nx * ny);
-    depth_coarsen_.set("coarse_offset", offset).set("cnx", coarse_nx).set("cny", coarse_ny);
-    depth_coarsen_.launch(round_up_work(static_cast<std::size_t>(coarse_nx) * coarse_ny));
-    nx = coarse_nx, ny = coarse_ny;
-  }
+  if (levels == 0) return;
+  std::size_t blocks_x = terrain_.nx(), blocks_y = terrain_.ny();
+  for (int l = 0; l < levels; ++l) blocks_x = (blocks_x + 1) / 2, blocks_y = (blocks_y + 1) / 2;
+  depth_coarsen_.set("water", water_).set("nx", terrain_.nx()).set("ny", terrain_.ny());
+  depth_coarsen_.set("levels", levels).launch_groups(blocks_x * blocks_y, kCoarsenGroup);
 }
 
 void SphSolver::complete_step() {
