@@ -125,11 +125,16 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
   bool touching = false;
   const SurfacePoint s0 =
       offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, start.x, start.z);
-  const SurfacePoint s1 =
-      offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, p.x, p.z);
   // On the surface at the start, and moving into it (along the interpolated normal, or ending the
-  // step below the surface: the faces under a particle tilt away from that normal).
-  if (start.y - s0.height <= SPH_SURFACE_EPS && (dot(v, s0.normal) < 0.0f || p.y < s1.height)) {
+  // step below the surface: the faces under a particle tilt away from that normal; the surface
+  // under the end is sampled only when the normal leaves the question open).
+  bool moving_in = false;
+  if (start.y - s0.height <= SPH_SURFACE_EPS) {
+    moving_in = dot(v, s0.normal) < 0.0f ||
+                p.y < offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, p.x, p.z)
+                          .height;
+  }
+  if (moving_in) {
     touching = true;
     p = start + rebound(&v, a, s0.normal, 0.0f, dt);
   } else {
