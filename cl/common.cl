@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Shared helpers for every runnel kernel: counter-based random numbers (the same functions as
-// src/runnel/core/rng.hpp, bit for bit), grid indexing, a work-group scan, the lane types and
+// src/runnel/core/rng.hpp, bit for bit), grid indexing, work-group scans, the lane types and
 // the reassociation pragma.
 
 // Lets the vectoriser reassociate a pass's sums (8 or 16 candidates at a time). The order is still
@@ -42,6 +42,23 @@ inline uint group_exclusive_scan(const __global uint* in, __global uint* out, co
     sum += v;
   }
   return sums[items];
+}
+
+// Inclusive prefix sum of every work-item's `value` across the work-group (Hillis–Steele in
+// `sums`, a uint per work-item); returns the work-item's own, and leaves the group's total in
+// sums[size − 1] for every work-item to read. A caller that calls again must let every work-item
+// read that total first (a barrier).
+inline uint group_inclusive_sum(uint value, __local uint* sums) {
+  const uint item = get_local_id(0), items = get_local_size(0);
+  sums[item] = value;
+  for (uint step = 1; step < items; step *= 2) {
+    barrier(CLK_LOCAL_MEM_FENCE);
+    const uint before = item >= step ? sums[item - step] : 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    sums[item] += before;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return sums[item];
 }
 
 // splitmix64 finaliser: a bijective 64-bit mix.

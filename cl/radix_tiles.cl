@@ -17,21 +17,6 @@
 
 inline uint radix_digit(uint key, uint shift) { return (key >> shift) & (RADIX - 1); }
 
-// Inclusive prefix sum of every work-item's `value` across the group (Hillis–Steele in `sums`);
-// returns the work-item's own. The group's total is then in sums[RADIX_GROUP − 1].
-inline uint group_inclusive_sum(uint value, __local uint* sums) {
-  const uint item = get_local_id(0);
-  sums[item] = value;
-  for (uint step = 1; step < RADIX_GROUP; step *= 2) {
-    barrier(CLK_LOCAL_MEM_FENCE);
-    const uint before = item >= step ? sums[item - step] : 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    sums[item] += before;
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
-  return sums[item];
-}
-
 // Where each digit's run starts in a tile sorted by it (RADIX_ABSENT for a digit it lacks) and,
 // where `end` is not null, where it ends; from the keys in local memory, `valid` keys, the rest
 // padding.
@@ -68,7 +53,7 @@ __kernel void radix_sort_tiles(const __global uint* key_in, const __global uint*
       v[r] = values[item * RADIX_PER_ITEM + r];
       zeros += ((k[r] >> bit) & 1u) == 0u;
     }
-    const uint zeros_through = group_inclusive_sum(zeros, sums);
+    const uint zeros_through = group_inclusive_sum(zeros, sums);  // common.cl
     const uint all_zeros = sums[RADIX_GROUP - 1];
     uint zero_at = zeros_through - zeros;
     uint one_at = all_zeros + item * RADIX_PER_ITEM - zero_at;

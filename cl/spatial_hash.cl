@@ -45,21 +45,17 @@ __kernel void radix_scan(__global uint* hist, const uint count, __local uint* su
 // The same scan on a wide device, over many work-groups: a GPU's thousands of sort blocks make a
 // histogram of a million counts, which one work-group takes milliseconds to walk. Group g owns the
 // slice [g·per, (g + 1)·per): scan_slice_totals sums each slice, scan_totals scans the sums (one
-// work-group), scan_slices scans each slice from its sum's prefix. Work-groups of a power of two;
-// every load is coalesced (consecutive work-items, consecutive counts). Integer sums: the same
-// prefixes as the serial scan.
+// work-group), scan_slices scans each slice from its sum's prefix, a round of the group's size at
+// a time. Every load is coalesced (consecutive work-items, consecutive counts). Integer sums: the
+// same prefixes as the serial scan.
 __kernel void scan_slice_totals(const __global uint* data, const uint count, const uint per, __global uint* totals,
                                 __local uint* sums) {
   const uint item = get_local_id(0), items = get_local_size(0);
   const uint begin = get_group_id(0) * per, end = min(begin + per, count);
   uint total = 0;
   for (uint k = begin + item; k < end; k += items) total += data[k];
-  sums[item] = total;
-  for (uint reach = items / 2; reach > 0; reach /= 2) {
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (item < reach) sums[item] += sums[item + reach];
-  }
-  if (item == 0) totals[get_group_id(0)] = sums[0];
+  group_inclusive_sum(total, sums);
+  if (item == 0) totals[get_group_id(0)] = sums[items - 1];
 }
 
 __kernel void scan_totals(__global uint* totals, const uint groups, __local uint* sums) {
@@ -74,15 +70,8 @@ __kernel void scan_slices(__global uint* data, const uint count, const uint per,
   for (uint base = begin; base < end; base += items) {
     const uint k = base + item;
     const uint own = k < end ? data[k] : 0;
-    sums[item] = own;
-    for (uint step = 1; step < items; step *= 2) {  // inclusive scan of the round (Hillis–Steele)
-      barrier(CLK_LOCAL_MEM_FENCE);
-      const uint before = item >= step ? sums[item - step] : 0;
-      barrier(CLK_LOCAL_MEM_FENCE);
-      sums[item] += before;
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (k < end) data[k] = carry + sums[item] - own;
+    const uint through = group_inclusive_sum(own, sums);
+    if (k < end) data[k] = carry + through - own;
     carry += sums[items - 1];
     barrier(CLK_LOCAL_MEM_FENCE);  // every work-item has read the round's total
   }

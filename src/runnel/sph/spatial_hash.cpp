@@ -75,10 +75,8 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   sort_in_tiles_ = compute.wide() && sort_tiles_.max_group() >= kRadixGroup &&
                    scatter_tiles_.max_group() >= kRadixGroup;
   if (compute.wide()) {
-    slice_group_ = 1;
-    const std::size_t most =
+    slice_group_ =
         std::min<std::size_t>({256, scan_slice_totals_.max_group(), scan_slices_.max_group()});
-    while (slice_group_ * 2 <= most) slice_group_ *= 2;
     slice_totals_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, scan_group_ * sizeof(cl_uint));
   }
   summary_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * sizeof(cl_uint));

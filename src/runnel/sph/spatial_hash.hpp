@@ -106,7 +106,7 @@ class SpatialHash {
   std::uint32_t tile_;
   std::uint32_t lone_ = kLoneTile;
   std::size_t least_chunk_, most_blocks_, scan_group_;  // the sort's cut for this device
-  std::size_t slice_group_ = 0;  // a wide device's scan: work-items a slice, a power of two
+  std::size_t slice_group_ = 0;  // a wide device's scan: work-items a slice (0: one group scans)
   bool sort_in_tiles_ = false;   // a wide device's sort (cl/radix_tiles.cl)
   cl_uint summary_host_[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
   cl::Event summary_read_;

@@ -166,10 +166,10 @@ void SphSolver::measure_water_depth() {
 // launch: a work-group per vertex of the coarsest level (cl/water_depth.cl).
 void SphSolver::coarsen_water(int levels) {
   if (levels == 0) return;
-  std::size_t blocks_x = terrain_.nx(), blocks_y = terrain_.ny();
-  for (int l = 0; l < levels; ++l) blocks_x = (blocks_x + 1) / 2, blocks_y = (blocks_y + 1) / 2;
+  const std::size_t blocks = static_cast<std::size_t>(film_level_side(terrain_.nx(), levels)) *
+                             film_level_side(terrain_.ny(), levels);
   depth_coarsen_.set("water", water_).set("nx", terrain_.nx()).set("ny", terrain_.ny());
-  depth_coarsen_.set("levels", levels).launch_groups(blocks_x * blocks_y, kCoarsenGroup);
+  depth_coarsen_.set("levels", levels).launch_groups(blocks, kCoarsenGroup);
 }
 
 void SphSolver::complete_step() {

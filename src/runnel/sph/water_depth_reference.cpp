@@ -17,12 +17,15 @@ int film_levels(int nx, int ny) {
   return levels;
 }
 
+int film_level_side(int side, int level) {
+  for (int l = 0; l < level; ++l) side = (side + 1) / 2;
+  return side;
+}
+
 std::size_t film_level_vertices(int nx, int ny) {
-  std::size_t vertices = static_cast<std::size_t>(nx) * ny;
-  for (int l = film_levels(nx, ny); l > 0; --l) {
-    nx = (nx + 1) / 2, ny = (ny + 1) / 2;
-    vertices += static_cast<std::size_t>(nx) * ny;
-  }
+  std::size_t vertices = 0;
+  for (int l = 0; l <= film_levels(nx, ny); ++l)
+    vertices += static_cast<std::size_t>(film_level_side(nx, l)) * film_level_side(ny, l);
   return vertices;
 }
 

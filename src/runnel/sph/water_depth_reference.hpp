@@ -19,6 +19,8 @@ inline constexpr double kFilmNeighbours = 8.0;
 // coarsest keeps at least two vertices along each side.
 inline constexpr int kFilmLevelsMax = 6;
 int film_levels(int nx, int ny);
+// Vertices along a side of `side` vertices on level `level` (each level halves it, rounding up).
+int film_level_side(int side, int level);
 // The vertices of the fine grid and all its coarser levels together.
 std::size_t film_level_vertices(int nx, int ny);
 
