@@ -52,6 +52,28 @@ TEST(CliCheckpoint, RollingCheckpointsSeriesAndExactResume) {
   EXPECT_NE(metrics.find("\"resumed_from_step\": 100"), std::string::npos);
 }
 
+TEST(CliCheckpoint, AResumedRunExchangesOnTheUninterruptedRunsClock) {
+  // With an erosion exchange interval the bed exchanges only at the steps that cross a multiple of
+  // it: the schedule follows from the clock alone, so a resume from a step between two exchanges
+  // (steps of about 1.9 ms here, two an interval) ends where the uninterrupted run ended.
+  ScratchDir dir;
+  std::vector<std::string> run = kSmallRun;
+  run.insert(run.end(), {"--set", "erosion.exchange_interval=0.004"});
+  auto r = run_cli(with({"run", "--steps", "150", "--out", dir.path("full")}, run));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli(
+      with({"run", "--steps", "75", "--out", dir.path("half"), "--checkpoint-every", "75"}, run));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli({"resume", dir.path("half/checkpoints/step_00000075.h5"), "--steps", "75", "--out",
+               dir.path("resumed"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::read_text(dir.path("full/final.npy")),
+            test::read_text(dir.path("resumed/final.npy")));
+  EXPECT_NE(test::read_text(dir.path("full/final.npy")),
+            test::read_text(dir.path("half/final.npy")))
+      << "the second half changed the terrain";
+}
+
 TEST(CliCheckpoint, InfoAndExportEveryFormat) {
   ScratchDir dir;
   ASSERT_EQ(run_cli(with({"run", "--steps", "50", "--out", dir.path("run")}, kSmallRun)).exit_code,

@@ -210,6 +210,11 @@ TEST(HostileInputs, ScenarioContradictionsAreRefusedWithTheirKeys) {
                  "density_min = density_max");
   expect_refused(with({"terrain.size=33", "rain.spawn_height=1e6"}), {"rain.spawn_height"},
                  "spawn height 1e6");
+  expect_refused(
+      with({"terrain.size=33", "erosion.model=\"acidity\"", "erosion.exchange_interval=0.01"}),
+      {"erosion.exchange_interval", "stream-power model only"},
+      "an exchange interval for the per-contact acidity model");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("o")));
   // 10^8 particles (the key's largest value) need more than 1.5 · 10^8 · 128 bytes (with the
   // store's growth margin): beyond a CPU's share or most GPUs, refused with the figures. A device
   // with more memory (an H200: 150 GB) rightly runs them.

@@ -7,7 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 
+#include "runnel/core/clock.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/sph_simulation.hpp"
 #include "runnel/sph/footprint.hpp"
@@ -126,6 +129,102 @@ TEST(Erosion, OnHillsErosionFollowsTheWaterAndLeavesTheSurfaceSmooth) {
   // 4.3-fold on the default scenario).
   EXPECT_LT(metrics::short_wavelength_power_ratio(before, after), 1.25) << "carved, not roughened";
   EXPECT_EQ(sim.mass_balance().residual_quanta, 0);
+}
+
+TEST(Erosion, TheClockCreditsAnIntervalOnceForEachMultipleItCrosses) {
+  // Steps of uneven length, as the CFL condition chooses them: every step credits itself with no
+  // interval; with one, the credits are whole intervals at the steps that cross a multiple of it,
+  // and they add up to the clock.
+  std::uint64_t state = 12345;
+  auto next_dt = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return 0.0005 + 0.003 * static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (double interval : {0.0, 0.01, 0.0023}) {
+    double time = 0, credited = 0;
+    int crediting_steps = 0;
+    while (time < 2.0) {
+      const double dt = next_dt();
+      const double credit = interval_credit(interval, time, dt);
+      if (interval == 0) {
+        EXPECT_EQ(credit, dt);
+      } else {
+        const double multiples = credit / interval;
+        EXPECT_NEAR(multiples, std::round(multiples), 1e-9) << "whole intervals only";
+      }
+      credited += credit;
+      crediting_steps += credit > 0;
+      time += dt;
+    }
+    const double expected = interval == 0 ? time : interval * std::floor(time / interval);
+    EXPECT_NEAR(credited, expected, 1e-9) << "interval " << interval;
+    if (interval >= 0.003) {  // longer than every step: one crediting step per multiple
+      EXPECT_EQ(crediting_steps, static_cast<int>(std::floor(time / interval)));
+    }
+  }
+}
+
+TEST(Erosion, AnExchangeIntervalErodesAsEveryStepDoes) {
+  // A storm on the 65² hills of the convergence cases, the bed exchanging with the water every
+  // step and then every 10 ms (about four steps; docs/erosion.md, "Exchange interval"): the eroded
+  // volume and its map move less than another seed moves them, and the books still close.
+  const Heightmap hills =
+      generate_terrain("fbm", 65, 65, 2.0, 7, {{"relief", 0.12}, {"hurst", 1.0}, {"octaves", 6}});
+  struct Outcome {
+    double eroded;
+    Heightmap terrain;
+    long long exchanges;
+    long long residual;
+  };
+  auto run = [&](double interval, std::int64_t seed) {
+    Parameters p;
+    p.set("rain.intensity", 8000.0);
+    p.set("rain.lifespan", 600.0);
+    p.set("erosion.morphological_factor", 100.0);
+    p.set("erosion.exchange_interval", interval);
+    p.set("run.seed", seed);
+    Simulation sim(compute(), p, hills);
+    KernelProfiler& profiler = compute().profiler();  // counts the exchange's launches
+    profiler.reset();
+    profiler.enable(true);
+    while (sim.time() < 20.0) sim.step();
+    profiler.collect();
+    const auto it = profiler.calls().find("erode_exchange");
+    const long long exchanges = it == profiler.calls().end() ? 0 : it->second;
+    profiler.enable(false);
+    profiler.reset();
+    return Outcome{sim.mass_balance().eroded, sim.terrain(), exchanges,
+                   sim.mass_balance().residual_quanta};
+  };
+  const Outcome every = run(0.0, 1), interval = run(0.01, 1), reseeded = run(0.0, 2);
+  ASSERT_GT(every.eroded, 10.0) << "m³: the storm must erode for the comparison to mean something";
+  EXPECT_NEAR(static_cast<double>(interval.exchanges), 20.0 / 0.01, 2.0);
+  EXPECT_GT(every.exchanges, 2 * interval.exchanges) << "steps of about 3.3 ms, three an interval";
+  EXPECT_EQ(interval.residual, 0);
+  const double seed_change = std::abs(reseeded.eroded / every.eroded - 1.0);
+  const double interval_change = std::abs(interval.eroded / every.eroded - 1.0);
+  EXPECT_LT(interval_change, std::max(seed_change, 0.01))
+      << every.eroded << " m³ every step, " << interval.eroded << " m³ every 10 ms, "
+      << reseeded.eroded << " m³ with another seed";
+  const Heightmap initial = hills;
+  auto dh_correlation = [&](const Heightmap& a, const Heightmap& b) {
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    const double n = static_cast<double>(initial.size());
+    for (std::size_t k = 0; k < initial.size(); ++k) {
+      const double x = a.h[k] - initial.h[k], y = b.h[k] - initial.h[k];
+      sa += x, sb += y, saa += x * x, sbb += y * y, sab += x * y;
+    }
+    return (sab - sa * sb / n) / std::sqrt((saa - sa * sa / n) * (sbb - sb * sb / n));
+  };
+  const double interval_correlation = dh_correlation(every.terrain, interval.terrain);
+  const double seed_correlation = dh_correlation(every.terrain, reseeded.terrain);
+  EXPECT_GT(interval_correlation, seed_correlation)
+      << "the map of Δh: every 10 ms against every step " << interval_correlation
+      << ", another seed " << seed_correlation;
+  std::printf(
+      "eroded %.2f m³ every step, %.2f every 10 ms, %.2f with another seed; Δh correlation "
+      "%.4f, another seed's %.4f\n",
+      every.eroded, interval.eroded, reseeded.eroded, interval_correlation, seed_correlation);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runnel/core/clock.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
 #include "runnel/core/text.hpp"
@@ -108,16 +109,19 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
 void Simulation::step() {
   SphSolver& s = *solver_;
   s.drift();  // integrate.kick, sph.continuity, integrate.drift (+ collide.terrain, outflow)
-  erosion_->exchange(s, s.dt());  // erode.exchange and evaporation → fixed-point deltas
-  s.terrain().apply_changed();    // terrain.apply: deltas → heights, normals (the tiles touched)
+  // erode.exchange and evaporation → fixed-point deltas: every step, or every exchange interval.
+  const double exchange_time = erosion_->exchange_time(s.time(), s.dt());
+  if (exchange_time > 0) erosion_->exchange(s, exchange_time);
   // thermal.relax, whenever the clock crosses a multiple of the interval (seconds, not steps).
-  if (thermal_ && std::floor((s.time() + s.dt()) / thermal_interval_) >
-                      std::floor(s.time() / thermal_interval_))
-    thermal_->relax();
-  if (ground_) ground_->update();  // the step's net change into the layer stack
-  s.project_to_surface();          // no particle stays below a terrain that rose
-  rain_->emit(s, s.dt());          // rain.emit: this step's drops at the spawn height
-  s.complete_step();               // hash, sph_forces, kick, next dt
+  const bool relax = thermal_ && interval_credit(thermal_interval_, s.time(), s.dt()) > 0;
+  if (exchange_time > 0 || relax) {
+    s.terrain().apply_changed();  // terrain.apply: deltas → heights, normals (the tiles touched)
+    if (relax) thermal_->relax();
+    if (ground_) ground_->update();  // the step's net change into the layer stack
+    s.project_to_surface();          // no particle stays below a terrain that rose
+  }
+  rain_->emit(s, s.dt());  // rain.emit: this step's drops at the spawn height
+  s.complete_step();       // hash, water depth, sph_forces, kick, next dt
 }
 
 MassBalance Simulation::mass_balance() {

@@ -9,6 +9,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameter_groups.hpp"
 #include "runnel/core/settings_table.hpp"
+#include "runnel/core/text.hpp"
 
 namespace runnel {
 
@@ -29,6 +30,7 @@ const SettingsTable<ErosionSettings> kErosionTable = {
       {"erosion.capacity_contacts", "10", "1", 0, 1e9, {}, "acidity model: erosion events per particle", &ErosionSettings::capacity_contacts},
       {"erosion.deposit_fraction", "1", "1", 0, 1, {}, "share of the load deposited on evaporation; < 1 reproduces Fritz 2016 and books the rest as lost (non-conserving)", &ErosionSettings::deposit_fraction, "EROSION_DEPOSIT_FRACTION"},
       {"erosion.height_quantum", "1e-6", "m", 1e-12, 1, {}, "fixed-point quantum of terrain heights; sediment is counted in quantum · cell²", &ErosionSettings::height_quantum},
+      {"erosion.exchange_interval", "0", "s", 0, 1e3, {}, "stream-power model: the bed exchanges with the water once every this many simulated seconds, each particle on the bed over the whole interval (the bed changes far more slowly than the fluid's time step, which the speed of sound sets; docs/erosion.md, \"Exchange interval\"); 0: every step", &ErosionSettings::exchange_interval},
 };
 // clang-format on
 
@@ -41,6 +43,13 @@ std::vector<ParamSpec> erosion_parameters() {
 ErosionSettings ErosionSettings::from(const Parameters& p, const SphSettings& sph,
                                       double terrain_cell) {
   ErosionSettings e = read_settings(p, kErosionTable);
+  // Fritz's acidity model erodes a fixed amount per contact, and a contact is a step's: fewer
+  // exchanges would erode less, not the same over longer intervals.
+  if (e.model == "acidity" && e.exchange_interval > 0) {
+    throw input_error("erosion.exchange_interval: " + format_number(e.exchange_interval) +
+                      " s applies to the stream-power model only (the acidity model erodes per "
+                      "contact of a step); use 0 with erosion.model = \"acidity\"");
+  }
   e.footprint_radius = runnel::footprint_radius(sph, terrain_cell);
   return e;
 }
@@ -73,7 +82,8 @@ JsonObject ErosionSettings::json() const {
       .add("morphological_factor", morphological_factor)
       .add("footprint_radius_m", footprint_radius)
       .add("deposit_fraction", deposit_fraction)
-      .add("height_quantum_m", height_quantum);
+      .add("height_quantum_m", height_quantum)
+      .add("exchange_interval_s", exchange_interval);
 }
 
 Erosion::Erosion(ComputeContext& compute, const ErosionSettings& settings, const SphSolver& solver,

@@ -5,6 +5,7 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
+#include "runnel/core/clock.hpp"
 #include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sph/sph_solver.hpp"
@@ -28,7 +29,8 @@ struct ErosionSettings {
   double acidity;  // m
   std::int64_t capacity_contacts;
   double deposit_fraction;
-  double height_quantum;  // m
+  double height_quantum;     // m
+  double exchange_interval;  // s; 0: every step
   // Resolved from the fluid and the terrain:
   double footprint_radius;  // m, where an exchange is spread
 
@@ -47,6 +49,11 @@ class Erosion {
           std::uint64_t seed, const BedFields* bed = nullptr);
   // The exchange over the step of length dt that the solver has just drifted.
   void exchange(SphSolver& solver, double dt);
+  // The time the step [time, time + dt] exchanges over: dt, or with erosion.exchange_interval the
+  // interval at the steps that cross a multiple of it and 0 (no exchange) between.
+  double exchange_time(double time, double dt) const {
+    return interval_credit(settings_.exchange_interval, time, dt);
+  }
   const ErosionSettings& settings() const { return settings_; }
 
  private:
