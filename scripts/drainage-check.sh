@@ -3,10 +3,13 @@
 # Does SPH erosion follow the water on terrains it was not tuned for? Runs `runnel compare` (SPH and
 # the pipe model, the same rain budget) with the default scenario's physics on seven terrains, only
 # the terrain changing, and prints the drainage metrics of docs/metrics.md for each. Not part of
-# the test suite: about 10 minutes a terrain on 2 cores. Usage: scripts/drainage-check.sh [OUT]
+# the test suite: about 3 minutes a terrain on 2 cores. Usage: scripts/drainage-check.sh [OUT [--set
+# KEY=VALUE ...]]: the options after OUT go to every `runnel compare` (one physics setting changed on
+# every terrain, e.g. --set erosion.exchange_interval=0.01).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/drainage}"
+shift $(($# > 0 ? 1 : 0))
 runnel=./build/runnel
 scenario=data/scenarios/default.toml
 mkdir -p "$out"
@@ -29,7 +32,7 @@ declare -A terrain=(
 )
 for name in "${names[@]}"; do
   # shellcheck disable=SC2086  # the options are words on purpose
-  "$runnel" compare "$scenario" --models sph,pipe ${terrain[$name]} --out "$out/$name" --quiet
+  "$runnel" compare "$scenario" --models sph,pipe ${terrain[$name]} "$@" --out "$out/$name" --quiet
 done
 printf '%-13s %-5s %9s %9s %8s %7s %12s %7s %7s\n' terrain model eroded deposited ρ_sp ρ_flow depressions shortλ roughen
 for name in "${names[@]}"; do
