@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "runnel/core/clock.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
@@ -22,6 +23,12 @@ namespace runnel {
 namespace {
 
 using test::compute;
+
+// The 65² hills of the erosion convergence cases (runnel validate erosion-convergence).
+Heightmap convergence_hills() {
+  return generate_terrain("fbm", 65, 65, 2.0, 7,
+                          {{"relief", 0.12}, {"hurst", 1.0}, {"octaves", 6}});
+}
 
 TEST(Erosion, AnEvaporatingLoadSpreadsOverItsFootprint) {
   // One particle carrying 1 m³ of sediment evaporates over flat ground: the whole load lands, in
@@ -90,8 +97,7 @@ TEST(Erosion, UnderLightRainTheErodedVolumeDoesNotFollowTheParticleSize) {
   // 128 m, most of them films whose own footprint holds no other drop's water. Read on their own
   // footprint, as before the coarser levels (docs/erosion.md, "Films"), drops of half the size
   // eroded 14–18 % less; another seed alone moves the volume by about 5 %.
-  const Heightmap hills =
-      generate_terrain("fbm", 65, 65, 2.0, 7, {{"relief", 0.12}, {"hurst", 1.0}, {"octaves", 6}});
+  const Heightmap hills = convergence_hills();
   auto eroded = [&](double spacing) {
     Parameters p;
     p.set("rain.intensity", 2000.0);
@@ -168,8 +174,7 @@ TEST(Erosion, AnExchangeIntervalErodesAsEveryStepDoes) {
   // A storm on the 65² hills of the convergence cases, the bed exchanging with the water every
   // step and then every 10 ms (about four steps; docs/erosion.md, "Exchange interval"): the eroded
   // volume and its map move less than another seed moves them, and the books still close.
-  const Heightmap hills =
-      generate_terrain("fbm", 65, 65, 2.0, 7, {{"relief", 0.12}, {"hurst", 1.0}, {"octaves", 6}});
+  const Heightmap hills = convergence_hills();
   struct Outcome {
     double eroded;
     Heightmap terrain;
@@ -206,15 +211,13 @@ TEST(Erosion, AnExchangeIntervalErodesAsEveryStepDoes) {
   EXPECT_LT(interval_change, std::max(seed_change, 0.01))
       << every.eroded << " m³ every step, " << interval.eroded << " m³ every 10 ms, "
       << reseeded.eroded << " m³ with another seed";
-  const Heightmap initial = hills;
   auto dh_correlation = [&](const Heightmap& a, const Heightmap& b) {
-    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-    const double n = static_cast<double>(initial.size());
-    for (std::size_t k = 0; k < initial.size(); ++k) {
-      const double x = a.h[k] - initial.h[k], y = b.h[k] - initial.h[k];
-      sa += x, sb += y, saa += x * x, sbb += y * y, sab += x * y;
+    std::vector<double> da(hills.size()), db(hills.size());
+    for (std::size_t k = 0; k < hills.size(); ++k) {
+      da[k] = a.h[k] - hills.h[k];
+      db[k] = b.h[k] - hills.h[k];
     }
-    return (sab - sa * sb / n) / std::sqrt((saa - sa * sa / n) * (sbb - sb * sb / n));
+    return metrics::pearson_correlation(da, db);
   };
   const double interval_correlation = dh_correlation(every.terrain, interval.terrain);
   const double seed_correlation = dh_correlation(every.terrain, reseeded.terrain);

@@ -82,6 +82,19 @@ void fft(std::vector<std::complex<double>>& a, bool inverse) {
 
 }  // namespace
 
+double pearson_correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) ma += a[k], mb += b[k];
+  ma /= a.size(), mb /= b.size();
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    sab += (a[k] - ma) * (b[k] - mb);
+    saa += (a[k] - ma) * (a[k] - ma);
+    sbb += (b[k] - mb) * (b[k] - mb);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
 double hypsometric_integral(const Heightmap& t) {
   const double lo = t.min_height(), hi = t.max_height();
   if (!(hi > lo)) return NAN;

@@ -10,6 +10,9 @@
 // The terrain metrics every run reports (models.md, "Metrics"), computed on the host.
 namespace runnel::metrics {
 
+// Pearson's correlation of two series of one length; 0 when either is constant.
+double pearson_correlation(const std::vector<double>& a, const std::vector<double>& b);
+
 // (mean h − min h) / (max h − min h), Strahler 1952.
 double hypsometric_integral(const Heightmap& t);
 

@@ -19,6 +19,7 @@
 #include <cmath>
 
 #include "runnel/core/text.hpp"
+#include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/sph_model.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/validation/validation.hpp"
@@ -79,19 +80,6 @@ std::vector<double> smoothed_change(const ErosionRun& r, int width) {
     }
   }
   return out;
-}
-
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  double ma = 0, mb = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) ma += a[k], mb += b[k];
-  ma /= a.size(), mb /= b.size();
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    sab += (a[k] - ma) * (b[k] - mb);
-    saa += (a[k] - ma) * (a[k] - ma);
-    sbb += (b[k] - mb) * (b[k] - mb);
-  }
-  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
 }
 
 }  // namespace
@@ -169,7 +157,8 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
   const std::vector<double> base_change = smoothed_change(runs[0], 4);
   std::vector<double> correlation_with_base(runs.size(), 1.0);
   for (std::size_t k = 1; k < runs.size(); ++k)
-    correlation_with_base[k] = pearson(base_change, smoothed_change(runs[k], 4));
+    correlation_with_base[k] =
+        metrics::pearson_correlation(base_change, smoothed_change(runs[k], 4));
   const double correlation = correlation_with_base[2];
   const double spawn_change = std::max(change(3), change(4));
   const double c0_change = change(5);
