@@ -178,7 +178,7 @@ TEST(Erosion, AnExchangeIntervalErodesAsEveryStepDoes) {
   struct Outcome {
     double eroded;
     Heightmap terrain;
-    long long exchanges;
+    long long exchanges, depth_measurements;
     long long residual;
   };
   auto run = [&](double interval, std::int64_t seed) {
@@ -194,17 +194,24 @@ TEST(Erosion, AnExchangeIntervalErodesAsEveryStepDoes) {
     profiler.enable(true);
     while (sim.time() < 20.0) sim.step();
     profiler.collect();
-    const auto it = profiler.calls().find("erode_exchange");
-    const long long exchanges = it == profiler.calls().end() ? 0 : it->second;
+    auto launches = [&](const char* kernel) {
+      const auto it = profiler.calls().find(kernel);
+      return it == profiler.calls().end() ? 0LL : it->second;
+    };
+    const long long exchanges = launches("erode_exchange");
+    const long long depths = launches("water_depth_gather");
     profiler.enable(false);
     profiler.reset();
-    return Outcome{sim.mass_balance().eroded, sim.terrain(), exchanges,
+    return Outcome{sim.mass_balance().eroded, sim.terrain(), exchanges, depths,
                    sim.mass_balance().residual_quanta};
   };
   const Outcome every = run(0.0, 1), interval = run(0.01, 1), reseeded = run(0.0, 2);
   ASSERT_GT(every.eroded, 10.0) << "m³: the storm must erode for the comparison to mean something";
   EXPECT_NEAR(static_cast<double>(interval.exchanges), 20.0 / 0.01, 2.0);
   EXPECT_GT(every.exchanges, 2 * interval.exchanges) << "steps of about 3.3 ms, three an interval";
+  // The depth is measured for the exchanges only (and once when the run starts).
+  EXPECT_NEAR(static_cast<double>(interval.depth_measurements),
+              static_cast<double>(interval.exchanges), 2.0);
   EXPECT_EQ(interval.residual, 0);
   const double seed_change = std::abs(reseeded.eroded / every.eroded - 1.0);
   const double interval_change = std::abs(interval.eroded / every.eroded - 1.0);

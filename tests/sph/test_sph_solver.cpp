@@ -7,6 +7,7 @@
 #include <cstring>
 #include <map>
 #include <random>
+#include <set>
 
 #include "runnel/core/error.hpp"
 #include "runnel/sph/sph_reference.hpp"
@@ -152,6 +153,32 @@ TEST(SphSolver, AccelerationsMatchTheCppReference) {
   }
   EXPECT_EQ(lone, 4);
   EXPECT_GE(solver.hash().lone_tile_count(), 4u);  // the drops' passes ran the direct kernels
+}
+
+TEST(SphSolver, AWaterDepthMeasuredNowAndThenStaysWithItsParticleThroughTheSort) {
+  // With the depth measured only every so often (an erosion exchange interval), each particle's D
+  // rides along the sort: after steps that moved and re-sorted the particles, every particle still
+  // holds the depth last measured for it, not another's.
+  SphSolver solver(compute(), settings(), flat_floor(20, 20, 0.1), 2.0);
+  solver.add(block_on_floor(3));
+  solver.measure_depth_every(1000.0);  // none in the next 60 steps
+  solver.prepare();                    // measures it once
+  auto depth_by_id = [&] {
+    const HostParticles p = solver.particles().download();
+    const std::vector<float> depth = solver.particles().read_field(kDepth);
+    std::map<std::uint32_t, float> by_id;
+    for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = depth[i];
+    return std::make_pair(by_id, p.id);
+  };
+  const auto [measured, order_before] = depth_by_id();
+  std::set<float> distinct;
+  for (const auto& [id, d] : measured) distinct.insert(d);
+  ASSERT_GE(distinct.size(), 10u) << "depths that tell particles apart";
+  for (int k = 0; k < 60; ++k) solver.step();
+  const auto [carried, order_after] = depth_by_id();
+  ASSERT_NE(order_after, order_before)
+      << "the sort must have moved particles for this to test anything";
+  EXPECT_EQ(carried, measured);
 }
 
 TEST(SphSolver, ContinuityMatchesTheCppReferenceForTheDrift) {

@@ -177,23 +177,28 @@ void SpatialHash::begin_build(ParticleStore& store) {
   const cl_uint blocks = static_cast<cl_uint>(runs.runs), chunk = static_cast<cl_uint>(runs.length);
   const int in = sort_in_tiles_ ? sort_in_tiles(n, store) : sort_in_runs(n, blocks, chunk);
 
-  // 3. Gather every persistent field into the sorted order (as 4-byte words: bit-exact for floats
-  // too), six fields a launch through the store's free buffers. A short last group repeats its last
-  // field (the same word written twice by the same work-item).
+  // 3. Gather every persistent field (and the water depth, when it is carried) into the sorted
+  // order (as 4-byte words: bit-exact for floats too), six fields a launch through the store's free
+  // buffers. A short last group repeats its last field (the same word written twice by the same
+  // work-item).
   constexpr int kGroup = 6;
   static constexpr const char* kIn[kGroup] = {"in0", "in1", "in2", "in3", "in4", "in5"};
   static constexpr const char* kOut[kGroup] = {"out0", "out1", "out2", "out3", "out4", "out5"};
   static_assert(kGroup <= ParticleStore::kTemporaryCount);
-  for (int first = 0; first < kPersistentFieldCount; first += kGroup) {
+  const int fields = kPersistentFieldCount + (carry_depth_ ? 1 : 0);
+  auto field = [](int k) {
+    return k < kPersistentFieldCount ? static_cast<ParticleField>(k) : kDepth;
+  };
+  for (int first = 0; first < fields; first += kGroup) {
     reorder_.set("perm", values_[in]).set("n", n);
     for (int g = 0; g < kGroup; ++g) {
-      const int f = std::min(first + g, static_cast<int>(kPersistentFieldCount) - 1);
-      reorder_.set(kIn[g], store.buffer(static_cast<ParticleField>(f)));
-      reorder_.set(kOut[g], store.temporary(f - first));
+      const int k = std::min(first + g, fields - 1);
+      reorder_.set(kIn[g], store.buffer(field(k)));
+      reorder_.set(kOut[g], store.temporary(k - first));
     }
     reorder_.launch(round_up_work(n), "reorder");
-    for (int f = first; f < std::min<int>(first + kGroup, kPersistentFieldCount); ++f)
-      store.adopt_temporary(static_cast<ParticleField>(f), f - first);
+    for (int k = first; k < std::min(first + kGroup, fields); ++k)
+      store.adopt_temporary(field(k), k - first);
   }
 
   // 4. Cell ranges and the live count (dead particles sorted to the end).

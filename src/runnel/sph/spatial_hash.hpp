@@ -48,6 +48,9 @@ class SpatialHash {
   // sorted to its end with their id's DEAD_FLAG, and the tile counts are the last build's.
   void begin_build(ParticleStore& store);
   void finish_build(ParticleStore& store);
+  // Whether the sort also carries each particle's water depth (a rate field, otherwise measured
+  // again after every sort): for a solver that measures it only every so often.
+  void carry_water_depth(bool on) { carry_depth_ = on; }
 
   const GridSpec& grid() const { return grid_; }
   const cl::Buffer& cell_start() const { return cell_start_; }
@@ -112,6 +115,7 @@ class SpatialHash {
   cl::Event summary_read_;
   bool summary_pending_ = false;
   bool per_particle_ = false;  // the last build's tiles are single particles: no list
+  bool carry_depth_ = false;   // the sort gathers kDepth too (carry_water_depth)
   std::uint32_t tiles_ = 0, small_tiles_ = 0, lone_tiles_ = 0;
   std::size_t capacity_ = 0;
   cl_uint sorted_ = 0;  // keys in keys_[sorted_in_] from the last build: their cells are filled

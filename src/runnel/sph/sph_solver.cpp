@@ -7,6 +7,7 @@
 
 #include "runnel/compute/build_options.hpp"
 #include "runnel/compute/launch.hpp"
+#include "runnel/core/clock.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/sph/water_depth_reference.hpp"
 
@@ -173,8 +174,9 @@ void SphSolver::coarsen_water(int levels) {
 }
 
 void SphSolver::complete_step() {
-  sort_particles();       // by cell, dead particles last; cell tables, tiles
-  measure_water_depth();  // D at x(n+1), new drops included: the next step's friction and erosion
+  sort_particles();  // by cell, dead particles last; cell tables, tiles
+  // D at x(n+1), new drops included: the next step's friction and erosion.
+  if (depth_interval_ <= 0) measure_water_depth();
   drop_dead_particles();  // the hash's live count and tiles, read while the depth pass runs
   compute_forces();       // a(n+1) at x(n+1), ρ(n+1)
   time_ += dt_;
@@ -182,6 +184,14 @@ void SphSolver::complete_step() {
   // v(n+1) = v(n+½) + a(n+1)·dt/2 in the pass that measures the state; then the CFL and
   // acceleration limits. Stops on NaN or a collapsing step.
   choose_next_dt(/*closing_kick=*/true);
+  // Or D only before a step that will exchange with the bed (its dt is now chosen).
+  if (depth_interval_ > 0 && interval_credit(depth_interval_, time_, dt_) > 0)
+    measure_water_depth();
+}
+
+void SphSolver::measure_depth_every(double seconds) {
+  depth_interval_ = seconds;
+  hash_.carry_water_depth(seconds > 0);
 }
 
 void SphSolver::drift_and_collide() {

@@ -69,6 +69,11 @@ class SphSolver {
   // advances the clock and chooses the next dt.
   void drift();
   void complete_step();
+  // The water depth D every step (0, the default), or only before the steps whose clock crosses a
+  // multiple of `seconds` (an erosion exchange interval: those steps exchange with the bed and read
+  // a fresh D); in between, each particle's D rides along the sort and the bed friction reads it
+  // as last measured, and drops rained since then read 0 (docs/erosion.md, "Exchange interval").
+  void measure_depth_every(double seconds);
   // Puts particles the terrain rose under back on its surface (after erosion and talus).
   void project_to_surface();
   // Computes the accelerations and the next time step for the current state without advancing.
@@ -116,6 +121,7 @@ class SphSolver {
   bool hash_stale_ = true;
   double time_ = 0.0;
   double dt_ = 0.0;
+  double depth_interval_ = 0.0;  // s; 0: D every step
   std::uint64_t steps_ = 0;
   SphHealth health_;
 };
