@@ -2,8 +2,9 @@
 // Continuous terrain collision (physics.md §3). A particle's step is the segment o → o + d. Its
 // footprint on the (x, z) plane is walked tile by tile (2-D DDA, Amanatides & Woo 1987); each tile's
 // two triangles are tested with Möller & Trumbore (1997); the earliest hit from above wins. The
-// mesh is the contact surface (terrain_sample.cl): the terrain raised by `radius`, so a particle of
-// that radius touches the ground with its lowest point (radius 0: the terrain itself). The
+// mesh is the contact surface (terrain_sample.cl), given by its vertex heights `surface`: the
+// terrain raised by a particle's radius, so such a particle touches the ground with its lowest
+// point (the terrain's own heights: the terrain itself). The
 // response uses the vertex normals interpolated with the hit's barycentric (u, v):
 //   v ← v_t − e v_n   (when v·n < 0; e the restitution), timed at the hit (integrate.cl)
 // Tiles are split along the diagonal (i, j)–(i+1, j+1), as in terrain_sample.cl.
@@ -11,9 +12,8 @@
 
 #define COLLIDE_MAX_TILES 65536  // bounds the walk for a corrupt (NaN, huge) segment
 
-inline float3 contact_vertex(const __global float* height, const __global float* normal, int i, int j, int nx,
-                             float cell, float radius) {
-  return (float3)((float)i * cell, offset_height(height, normal, j * nx + i, radius), (float)j * cell);
+inline float3 contact_vertex(const __global float* surface, int i, int j, int nx, float cell) {
+  return (float3)((float)i * cell, surface[j * nx + i], (float)j * cell);
 }
 
 // Möller–Trumbore: the t in [0, 1] where o + t·d crosses triangle (v0, v1, v2) from above, else −1.
@@ -46,12 +46,12 @@ typedef struct {
   float3 normal; // interpolated vertex normal, unit
 } TerrainHit;
 
-inline void test_tile(const __global float* height, const __global float* normal, int nx, float cell, float radius,
-                      int i, int j, float3 o, float3 d, TerrainHit* best) {
-  const float3 p00 = contact_vertex(height, normal, i, j, nx, cell, radius);
-  const float3 p10 = contact_vertex(height, normal, i + 1, j, nx, cell, radius);
-  const float3 p11 = contact_vertex(height, normal, i + 1, j + 1, nx, cell, radius);
-  const float3 p01 = contact_vertex(height, normal, i, j + 1, nx, cell, radius);
+inline void test_tile(const __global float* surface, const __global float* normal, int nx, float cell, int i, int j,
+                      float3 o, float3 d, TerrainHit* best) {
+  const float3 p00 = contact_vertex(surface, i, j, nx, cell);
+  const float3 p10 = contact_vertex(surface, i + 1, j, nx, cell);
+  const float3 p11 = contact_vertex(surface, i + 1, j + 1, nx, cell);
+  const float3 p01 = contact_vertex(surface, i, j + 1, nx, cell);
   const int k00 = j * nx + i, k10 = k00 + 1, k11 = k00 + nx + 1, k01 = k00 + nx;
   float u, v;
   // Triangle A: (i,j), (i+1,j), (i+1,j+1); triangle B: (i,j), (i+1,j+1), (i,j+1). In this order
@@ -72,8 +72,8 @@ inline void test_tile(const __global float* height, const __global float* normal
 
 // The earliest crossing of the contact surface from above along o → o + d, walking the tiles under
 // it.
-inline TerrainHit collide_segment(const __global float* height, const __global float* normal, int nx, int ny,
-                                  float cell, float radius, float3 o, float3 d) {
+inline TerrainHit collide_segment(const __global float* surface, const __global float* normal, int nx, int ny,
+                                  float cell, float3 o, float3 d) {
   TerrainHit best;
   best.t = -1.0f;
   const float u0 = o.x / cell, v0 = o.z / cell;
@@ -88,7 +88,7 @@ inline TerrainHit collide_segment(const __global float* height, const __global f
   float t_max_v = dv > 0.0f ? ((float)(j + 1) - v0) / dv : dv < 0.0f ? (v0 - (float)j) / -dv : INFINITY;
   for (int walked = 0; walked < COLLIDE_MAX_TILES; ++walked) {
     if (i >= 0 && j >= 0 && i < nx - 1 && j < ny - 1) {
-      test_tile(height, normal, nx, cell, radius, i, j, o, d, &best);
+      test_tile(surface, normal, nx, cell, i, j, o, d, &best);
       // Tiles are visited in order along the segment: a hit before the next edge cannot be beaten.
       if (best.t >= 0.0f && best.t <= fmin(t_max_u, t_max_v)) break;
     }

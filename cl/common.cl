@@ -146,6 +146,15 @@ inline int terrain_tile(int i, int j, int tiles_x) {
   return (j >> TERRAIN_TILE_SHIFT) * tiles_x + (i >> TERRAIN_TILE_SHIFT);
 }
 
+// The contact surface (terrain_sample.cl) is the terrain with every vertex raised by r / n_y (r a
+// particle's radius, n_y the vertex normal's vertical part, bounded below so a near-vertical cliff
+// does not lift it without limit). One expression for the samplers and for the normals kernel,
+// which keeps the raised heights of the SPH contact radius beside the normals.
+#define CONTACT_MIN_NY 0.2f
+inline float raised_height(float height, float normal_y, float radius) {
+  return height + radius / fmax(normal_y, CONTACT_MIN_NY);
+}
+
 // The float view (DeviceTerrain's `height`) of a fixed-point height: high and low bits apart,
 // accurate to a float's rounding.
 inline float fixed_height_view(long h, float quantum) {

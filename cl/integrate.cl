@@ -82,7 +82,7 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
                     __global uint* contacts, __global uint* id, const __global float* ax, const __global float* ay, const __global float* az,
                     const __global float* depth, const __global float* rho, __global float* x_new,
                     __global float* y_new, __global float* z_new, const uint n, const float dt,
-                    const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
+                    const __global float* terrain_contact, const __global float* terrain_normal, const int tnx,
                     const int tny, const float tcell, const float domain_x, const float domain_z,
                     volatile __global long* counters, __global float* mid_x, __global float* mid_y,
                     __global float* mid_z, __global float* drift_vx, __global float* drift_vy,
@@ -124,14 +124,14 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
   const float3 a = (float3)(ax[i], ay[i], az[i]);
   bool touching = false;
   const SurfacePoint s0 =
-      offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, start.x, start.z);
+      kept_surface(terrain_contact, terrain_normal, tnx, tny, tcell, start.x, start.z);
   // On the surface at the start, and moving into it (along the interpolated normal, or ending the
   // step below the surface: the faces under a particle tilt away from that normal; the surface
   // under the end is sampled only when the normal leaves the question open).
   bool moving_in = false;
   if (start.y - s0.height <= SPH_SURFACE_EPS) {
     moving_in = dot(v, s0.normal) < 0.0f ||
-                p.y < offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, p.x, p.z)
+                p.y < kept_surface(terrain_contact, terrain_normal, tnx, tny, tcell, p.x, p.z)
                           .height;
   }
   if (moving_in) {
@@ -139,11 +139,11 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
     p = start + rebound(&v, a, s0.normal, 0.0f, dt);
   } else {
     const TerrainHit hit =
-        collide_segment(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, start, p - start);
+        collide_segment(terrain_contact, terrain_normal, tnx, tny, tcell, start, p - start);
     if (hit.t >= 0.0f) {
       touching = true;
       p = hit.point + rebound(&v, a, hit.normal, hit.t, dt);
-      const TerrainHit again = collide_segment(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS,
+      const TerrainHit again = collide_segment(terrain_contact, terrain_normal, tnx, tny, tcell,
                                                hit.point + SPH_SURFACE_EPS * hit.normal, p - hit.point);
       if (again.t >= 0.0f) {
         v = contact_response(v, again.normal);
@@ -152,7 +152,7 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
     }
   }
   const SurfacePoint s =
-      offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, p.x, p.z);
+      kept_surface(terrain_contact, terrain_normal, tnx, tny, tcell, p.x, p.z);
   if (p.y < s.height) {
     // In contact, a particle ends on the surface (a slide over a bend, rounding). Otherwise it is
     // below without having crossed it: the terrain rose under it. Either way it goes back up, but
@@ -228,12 +228,12 @@ __kernel void step_stats(__global float* vx, __global float* vy, __global float*
 // resting on the surface rides up with it; one that ends more than ε below is counted.
 __kernel void project_to_surface(__global float* x, __global float* y, __global float* z, __global float* vx,
                                  __global float* vy, __global float* vz, const uint n,
-                                 const __global float* terrain_height, const __global float* terrain_normal,
+                                 const __global float* terrain_contact, const __global float* terrain_normal,
                                  const int tnx, const int tny, const float tcell, volatile __global long* counters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const SurfacePoint s =
-      offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, SPH_CONTACT_RADIUS, x[i], z[i]);
+      kept_surface(terrain_contact, terrain_normal, tnx, tny, tcell, x[i], z[i]);
   if (y[i] >= s.height) return;
   if (s.height - y[i] > SPH_SURFACE_EPS) atom_inc(&counters[COUNTER_PROJECTIONS]);
   y[i] = s.height;

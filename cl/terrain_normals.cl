@@ -3,9 +3,13 @@
 //   n = normalize(-dh/dx, 1, -dh/dz)
 // height: m, nx × ny vertices, row-major (i fastest); normal: 3 floats per vertex.
 
-// Only the vertices of the tiles marked in `stale` are recomputed.
+// Only the vertices of the tiles marked in `stale` are recomputed. With `carry_contact`, also the
+// vertices of the contact surface `contact_radius` above the terrain (terrain_sample.cl), which the
+// SPH drift samples several times a particle and step: kept here, they cost a load instead of a
+// load, a division and the normal's load each (DeviceTerrain::carry_contact_surface).
 __kernel void terrain_normals(const __global float* height, __global float* normal, const int nx,
-                              const int ny, const float cell, const __global uint* stale, const int tiles_x) {
+                              const int ny, const float cell, const __global uint* stale, const int tiles_x,
+                              const int carry_contact, const float contact_radius, __global float* contact) {
   const int k = get_global_id(0);
   if (k >= nx * ny) return;
   const int j = grid_row(k, nx), i = k - j * nx;
@@ -19,5 +23,6 @@ __kernel void terrain_normals(const __global float* height, __global float* norm
   normal[3 * k] = -dhdx * inverse_length;
   normal[3 * k + 1] = inverse_length;
   normal[3 * k + 2] = -dhdz * inverse_length;
+  if (carry_contact) contact[k] = raised_height(height[k], inverse_length, contact_radius);
 }
 

@@ -65,7 +65,8 @@ double brute_force_hit(const Heightmap& t, const double o[3], const double d[3])
 TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
   // Segments up to 50 m long (50 m/s for a whole second) across a rough terrain: the tile walk
   // must find the same first crossing as testing every triangle, of the terrain itself and of the
-  // contact surface a particle's radius above it.
+  // contact surface a particle's radius above it (whose vertex heights the terrain keeps for the
+  // solver's contact radius).
   const Heightmap rough = generate_terrain("diamond-square", 49, 41, 0.5, 9, {{"relief", 0.4}});
   SphSolver solver(compute(), droplet_settings(0.25), rough, 40.0);
   Kernel probe(compute(),
@@ -73,6 +74,7 @@ TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
                    {"cl/common.cl", "cl/terrain_sample.cl", "cl/collide.cl", "cl/collide_probe.cl"},
                    droplet_settings(0.25).build_options()),
                "collide_probe");
+  ASSERT_EQ(solver.settings().contact_radius, 0.25);
   for (double radius : {0.0, 0.25}) {
     const Heightmap surface = contact_surface(rough, radius);
     std::mt19937 rng(11);
@@ -92,9 +94,13 @@ TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
     cl::Buffer seg_buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, segments.size() * 4,
                           segments.data());
     cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n * 4);
-    solver.terrain().bind(probe);
-    probe.set("segments", seg_buffer).set("n", static_cast<cl_uint>(n));
-    probe.set("radius", static_cast<float>(radius)).set("result", result).launch(n);
+    DeviceTerrain& terrain = solver.terrain();
+    probe.set("surface", radius > 0 ? terrain.contact() : terrain.height());
+    probe.set("terrain_normal", terrain.normal()).set("tnx", terrain.nx()).set("tny", terrain.ny());
+    probe.set("tcell", terrain.cell())
+        .set("segments", seg_buffer)
+        .set("n", static_cast<cl_uint>(n));
+    probe.set("result", result).launch(n);
     std::vector<float> r(4 * n);
     compute().queue().enqueueReadBuffer(result, CL_TRUE, 0, r.size() * 4, r.data());
     int hits = 0;

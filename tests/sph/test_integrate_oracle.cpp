@@ -79,6 +79,7 @@ TEST(IntegrateOracle, DriftMatchesThePlainCppReferenceOverAPlane) {
                                            values.data());
     }
     DeviceTerrain terrain(compute(), c.terrain);
+    terrain.carry_contact_surface(float(c.settings.contact_radius));
     cl::Buffer counters(compute().context(), CL_MEM_READ_WRITE, 8 * sizeof(cl_long));
     compute().queue().enqueueFillBuffer(counters, cl_long{0}, 0, 8 * sizeof(cl_long));
     Kernel k(compute(), sph_program(compute(), c.settings, c.terrain.cell), "drift");
@@ -86,7 +87,7 @@ TEST(IntegrateOracle, DriftMatchesThePlainCppReferenceOverAPlane) {
                    kDepth});
     store.bind_new(k, {kX, kY, kZ});
     bind_continuity_inputs(store, k);
-    terrain.bind(k);
+    terrain.bind_contact(k);
     k.set("domain_x", float(terrain.extent_x())).set("domain_z", float(terrain.extent_z()));
     k.set("dt", float(dt)).set("counters", counters).launch(round_up_work(n));
     std::vector<float> out[6];

@@ -105,6 +105,50 @@ TEST(TerrainApply, ApplyChangedTouchesOnlyTheMarkedTiles) {
   EXPECT_EQ(after, std::vector<cl_uint>(12, 0)) << "the marks are cleared once applied";
 }
 
+// The contact surface's vertex heights that the terrain keeps for the SPH drift (a particle's
+// radius r above it along the normal): bit for bit h + r / max(n_y, 0.2) of the current view and
+// normals, as cl/terrain_sample.cl's offset_surface computes them in every call, also on a cliff
+// whose normal is bounded and after a change to one tile refreshed them.
+TEST(TerrainApply, KeptContactHeightsAreTheOffsetSurfacesAfterEveryChange) {
+  const int nx = 50, ny = 40;
+  Heightmap start(nx, ny, 1.0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) start.at(i, j) = 0.05f * i + (i >= 30 ? 20.0f : 0.0f);  // a cliff
+  DeviceTerrain terrain(compute(), start, 1e-6);
+  const float radius = 0.3f;
+  terrain.carry_contact_surface(radius);
+  auto expect_offset_surface = [&](const char* when) {
+    std::vector<float> contact(nx * ny);
+    compute().queue().enqueueReadBuffer(terrain.contact(), CL_TRUE, 0, contact.size() * 4,
+                                        contact.data());
+    const Heightmap view = terrain.download();
+    const std::vector<float> normal = terrain.download_normals();
+    int bounded = 0, differing = 0, first = -1;
+    for (int k = 0; k < nx * ny; ++k) {
+      bounded += normal[3 * k + 1] < 0.2f;
+      if (contact[k] != view.h[k] + radius / std::max(normal[3 * k + 1], 0.2f)) {
+        if (differing++ == 0) first = k;
+      }
+    }
+    EXPECT_EQ(differing, 0) << when << ": first at vertex " << first;
+    EXPECT_GT(bounded, 0) << when << ": the cliff's normals must be bounded";
+    return contact;
+  };
+  const std::vector<float> before = expect_offset_surface("at the start");
+  // Half a metre onto the tile of vertices i 16..31, j 16..31, through the deltas.
+  std::vector<std::int64_t> delta(nx * ny, 0);
+  for (int j = 16; j < 32; ++j)
+    for (int i = 16; i < 32; ++i) delta[j * nx + i] = 500'000;
+  compute().queue().enqueueWriteBuffer(terrain.delta(), CL_TRUE, 0, delta.size() * 8, delta.data());
+  std::vector<cl_uint> marked(4 * 3, 0);
+  marked[1 * 4 + 1] = 1;
+  compute().queue().enqueueWriteBuffer(terrain.changed_tiles(), CL_TRUE, 0, marked.size() * 4,
+                                       marked.data());
+  terrain.apply_changed();
+  const std::vector<float> after = expect_offset_surface("after the change");
+  EXPECT_NEAR(after[20 * nx + 20] - before[20 * nx + 20], 0.5, 1e-5);
+}
+
 // After droplet batches that touch part of a terrain, every vertex is consistent: no delta left
 // behind (every tile that got one was marked), the float view equals the fixed-point heights, and
 // the normals equal the oracle's for the final terrain (the stale tiles and their neighbours were

@@ -80,10 +80,10 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   const ThermalSettings thermal = ThermalSettings::from(params);
   thermal_interval_ = thermal.interval;
   // The most device memory the run will hold: the particle store at its largest (the budget with
-  // the store's growth margin), the terrain (fixed point, deltas, float view, normals, water
-  // depth with its coarser levels for films, a third more, talus outflows) and the hash grid's
-  // cell ranges. Refused now, with the figures, rather
-  // than failing when the rain has filled the store.
+  // the store's growth margin), the terrain (fixed point, deltas, float view, normals, contact
+  // heights, water depth with its coarser levels for films, a third more, talus outflows) and the
+  // hash grid's cell ranges. Refused now, with the figures, rather than failing when the rain has
+  // filled the store.
   const double vertices = static_cast<double>(terrain.size());
   // No more particles live at once than the budget, nor than the rain spawns over the longest
   // lifespan (the budget may be set far above what the rain can fill).
@@ -91,7 +91,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
       std::min(static_cast<double>(rain.max_particles),
                std::ceil(rain.rate * rain.lifespan * (1.0 + rain.lifespan_jitter)) + 1.0);
   device_bytes_ = 1.5 * most_alive * static_cast<double>(ParticleStore::bytes_per_particle() + 4) +
-                  vertices * (32 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
+                  vertices * (36 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
                   8.0 * static_cast<double>(solver_->hash().grid().cell_count());
   const double available = static_cast<double>(compute.info().global_memory);
   if (available > 0 && device_bytes_ > available) {

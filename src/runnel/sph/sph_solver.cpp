@@ -83,6 +83,8 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
       terrain_(compute, floor, height_quantum),
       store_(compute),
       hash_(compute, fluid_grid(settings, floor, top)) {
+  // The drift and the projection sample the contact surface (SPH_CONTACT_RADIUS, the same float).
+  terrain_.carry_contact_surface(static_cast<float>(settings.contact_radius));
   cl::Program& program = sph_program(compute, settings, floor.cell);
   forces_ = Kernel(compute, program, "sph_forces");
   forces_direct_ = Kernel(compute, program, "sph_forces_direct");
@@ -201,7 +203,8 @@ void SphSolver::drift_and_collide() {
       k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth});
   store_.bind_new(k, {kX, kY, kZ});
   bind_continuity_inputs(store_, k);
-  bind_domain(k);
+  terrain_.bind_contact(k);
+  bind_extent(k);
   k.set("dt", static_cast<float>(dt_)).set("counters", counters_buffer_);
   k.launch(round_up_work(n));
 }
@@ -223,14 +226,18 @@ void SphSolver::drop_dead_particles() {
 void SphSolver::project_to_surface() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   store_.bind(project_, {kX, kY, kZ, kVx, kVy, kVz});
-  terrain_.bind(project_);
+  terrain_.bind_contact(project_);
   project_.set("counters", counters_buffer_).launch(round_up_work(n));
 }
 
-// The terrain boundary and the domain's extent (outflow, walls): what drift and both neighbour
-// passes see.
+// The terrain boundary and the domain's extent (walls): what both neighbour passes see.
 void SphSolver::bind_domain(Kernel& k) {
   terrain_.bind(k);
+  bind_extent(k);
+}
+
+// The domain's extent (outflow, walls).
+void SphSolver::bind_extent(Kernel& k) {
   k.set("domain_x", static_cast<float>(terrain_.extent_x()));
   k.set("domain_z", static_cast<float>(terrain_.extent_z()));
 }

@@ -2,6 +2,7 @@
 #include "runnel/terrain/device_terrain.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
@@ -117,7 +118,8 @@ void DeviceTerrain::mark_stale_normals() {
 
 cl::Buffer& DeviceTerrain::normal() {
   if (normals_stale_) {
-    normals_.enqueue(height_, normal_, nx_, ny_, cell_, stale_normal_tiles_, tiles_x_);
+    normals_.enqueue(height_, normal_, nx_, ny_, cell_, stale_normal_tiles_, tiles_x_,
+                     contact_() ? &contact_ : nullptr, contact_radius_);
     fill_tiles(stale_normal_tiles_, 0);
   }
   normals_stale_ = false;
@@ -175,6 +177,28 @@ void DeviceTerrain::download_fixed(std::vector<std::int64_t>& fixed) {
 
 void DeviceTerrain::bind(Kernel& k) {
   k.set("terrain_height", height_)
+      .set("terrain_normal", normal())
+      .set("tnx", nx_)
+      .set("tny", ny_)
+      .set("tcell", cell_);
+}
+
+void DeviceTerrain::carry_contact_surface(float radius) {
+  contact_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
+                        static_cast<std::size_t>(nx_) * ny_ * sizeof(float));
+  contact_radius_ = radius;
+  fill_tiles(stale_normal_tiles_, 1);  // every vertex's contact height is still to be computed
+  normals_stale_ = true;
+}
+
+cl::Buffer& DeviceTerrain::contact() {
+  if (!contact_()) throw std::logic_error("DeviceTerrain::contact before carry_contact_surface");
+  normal();  // the refresh of stale normals computes their contact heights
+  return contact_;
+}
+
+void DeviceTerrain::bind_contact(Kernel& k) {
+  k.set("terrain_contact", contact())
       .set("terrain_normal", normal())
       .set("tnx", nx_)
       .set("tny", ny_)

@@ -8,12 +8,16 @@ namespace runnel {
 TerrainNormals::TerrainNormals(ComputeContext& compute)
     : compute_(compute),
       kernel_(compute, compute.program({"cl/common.cl", "cl/terrain_normals.cl"}),
-              "terrain_normals") {}
+              "terrain_normals"),
+      no_contact_(compute.context(), CL_MEM_READ_WRITE, sizeof(float)) {}
 
 void TerrainNormals::enqueue(const cl::Buffer& height, const cl::Buffer& normal, int nx, int ny,
-                             float cell, const cl::Buffer& stale, int tiles_x) {
+                             float cell, const cl::Buffer& stale, int tiles_x,
+                             const cl::Buffer* contact, float contact_radius) {
   kernel_.set("height", height).set("normal", normal).set("nx", nx).set("ny", ny);
   kernel_.set("cell", cell).set("stale", stale).set("tiles_x", tiles_x);
+  kernel_.set("carry_contact", cl_int{contact != nullptr}).set("contact_radius", contact_radius);
+  kernel_.set("contact", contact ? *contact : no_contact_);
   kernel_.launch(round_up_work(static_cast<std::size_t>(nx) * ny));
 }
 

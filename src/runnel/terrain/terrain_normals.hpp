@@ -22,15 +22,19 @@ class TerrainNormals {
  public:
   explicit TerrainNormals(ComputeContext& compute);
   // Enqueues the kernel on buffers already on the device, for the vertices of the tiles marked in
-  // `stale` (one uint per tile of kTerrainTile² vertices, rows of tiles_x).
+  // `stale` (one uint per tile of kTerrainTile² vertices, rows of tiles_x). With `contact`, also
+  // the heights of the contact surface `contact_radius` above the terrain into it
+  // (DeviceTerrain::carry_contact_surface).
   void enqueue(const cl::Buffer& height, const cl::Buffer& normal, int nx, int ny, float cell,
-               const cl::Buffer& stale, int tiles_x);
+               const cl::Buffer& stale, int tiles_x, const cl::Buffer* contact = nullptr,
+               float contact_radius = 0);
   // Convenience: upload, compute, read back.
   std::vector<float> compute(const Heightmap& terrain);
 
  private:
   ComputeContext& compute_;
   Kernel kernel_;
+  cl::Buffer no_contact_;  // the contact argument when there is none (never written)
 };
 
 }  // namespace runnel
