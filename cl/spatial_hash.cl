@@ -95,13 +95,13 @@ __kernel void radix_scatter(const __global uint* key_in, const __global uint* va
 }
 
 // Gathers fields into sorted order, as 4-byte words (bit-exact for floats and integers alike),
-// six at a time (the store lends six free buffers during the sort): one launch moves what six
+// seven at a time (the store lends its free buffers during the sort): one launch moves what seven
 // would, and on a CPU device each launch costs a wake-up of every worker thread.
 __kernel void reorder_words(const __global uint* perm, const uint n, const __global uint* in0, __global uint* out0,
                             const __global uint* in1, __global uint* out1, const __global uint* in2,
                             __global uint* out2, const __global uint* in3, __global uint* out3,
                             const __global uint* in4, __global uint* out4, const __global uint* in5,
-                            __global uint* out5) {
+                            __global uint* out5, const __global uint* in6, __global uint* out6) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint from = perm[i];
@@ -111,6 +111,7 @@ __kernel void reorder_words(const __global uint* perm, const uint n, const __glo
   out3[i] = in3[from];
   out4[i] = in4[from];
   out5[i] = in5[from];
+  out6[i] = in6[from];
 }
 
 // After sorting: the first and one-past-last sorted index of every occupied cell (empty cells hold

@@ -178,27 +178,31 @@ void SpatialHash::begin_build(ParticleStore& store) {
   const int in = sort_in_tiles_ ? sort_in_tiles(n, store) : sort_in_runs(n, blocks, chunk);
 
   // 3. Gather every persistent field (and the water depth, when it is carried) into the sorted
-  // order (as 4-byte words: bit-exact for floats too), six fields a launch through the store's free
-  // buffers. A short last group repeats its last field (the same word written twice by the same
-  // work-item).
-  constexpr int kGroup = 6;
-  static constexpr const char* kIn[kGroup] = {"in0", "in1", "in2", "in3", "in4", "in5"};
-  static constexpr const char* kOut[kGroup] = {"out0", "out1", "out2", "out3", "out4", "out5"};
-  static_assert(kGroup <= ParticleStore::kTemporaryCount);
+  // order (as 4-byte words: bit-exact for floats too), up to seven fields a launch through the
+  // store's free buffers, in as few launches as that allows (12 fields: two of six; 13 with the
+  // depth: seven and six). A group's unused slots repeat its last field (the same word written
+  // twice by the same work-item).
+  constexpr int kSlots = 7;
+  static constexpr const char* kIn[kSlots] = {"in0", "in1", "in2", "in3", "in4", "in5", "in6"};
+  static constexpr const char* kOut[kSlots] = {"out0", "out1", "out2", "out3",
+                                               "out4", "out5", "out6"};
+  static_assert(kSlots <= ParticleStore::kTemporaryCount);
   const int fields = kPersistentFieldCount + (carry_depth_ ? 1 : 0);
+  const int launches = (fields + kSlots - 1) / kSlots;
+  const int per_launch = (fields + launches - 1) / launches;
   auto field = [](int k) {
     return k < kPersistentFieldCount ? static_cast<ParticleField>(k) : kDepth;
   };
-  for (int first = 0; first < fields; first += kGroup) {
+  for (int first = 0; first < fields; first += per_launch) {
+    const int end = std::min(first + per_launch, fields);
     reorder_.set("perm", values_[in]).set("n", n);
-    for (int g = 0; g < kGroup; ++g) {
-      const int k = std::min(first + g, fields - 1);
+    for (int g = 0; g < kSlots; ++g) {
+      const int k = std::min(first + g, end - 1);
       reorder_.set(kIn[g], store.buffer(field(k)));
       reorder_.set(kOut[g], store.temporary(k - first));
     }
     reorder_.launch(round_up_work(n), "reorder");
-    for (int k = first; k < std::min(first + kGroup, fields); ++k)
-      store.adopt_temporary(field(k), k - first);
+    for (int k = first; k < end; ++k) store.adopt_temporary(field(k), k - first);
   }
 
   // 4. Cell ranges and the live count (dead particles sorted to the end).
