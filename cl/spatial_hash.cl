@@ -12,11 +12,20 @@
 
 // key: the linear index of the particle's cell; dead particles get dead_key (> every live key) so the
 // sort moves them to the end, where they are dropped.
+// First it empties the cells the previous sort occupied (sorted_key, sorted_n: that sort's keys),
+// so that the table is reset at the cost of the particles, not of the grid (which covers the whole
+// terrain), in the same launch. sorted_key may be `key` itself: work-item i reads its own old key
+// before it writes the new one, and touches no other.
 __kernel void hash_keys(const __global float* x, const __global float* y, const __global float* z,
                         const __global uint* id, __global uint* key, __global uint* index, const uint n,
                         const float ox, const float oy, const float oz, const float inv_cell, const int gx,
-                        const int gy, const int gz, const uint dead_key) {
+                        const int gy, const int gz, const uint dead_key, const __global uint* sorted_key,
+                        const uint sorted_n, __global uint* cell_start) {
   const uint i = get_global_id(0);
+  if (i < sorted_n) {
+    const uint old = sorted_key[i];
+    if (old != dead_key) cell_start[old] = EMPTY_CELL;
+  }
   if (i >= n) return;
   const Grid g = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   key[i] = (id[i] & DEAD_FLAG) ? dead_key : linear_cell(cell_of((float3)(x[i], y[i], z[i]), g), g);
@@ -128,15 +137,6 @@ __kernel void cell_bounds(const __global uint* key, const uint n, const uint dea
   if (i + 1 == n || key[i + 1] == dead_key) alive[0] = i + 1;
   if (i == 0 || key[i - 1] != k) cell_start[k] = i;
   if (i + 1 == n || key[i + 1] != k) cell_end[k] = i + 1;
-}
-
-// Empties the cells the previous sort occupied, so that the table is reset at the cost of the
-// particles, not of the grid (which covers the whole terrain).
-__kernel void clear_cells(const __global uint* key, const uint n, const uint dead_key, __global uint* cell_start) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  const uint k = key[i];
-  if (k != dead_key && (i == 0 || key[i - 1] != k)) cell_start[k] = EMPTY_CELL;
 }
 
 // The neighbour sets the hash yields (for tests and debugging): for each particle, the ids of every

@@ -46,12 +46,8 @@ GridSpec test_grid() {
   return GridSpec::covering(lo, hi, 0.25);
 }
 
-void expect_same_neighbours(const Cloud& cloud) {
-  ComputeContext compute("cpu");
-  ParticleStore store(compute, 16);  // small, so appending grows it
-  store.append(to_particles(cloud));
-  SpatialHash hash(compute, test_grid());
-  hash.build(store);
+// The hash's neighbour lists against a kd-tree over `cloud` (particle id k at cloud point k).
+void expect_kd_tree_neighbours(SpatialHash& hash, ParticleStore& store, const Cloud& cloud) {
   ASSERT_EQ(store.size(), cloud.x.size());
   const float radius = 0.25f;
   const auto lists = hash.neighbour_lists(store, radius);
@@ -84,6 +80,15 @@ void expect_same_neighbours(const Cloud& cloud) {
   EXPECT_GT(compared, 0u);
 }
 
+void expect_same_neighbours(const Cloud& cloud) {
+  ComputeContext compute("cpu");
+  ParticleStore store(compute, 16);  // small, so appending grows it
+  store.append(to_particles(cloud));
+  SpatialHash hash(compute, test_grid());
+  hash.build(store);
+  expect_kd_tree_neighbours(hash, store, cloud);
+}
+
 TEST(SpatialHash, RandomParticlesMatchKdTree) {
   std::mt19937 rng(1);
   std::uniform_real_distribution<float> u(0.0f, 4.0f);
@@ -94,6 +99,47 @@ TEST(SpatialHash, RandomParticlesMatchKdTree) {
     c.z.push_back(u(rng));
   }
   expect_same_neighbours(c);
+}
+
+// A build empties the cells the last one filled (in the key pass, at the cost of the particles)
+// even when the particles grew past the hash's capacity in between: here the first particles leave
+// the cells they filled for others next to them, and a stale cell there would hand their neighbours
+// ranges of the wrong particles.
+TEST(SpatialHash, ARebuildForgetsTheCellsTheParticlesLeftWhileTheyGrew) {
+  ComputeContext compute("cpu");
+  ParticleStore store(compute, 16);
+  SpatialHash hash(compute, test_grid());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> first(1.5f, 2.5f), later(2.0f, 3.0f), moved(3.2f, 4.0f);
+  Cloud start;
+  for (int i = 0; i < 200; ++i)
+    start.x.push_back(first(rng)), start.y.push_back(first(rng)), start.z.push_back(first(rng));
+  store.append(to_particles(start));
+  hash.build(store);
+  // 2,800 more next to where the first 200 were (past the hash's capacity), and those 200 moved
+  // away.
+  Cloud more;
+  for (int i = 0; i < 2800; ++i)
+    more.x.push_back(later(rng)), more.y.push_back(later(rng)), more.z.push_back(later(rng));
+  std::vector<float> away[3];
+  for (int i = 0; i < 200; ++i)
+    for (auto& a : away) a.push_back(moved(rng));
+  for (int d = 0; d < 3; ++d)
+    compute.queue().enqueueWriteBuffer(store.buffer(static_cast<ParticleField>(kX + d)), CL_TRUE, 0,
+                                       200 * sizeof(float), away[d].data());
+  store.append(to_particles(more));
+  hash.build(store);
+  // The cloud by id: the first 200 ids where they moved to, the rest appended in order.
+  const HostParticles now = store.download();
+  Cloud cloud;
+  cloud.x.resize(now.size()), cloud.y.resize(now.size()), cloud.z.resize(now.size());
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    cloud.x[now.id[i]] = now.f[kX][i];
+    cloud.y[now.id[i]] = now.f[kY][i];
+    cloud.z[now.id[i]] = now.f[kZ][i];
+  }
+  for (std::uint32_t id = 0; id < 200; ++id) ASSERT_GE(cloud.x[id], 3.2f) << id;
+  expect_kd_tree_neighbours(hash, store, cloud);
 }
 
 TEST(SpatialHash, ClusteredParticlesWithEmptyCellsMatchKdTree) {

@@ -58,7 +58,6 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   scatter_tiles_ = Kernel(compute, program, "radix_scatter_tiles");
   reorder_ = Kernel(compute, program, "reorder_words");
   cell_bounds_ = Kernel(compute, program, "cell_bounds");
-  clear_cells_ = Kernel(compute, program, "clear_cells");
   neighbour_list_ = Kernel(compute, program, "neighbour_list");
   tile_count_ = Kernel(compute, program, "tile_count");
   tile_scan_ = Kernel(compute, program, "tile_scan");
@@ -140,10 +139,15 @@ void SpatialHash::scan_histogram(const cl::Buffer& hist, cl_uint count) {
 void SpatialHash::ensure_capacity(std::size_t n) {
   if (n <= capacity_) return;
   capacity_ = std::max(n, capacity_ + capacity_ / 2);
+  const cl::Buffer last_sort = keys_[sorted_in_];
   for (int b = 0; b < 2; ++b) {
     keys_[b] = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE, capacity_ * sizeof(cl_uint));
     values_[b] = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE, capacity_ * sizeof(cl_uint));
   }
+  // The last sort's keys move along: the next hash_keys empties their cells.
+  if (sorted_ > 0)
+    compute_.queue().enqueueCopyBuffer(last_sort, keys_[sorted_in_], 0, 0,
+                                       sorted_ * sizeof(cl_uint));
 }
 
 void SpatialHash::build(ParticleStore& store) {
@@ -155,19 +159,17 @@ void SpatialHash::begin_build(ParticleStore& store) {
   const cl_uint n = static_cast<cl_uint>(store.size());
   auto& q = compute_.queue();
   summary_pending_ = false;
-  if (sorted_ > 0) {
-    clear_cells_.set("key", keys_[sorted_in_]).set("n", sorted_).set("dead_key", dead_key_);
-    clear_cells_.set("cell_start", cell_start_).launch(round_up_work(sorted_));
-    sorted_ = 0;
-  }
-  if (n == 0) return;
-  ensure_capacity(n);
+  if (n == 0 && sorted_ == 0) return;
+  ensure_capacity(std::max<std::size_t>(n, 1));
 
-  // 1. Keys: the linear index of each particle's cell.
+  // 1. Keys: the linear index of each particle's cell; and the cells of the last sort emptied.
   store.bind(hash_keys_, {kX, kY, kZ, kId});
   bind_grid(hash_keys_);
   hash_keys_.set("key", keys_[0]).set("index", values_[0]).set("dead_key", dead_key_);
-  hash_keys_.launch(round_up_work(n));
+  hash_keys_.set("sorted_key", keys_[sorted_in_]).set("sorted_n", sorted_);
+  hash_keys_.set("cell_start", cell_start_).launch(round_up_work(std::max(n, sorted_)));
+  sorted_ = 0;
+  if (n == 0) return;
 
   // 2. Stable LSD radix sort of (key, index), 8 bits per pass: on a CPU in serial runs, on a GPU in
   // tiles sorted by work-groups. The runs' count follows n (at least least_chunk_ keys each, at

@@ -124,8 +124,8 @@ class SpatialHash {
   cl::Buffer keys_[2], values_[2], hist_, slice_totals_, summary_, cell_start_, cell_end_,
       tile_first_;
   Kernel hash_keys_, histogram_, scan_, scan_slice_totals_, scan_totals_, scan_slices_, scatter_,
-      sort_tiles_, scatter_tiles_, reorder_, cell_bounds_, clear_cells_, neighbour_list_,
-      tile_count_, tile_scan_, tile_scatter_;
+      sort_tiles_, scatter_tiles_, reorder_, cell_bounds_, neighbour_list_, tile_count_, tile_scan_,
+      tile_scatter_;
 };
 
 }  // namespace runnel
