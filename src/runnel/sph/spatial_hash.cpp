@@ -160,7 +160,7 @@ void SpatialHash::begin_build(ParticleStore& store) {
   auto& q = compute_.queue();
   summary_pending_ = false;
   if (n == 0 && sorted_ == 0) return;
-  ensure_capacity(std::max<std::size_t>(n, 1));
+  ensure_capacity(n);  // with n = 0, the last sort's keys are there already
 
   // 1. Keys: the linear index of each particle's cell; and the cells of the last sort emptied.
   store.bind(hash_keys_, {kX, kY, kZ, kId});

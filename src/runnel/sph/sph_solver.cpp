@@ -179,7 +179,7 @@ void SphSolver::complete_step() {
   sort_particles();  // by cell, dead particles last; cell tables, tiles
   // D at x(n+1), new drops included: the next step's friction and erosion.
   if (depth_interval_ <= 0) measure_water_depth();
-  drop_dead_particles();  // the hash's live count and tiles, read while the depth pass runs
+  drop_dead_particles();  // the hash's live count and tiles, read while any depth pass runs
   compute_forces();       // a(n+1) at x(n+1), ρ(n+1)
   time_ += dt_;
   ++steps_;
