@@ -1,50 +1,52 @@
 // SPDX-License-Identifier: MIT
-// The spatial hash's radix sort on a wide device (a GPU): one pass of 8 bits, in tiles of
+// The spatial hash's radix sort on a wide device (a GPU): one pass of `bits` bits, in tiles of
 // RADIX_TILE keys that a work-group of RADIX_GROUP work-items sorts in local memory (Satish, Harris &
-// Garland 2009). radix_sort_tiles sorts each tile by the pass's digit, stably, with eight one-bit
-// splits, writes the sorted tile back and the tile's digit counts into hist[digit·tiles + tile];
+// Garland 2009). radix_sort_tiles sorts each tile by the pass's digit, stably, with one-bit
+// splits (one a bit), writes the sorted tile back and the tile's digit counts into hist[digit·tiles + tile];
 // the counts are scanned as the serial sort's are (spatial_hash.cl); radix_scatter_tiles moves
 // each key of a sorted tile to its digit's offset plus its rank in the tile's run of that digit.
 // Consecutive keys of a run go to consecutive addresses, so the writes coalesce; the CPU's sort
 // (spatial_hash.cl), one work-item walking a long block, writes one key at a time wherever its
 // digit points. No atomics: the permutation is the stable sort's, the same bits as the CPU's.
-// Compile-time constants: RADIX (spatial_hash.cl).
+// Compile-time constants: RADIX_MAX (spatial_hash.cl).
 
 #define RADIX_GROUP 256
 #define RADIX_PER_ITEM 4
 #define RADIX_TILE (RADIX_GROUP * RADIX_PER_ITEM)
 #define RADIX_ABSENT 0xFFFFFFFFu
 
-inline uint radix_digit(uint key, uint shift) { return (key >> shift) & (RADIX - 1); }
+inline uint radix_digit(uint key, uint shift, uint bits) { return (key >> shift) & ((1u << bits) - 1u); }
 
 // Where each digit's run starts in a tile sorted by it (RADIX_ABSENT for a digit it lacks) and,
 // where `end` is not null, where it ends; from the keys in local memory, `valid` keys, the rest
 // padding.
-inline void digit_runs(const __local uint* keys, uint valid, uint shift, __local uint* start, __local uint* end) {
+inline void digit_runs(const __local uint* keys, uint valid, uint shift, uint bits, __local uint* start,
+                       __local uint* end) {
   const uint item = get_local_id(0);
-  for (uint d = item; d < RADIX; d += RADIX_GROUP) start[d] = RADIX_ABSENT;
+  for (uint d = item; d < (1u << bits); d += RADIX_GROUP) start[d] = RADIX_ABSENT;
   barrier(CLK_LOCAL_MEM_FENCE);
   for (uint p = item; p < valid; p += RADIX_GROUP) {
-    const uint d = radix_digit(keys[p], shift);
-    if (p == 0 || radix_digit(keys[p - 1], shift) != d) start[d] = p;
-    if (end && (p + 1 == valid || radix_digit(keys[p + 1], shift) != d)) end[d] = p + 1;
+    const uint d = radix_digit(keys[p], shift, bits);
+    if (p == 0 || radix_digit(keys[p - 1], shift, bits) != d) start[d] = p;
+    if (end && (p + 1 == valid || radix_digit(keys[p + 1], shift, bits) != d)) end[d] = p + 1;
   }
   barrier(CLK_LOCAL_MEM_FENCE);
 }
 
 __kernel void radix_sort_tiles(const __global uint* key_in, const __global uint* value_in, __global uint* key_out,
-                               __global uint* value_out, __global uint* hist, const uint n, const uint shift) {
-  __local uint keys[RADIX_TILE], values[RADIX_TILE], sums[RADIX_GROUP], start[RADIX], end[RADIX];
+                               __global uint* value_out, __global uint* hist, const uint n, const uint shift,
+                               const uint bits) {
+  __local uint keys[RADIX_TILE], values[RADIX_TILE], sums[RADIX_GROUP], start[RADIX_MAX], end[RADIX_MAX];
   const uint item = get_local_id(0), tile = get_group_id(0), tiles = get_num_groups(0);
   const uint base = tile * RADIX_TILE, valid = min((uint)RADIX_TILE, n - base);
-  // Padding has every bit set: digit RADIX − 1, after every real key of that digit (the sort is
+  // Padding has every bit set: the pass's last digit, after every real key of that digit (the sort is
   // stable and the padding comes last), so it fills the tile's end and is never written out.
   for (uint p = item; p < RADIX_TILE; p += RADIX_GROUP) {
     keys[p] = p < valid ? key_in[base + p] : 0xFFFFFFFFu;
     values[p] = p < valid ? value_in[base + p] : 0;
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  for (uint bit = shift; bit < shift + 8; ++bit) {
+  for (uint bit = shift; bit < shift + bits; ++bit) {
     // A stable split on one bit: keys with 0 first, in order, then those with 1. Work-item q holds
     // the tile's keys RADIX_PER_ITEM·q ... in order.
     uint k[RADIX_PER_ITEM], v[RADIX_PER_ITEM], zeros = 0;
@@ -65,8 +67,8 @@ __kernel void radix_sort_tiles(const __global uint* key_in, const __global uint*
     }
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  digit_runs(keys, valid, shift, start, end);
-  for (uint d = item; d < RADIX; d += RADIX_GROUP) {
+  digit_runs(keys, valid, shift, bits, start, end);
+  for (uint d = item; d < (1u << bits); d += RADIX_GROUP) {
     hist[d * tiles + tile] = start[d] == RADIX_ABSENT ? 0 : end[d] - start[d];
   }
   for (uint p = item; p < valid; p += RADIX_GROUP) {
@@ -79,19 +81,19 @@ __kernel void radix_sort_tiles(const __global uint* key_in, const __global uint*
 // tile's run of each digit begins.
 __kernel void radix_scatter_tiles(const __global uint* key_in, const __global uint* value_in, __global uint* key_out,
                                   __global uint* value_out, const __global uint* hist, const uint n,
-                                  const uint shift) {
-  __local uint keys[RADIX_TILE], start[RADIX], offset[RADIX];
+                                  const uint shift, const uint bits) {
+  __local uint keys[RADIX_TILE], start[RADIX_MAX], offset[RADIX_MAX];
   const uint item = get_local_id(0), tile = get_group_id(0), tiles = get_num_groups(0);
   const uint base = tile * RADIX_TILE, valid = min((uint)RADIX_TILE, n - base);
   for (uint p = item; p < valid; p += RADIX_GROUP) keys[p] = key_in[base + p];
   barrier(CLK_LOCAL_MEM_FENCE);
-  digit_runs(keys, valid, shift, start, 0);
-  for (uint d = item; d < RADIX; d += RADIX_GROUP) {
+  digit_runs(keys, valid, shift, bits, start, 0);
+  for (uint d = item; d < (1u << bits); d += RADIX_GROUP) {
     offset[d] = start[d] == RADIX_ABSENT ? 0 : hist[d * tiles + tile] - start[d];
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   for (uint p = item; p < valid; p += RADIX_GROUP) {
-    const uint to = offset[radix_digit(keys[p], shift)] + p;
+    const uint to = offset[radix_digit(keys[p], shift, bits)] + p;
     key_out[to] = keys[p];
     value_out[to] = value_in[base + p];
   }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Spatial hash: linear cell keys (x fastest, so a row of cells is one run of particles), a stable
-// LSD radix sort (8 bits per pass), the reordering of the particle arrays, the cell start/end
+// LSD radix sort (digits of `bits` bits, at most RADIX_MAX_BITS: host -D), the reordering of the particle arrays, the cell start/end
 // tables and the tiles of the neighbour passes (physics.md §2, "Neighbour search").
 //
 // Determinism: the sort splits the particles into contiguous chunks (a few long ones on a CPU,
@@ -8,7 +8,7 @@
 // chunk) order, then each chunk scatters its elements in order. No atomics: the permutation is a
 // pure function of the keys (a stable sort has one result, however the chunks are cut).
 
-#define RADIX 256
+#define RADIX_MAX (1u << RADIX_MAX_BITS)
 
 // key: the linear index of the particle's cell; dead particles get dead_key (> every live key) so the
 // sort moves them to the end, where they are dropped.
@@ -32,17 +32,19 @@ __kernel void hash_keys(const __global float* x, const __global float* y, const 
   index[i] = i;
 }
 
-// hist[digit * blocks + block] = how many keys of the block's chunk have that digit.
-__kernel void radix_histogram(const __global uint* key, const uint n, const uint shift, const uint chunk,
-                              __global uint* hist) {
+// hist[digit * blocks + block] = how many keys of the block's chunk have that digit (the key's
+// `bits` bits from `shift`).
+__kernel void radix_histogram(const __global uint* key, const uint n, const uint shift, const uint bits,
+                              const uint chunk, __global uint* hist) {
   const uint block = get_global_id(0);
   const uint blocks = get_global_size(0);
-  uint counts[RADIX];
-  for (int d = 0; d < RADIX; ++d) counts[d] = 0;
+  const uint radix = 1u << bits;
+  uint counts[RADIX_MAX];
+  for (uint d = 0; d < radix; ++d) counts[d] = 0;
   const uint begin = block * chunk;
   const uint end = min(begin + chunk, n);
-  for (uint i = begin; i < end; ++i) counts[(key[i] >> shift) & (RADIX - 1)]++;
-  for (int d = 0; d < RADIX; ++d) hist[d * blocks + block] = counts[d];
+  for (uint i = begin; i < end; ++i) counts[(key[i] >> shift) & (radix - 1)]++;
+  for (uint d = 0; d < radix; ++d) hist[d * blocks + block] = counts[d];
 }
 
 // The histogram's exclusive prefix sum, in (digit, block) order: where each block's keys of each
@@ -88,16 +90,17 @@ __kernel void scan_slices(__global uint* data, const uint count, const uint per,
 
 __kernel void radix_scatter(const __global uint* key_in, const __global uint* value_in, __global uint* key_out,
                             __global uint* value_out, const __global uint* hist, const uint n, const uint shift,
-                            const uint chunk) {
+                            const uint bits, const uint chunk) {
   const uint block = get_global_id(0);
   const uint blocks = get_global_size(0);
-  uint offset[RADIX];
-  for (int d = 0; d < RADIX; ++d) offset[d] = hist[d * blocks + block];
+  const uint radix = 1u << bits;
+  uint offset[RADIX_MAX];
+  for (uint d = 0; d < radix; ++d) offset[d] = hist[d * blocks + block];
   const uint begin = block * chunk;
   const uint end = min(begin + chunk, n);
   for (uint i = begin; i < end; ++i) {
     const uint k = key_in[i];
-    const uint pos = offset[(k >> shift) & (RADIX - 1)]++;
+    const uint pos = offset[(k >> shift) & (radix - 1)]++;
     key_out[pos] = k;
     value_out[pos] = value_in[i];
   }

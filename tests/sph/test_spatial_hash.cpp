@@ -220,28 +220,46 @@ TEST(SpatialHash, SortIsByCellAndDeterministic) {
 
 // The sort against std::stable_sort of the particles' cells, cut as a CPU cuts it (a few long runs,
 // one work-item scanning the histogram) and as a GPU does (thousands of short runs, the histogram
-// of a million counts scanned over many work-groups): the same order, the reference's.
+// of a million counts scanned over many work-groups, in tiles): the same order, the reference's.
+// On grids of 8³, 16³, 64³ and 128³ cells over [0, 4]³, whose keys (10, 13, 19 and 22 bits) a CPU
+// sorts in one pass of 10 bits, two of 7, two of 10 and three of 8, and a GPU (digits of at most
+// 9 bits) in two of 5, two of 7, three of 7 and three of 8.
 TEST(SpatialHash, SortMatchesAStableSortOnEitherDevicesCut) {
   std::mt19937 rng(11);
   std::normal_distribution<float> clump(1.3f, 0.2f);  // crowded cells and empty ones
   HostParticles p = uniform_particles(rng, 150000);
   for (int i = 0; i < 50000; ++i) p.push(clump(rng), clump(rng), clump(rng), 0, 0, 0, 1000, 1);
-  auto cell = [](float v) { return std::clamp(static_cast<int>(v / 0.25f), 0, 15); };
-  std::vector<std::uint32_t> expected(p.size());
-  for (std::uint32_t i = 0; i < expected.size(); ++i) expected[i] = i;
-  auto key = [&](std::uint32_t i) {
-    return cell(p.f[kX][i]) + 16 * (cell(p.f[kY][i]) + 16 * cell(p.f[kZ][i]));
-  };
-  std::stable_sort(expected.begin(), expected.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
-  for (bool wide : {false, true}) {
-    ComputeContext compute("cpu");
-    compute.set_wide(wide);
-    ParticleStore store(compute);
-    store.append(p);
-    SpatialHash hash(compute, test_grid());
-    hash.build(store);
-    ASSERT_EQ(store.download().id, expected) << (wide ? "a GPU's cut" : "a CPU's cut");
+  const struct {
+    int cells, bits, passes[2], digit_bits[2];  // [a CPU's, a GPU's]
+  } grids[] = {{8, 10, {1, 2}, {10, 5}},
+               {16, 13, {2, 2}, {7, 7}},
+               {64, 19, {2, 3}, {10, 7}},
+               {128, 22, {3, 3}, {8, 8}}};
+  for (const auto& g : grids) {
+    const double lo[3] = {0, 0, 0}, hi[3] = {4, 4, 4};
+    const GridSpec grid = GridSpec::covering(lo, hi, 4.0 / g.cells);
+    ASSERT_EQ(grid.key_bits(), g.bits);
+    const float size = 4.0f / g.cells;  // a power of two: v / size is the kernel's v · (1 / size)
+    auto cell = [&](float v) { return std::clamp(static_cast<int>(v / size), 0, g.cells - 1); };
+    std::vector<std::uint32_t> expected(p.size());
+    for (std::uint32_t i = 0; i < expected.size(); ++i) expected[i] = i;
+    auto key = [&](std::uint32_t i) {
+      return cell(p.f[kX][i]) + g.cells * (cell(p.f[kY][i]) + g.cells * cell(p.f[kZ][i]));
+    };
+    std::stable_sort(expected.begin(), expected.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    for (bool wide : {false, true}) {
+      ComputeContext compute("cpu");
+      compute.set_wide(wide);
+      ParticleStore store(compute);
+      store.append(p);
+      SpatialHash hash(compute, grid);
+      EXPECT_EQ(hash.radix_passes(), g.passes[wide]);
+      EXPECT_EQ(hash.radix_digit_bits(), g.digit_bits[wide]);
+      hash.build(store);
+      ASSERT_EQ(store.download().id, expected)
+          << (wide ? "a GPU's cut" : "a CPU's cut") << ", " << g.cells << "³ cells";
+    }
   }
 }
 

@@ -45,8 +45,8 @@ int GridSpec::key_bits() const {
 SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uint32_t tile)
     : compute_(compute), grid_(grid), tile_(tile > 0 ? tile : device_tile(compute)) {
   dead_key_ = static_cast<std::uint32_t>(grid.cell_count());  // one past every live cell
-  passes_ = (grid.key_bits() + 7) / 8;
-  cl::Program& program = compute.program(kHashSources);
+  cl::Program& program =
+      compute.program(kHashSources, "-DRADIX_MAX_BITS=" + std::to_string(kMaxDigitBits));
   hash_keys_ = Kernel(compute, program, "hash_keys");
   histogram_ = Kernel(compute, program, "radix_histogram");
   scan_ = Kernel(compute, program, "radix_scan");
@@ -70,9 +70,14 @@ SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uin
   most_blocks_ = compute.wide() ? 4096 : 256;
   scan_group_ =
       compute.wide() ? std::min<std::size_t>({1024, scan_.max_group(), tile_scan_.max_group()}) : 1;
-  hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 256 * most_blocks_ * sizeof(cl_uint));
   sort_in_tiles_ = compute.wide() && sort_tiles_.max_group() >= kRadixGroup &&
                    scatter_tiles_.max_group() >= kRadixGroup;
+  const int most_digit_bits = sort_in_tiles_ ? kMaxTileDigitBits : kMaxDigitBits;
+  passes_ = (grid.key_bits() + most_digit_bits - 1) / most_digit_bits;
+  digit_bits_ = (grid.key_bits() + passes_ - 1) / passes_;
+  // A digit's counts a block, or the tiles' three classes a block (build_tiles).
+  hist_ = cl::Buffer(ctx, CL_MEM_READ_WRITE,
+                     std::max<std::size_t>(radix(), 3) * most_blocks_ * sizeof(cl_uint));
   if (compute.wide()) {
     slice_group_ =
         std::min<std::size_t>({256, scan_slice_totals_.max_group(), scan_slices_.max_group()});
@@ -171,10 +176,11 @@ void SpatialHash::begin_build(ParticleStore& store) {
   sorted_ = 0;
   if (n == 0) return;
 
-  // 2. Stable LSD radix sort of (key, index), 8 bits per pass: on a CPU in serial runs, on a GPU in
-  // tiles sorted by work-groups. The runs' count follows n (at least least_chunk_ keys each, at
-  // most most_blocks_; the tile list below is cut the same way): a handful of particles must not
-  // pay for many histograms. The permutation depends on neither (a stable sort has one result).
+  // 2. Stable LSD radix sort of (key, index), radix_digit_bits() a pass: on a CPU in serial runs,
+  // on a GPU in tiles sorted by work-groups. The runs' count follows n (at least least_chunk_ keys
+  // each, at most most_blocks_; the tile list below is cut the same way): a handful of particles
+  // must not pay for many histograms. The permutation depends on neither (a stable sort has one
+  // result).
   const SerialRuns runs = serial_runs(n, least_chunk_, most_blocks_);
   const cl_uint blocks = static_cast<cl_uint>(runs.runs), chunk = static_cast<cl_uint>(runs.length);
   const int in = sort_in_tiles_ ? sort_in_tiles(n, store) : sort_in_runs(n, blocks, chunk);
@@ -229,13 +235,14 @@ void SpatialHash::begin_build(ParticleStore& store) {
 int SpatialHash::sort_in_runs(cl_uint n, cl_uint blocks, cl_uint chunk) {
   int in = 0;
   for (int pass = 0; pass < passes_; ++pass) {
-    const cl_uint shift = 8 * pass;
-    histogram_.set("key", keys_[in]).set("n", n).set("shift", shift).set("chunk", chunk);
-    histogram_.set("hist", hist_).launch(blocks);
-    scan_histogram(hist_, static_cast<cl_uint>(256 * blocks));
+    const cl_uint shift = digit_bits_ * pass, bits = digit_bits_;
+    histogram_.set("key", keys_[in]).set("n", n).set("shift", shift).set("bits", bits);
+    histogram_.set("chunk", chunk).set("hist", hist_).launch(blocks);
+    scan_histogram(hist_, radix() * blocks);
     scatter_.set("key_in", keys_[in]).set("value_in", values_[in]);
     scatter_.set("key_out", keys_[1 - in]).set("value_out", values_[1 - in]);
-    scatter_.set("hist", hist_).set("n", n).set("shift", shift).set("chunk", chunk);
+    scatter_.set("hist", hist_).set("n", n).set("shift", shift).set("bits", bits);
+    scatter_.set("chunk", chunk);
     scatter_.launch(blocks);
     in = 1 - in;
   }
@@ -243,20 +250,20 @@ int SpatialHash::sort_in_runs(cl_uint n, cl_uint blocks, cl_uint chunk) {
 }
 
 // Each pass sorts the tiles of keys_[0] into keys_[1] and scatters them back: the result stays in
-// keys_[0]. The tiles' counts (one per 4 keys) go in a spare buffer of the store (free until the
+// keys_[0]. The tiles' counts (radix() a tile) go in a spare buffer of the store (free until the
 // gather), so the sort needs no memory of its own that grows with the particles; a store of a few
 // hundred particles, too small for them, lends hist_ instead.
 int SpatialHash::sort_in_tiles(cl_uint n, ParticleStore& store) {
   const cl_uint tiles = static_cast<cl_uint>((n + kRadixTile - 1) / kRadixTile);
-  const cl::Buffer& hist = store.capacity() >= 256u * tiles ? store.temporary(0) : hist_;
+  const cl::Buffer& hist = store.capacity() >= radix() * tiles ? store.temporary(0) : hist_;
   for (int pass = 0; pass < passes_; ++pass) {
-    const cl_uint shift = 8 * pass;
+    const cl_uint shift = digit_bits_ * pass, bits = digit_bits_;
     for (Kernel* k : {&sort_tiles_, &scatter_tiles_})
-      k->set("hist", hist).set("n", n).set("shift", shift);
+      k->set("hist", hist).set("n", n).set("shift", shift).set("bits", bits);
     sort_tiles_.set("key_in", keys_[0]).set("value_in", values_[0]);
     sort_tiles_.set("key_out", keys_[1]).set("value_out", values_[1]);
     sort_tiles_.launch_groups(tiles, kRadixGroup);
-    scan_histogram(hist, static_cast<cl_uint>(256 * tiles));
+    scan_histogram(hist, radix() * tiles);
     scatter_tiles_.set("key_in", keys_[1]).set("value_in", values_[1]);
     scatter_tiles_.set("key_out", keys_[0]).set("value_out", values_[0]);
     scatter_tiles_.launch_groups(tiles, kRadixGroup);

@@ -55,6 +55,15 @@ class SpatialHash {
   const GridSpec& grid() const { return grid_; }
   const cl::Buffer& cell_start() const { return cell_start_; }
   const cl::Buffer& cell_end() const { return cell_end_; }
+  // The radix sort: as few passes over the keys' bits as digits of at most kMaxDigitBits (in
+  // runs, a CPU's) or kMaxTileDigitBits (in tiles, a GPU's) allow, the bits shared evenly (18-bit
+  // keys: two passes of 9). Each pass is three launches (histogram, scan, scatter); a wider digit
+  // costs a longer histogram a chunk or tile. A tile's counts (one a digit, for 1,024 keys) go in
+  // a spare buffer of the store: 512 · ⌈n / 1,024⌉ fit from n = 1,024 on, 1,024 · ⌈n / 1,024⌉ not.
+  static constexpr int kMaxDigitBits = 10, kMaxTileDigitBits = 9;
+  int radix_passes() const { return passes_; }
+  int radix_digit_bits() const { return digit_bits_; }
+  cl_uint radix() const { return cl_uint{1} << digit_bits_; }  // a digit's values
   // Each occupied cell's particles in tiles of at most tile_size(), in sorted order, those of more
   // than kSmallTile particles first, then those of more than kLoneTile, then the rest:
   // tile_first()[t] is the sorted index of tile t's first particle; the tile size and its cell's
@@ -105,7 +114,7 @@ class SpatialHash {
   ComputeContext& compute_;
   GridSpec grid_;
   std::uint32_t dead_key_;
-  int passes_;
+  int passes_, digit_bits_;  // the radix sort's passes over the keys, and the bits of each
   std::uint32_t tile_;
   std::uint32_t lone_ = kLoneTile;
   std::size_t least_chunk_, most_blocks_, scan_group_;  // the sort's cut for this device
