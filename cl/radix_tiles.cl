@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
 // The spatial hash's radix sort on a wide device (a GPU): one pass of `bits` bits, in tiles of
 // RADIX_TILE keys that a work-group of RADIX_GROUP work-items sorts in local memory (Satish, Harris &
-// Garland 2009). radix_sort_tiles sorts each tile by the pass's digit, stably, with one-bit
-// splits (one a bit), writes the sorted tile back and the tile's digit counts into hist[digit·tiles + tile];
+// Garland 2009). radix_sort_tiles sorts each tile by the pass's digit, stably, with a one-bit
+// split a bit, writes the sorted tile back and the tile's digit counts into hist[digit·tiles + tile];
 // the counts are scanned as the serial sort's are (spatial_hash.cl); radix_scatter_tiles moves
 // each key of a sorted tile to its digit's offset plus its rank in the tile's run of that digit.
 // Consecutive keys of a run go to consecutive addresses, so the writes coalesce; the CPU's sort
 // (spatial_hash.cl), one work-item walking a long block, writes one key at a time wherever its
 // digit points. No atomics: the permutation is the stable sort's, the same bits as the CPU's.
-// Compile-time constants: RADIX_MAX (spatial_hash.cl).
+// Compile-time constants (host -D): RADIX_TILE_MAX_BITS, the widest digit a pass takes here.
+
+#define RADIX_TILE_MAX (1u << RADIX_TILE_MAX_BITS)
 
 #define RADIX_GROUP 256
 #define RADIX_PER_ITEM 4
@@ -36,7 +38,7 @@ inline void digit_runs(const __local uint* keys, uint valid, uint shift, uint bi
 __kernel void radix_sort_tiles(const __global uint* key_in, const __global uint* value_in, __global uint* key_out,
                                __global uint* value_out, __global uint* hist, const uint n, const uint shift,
                                const uint bits) {
-  __local uint keys[RADIX_TILE], values[RADIX_TILE], sums[RADIX_GROUP], start[RADIX_MAX], end[RADIX_MAX];
+  __local uint keys[RADIX_TILE], values[RADIX_TILE], sums[RADIX_GROUP], start[RADIX_TILE_MAX], end[RADIX_TILE_MAX];
   const uint item = get_local_id(0), tile = get_group_id(0), tiles = get_num_groups(0);
   const uint base = tile * RADIX_TILE, valid = min((uint)RADIX_TILE, n - base);
   // Padding has every bit set: the pass's last digit, after every real key of that digit (the sort is
@@ -82,7 +84,7 @@ __kernel void radix_sort_tiles(const __global uint* key_in, const __global uint*
 __kernel void radix_scatter_tiles(const __global uint* key_in, const __global uint* value_in, __global uint* key_out,
                                   __global uint* value_out, const __global uint* hist, const uint n,
                                   const uint shift, const uint bits) {
-  __local uint keys[RADIX_TILE], start[RADIX_MAX], offset[RADIX_MAX];
+  __local uint keys[RADIX_TILE], start[RADIX_TILE_MAX], offset[RADIX_TILE_MAX];
   const uint item = get_local_id(0), tile = get_group_id(0), tiles = get_num_groups(0);
   const uint base = tile * RADIX_TILE, valid = min((uint)RADIX_TILE, n - base);
   for (uint p = item; p < valid; p += RADIX_GROUP) keys[p] = key_in[base + p];

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Spatial hash: linear cell keys (x fastest, so a row of cells is one run of particles), a stable
-// LSD radix sort (digits of `bits` bits, at most RADIX_MAX_BITS: host -D), the reordering of the particle arrays, the cell start/end
-// tables and the tiles of the neighbour passes (physics.md §2, "Neighbour search").
+// LSD radix sort (digits of `bits` bits, at most RADIX_MAX_BITS: host -D), the reordering of the
+// particle arrays, the cell start/end tables and the tiles of the neighbour passes (physics.md §2,
+// "Neighbour search").
 //
 // Determinism: the sort splits the particles into contiguous chunks (a few long ones on a CPU,
 // thousands of short ones on a GPU). Each chunk's digit histogram, one exclusive scan in (digit,

@@ -45,8 +45,9 @@ int GridSpec::key_bits() const {
 SpatialHash::SpatialHash(ComputeContext& compute, const GridSpec& grid, std::uint32_t tile)
     : compute_(compute), grid_(grid), tile_(tile > 0 ? tile : device_tile(compute)) {
   dead_key_ = static_cast<std::uint32_t>(grid.cell_count());  // one past every live cell
-  cl::Program& program =
-      compute.program(kHashSources, "-DRADIX_MAX_BITS=" + std::to_string(kMaxDigitBits));
+  cl::Program& program = compute.program(
+      kHashSources, "-DRADIX_MAX_BITS=" + std::to_string(kMaxDigitBits) +
+                        " -DRADIX_TILE_MAX_BITS=" + std::to_string(kMaxTileDigitBits));
   hash_keys_ = Kernel(compute, program, "hash_keys");
   histogram_ = Kernel(compute, program, "radix_histogram");
   scan_ = Kernel(compute, program, "radix_scan");
