@@ -19,7 +19,8 @@
 //   τ_b = ρ g n² |u|² / D^(1/3) over the bed area V/D its water covers, so
 //   du/dt = −τ_b (V/D) / (ρ V) = −g n² |u| u / D^(4/3)   (along the bed),
 // applied implicitly (u ← u / (1 + dt g n² |u| / D^(4/3))), so it only ever slows the flow. D is
-// the water depth on the bed at the end of the last step (water_depth.cl). In steady flow this is Manning's
+// the water depth on the bed at the end of the last step (water_depth.cl); g n² / D^(4/3) comes from
+// bed_friction_factors, launched just before the drift. In steady flow this is Manning's
 // equation, u = D^(2/3) S^(1/2) / n, and τ_b = ρ g D S.
 // Units: m, s. Compile-time constants (host -D): SPH_WALLS, SPH_SURFACE_EPS, SPH_RESTITUTION,
 // SPH_CONTACT_RADIUS, SPH_MANNING_G_N2 (g n², m^(1/3)), SPH_GRAVITY.
@@ -46,11 +47,34 @@ inline void write_continuity_inputs(uint i, float3 p, float3 p_new, float dt, fl
   volume[i] = SPH_MASS / rho;
 }
 
-// Bed friction on the velocity tangential to the surface of normal n, in water of depth D (m).
-inline float3 bed_friction(float3 v, float3 n, float depth, float dt) {
+// The bed friction's factor k = g n² / D^(4/3) (1/m) for water of depth D (m), D ≥ 10⁻⁶ m.
+#define BED_FRICTION_DEPTH_FLOOR 1e-6f
+#define BED_FRICTION_FACTOR(depth) (SPH_MANNING_G_N2 / ((depth) * cbrt(depth)))
+
+// Every particle's bed friction factor, LANES particles a work-item (common.cl), before the drift
+// reads them (SphSolver: into the free buffer the continuity pass later writes ρ(n+1) to). PoCL
+// turns a cbrt() of one float into a call of a scalar library routine, even in a kernel it widens:
+// about a third of the drift's time when the drift took the root itself. A cbrt() of a vector is
+// its vector routine, which gives the scalar one's bits (the test checks) at a tenth of the time.
+__kernel void bed_friction_factors(const __global float* depth, const uint n, __global float* factor) {
+  const uint first = get_global_id(0) * LANES;
+  if (first >= n) return;
+  if (first + LANES <= n) {
+    const floatv d = fmax(LOADV(get_global_id(0), depth), BED_FRICTION_DEPTH_FLOOR);
+    STOREV(BED_FRICTION_FACTOR(d), get_global_id(0), factor);
+    return;
+  }
+  const intv k = min((int)first + LANE_INDEX, (int)n - 1);  // the last work-item's spare lanes
+  const floatv d = fmax(gather_float(depth, k), BED_FRICTION_DEPTH_FLOOR);
+  const floatv f = BED_FRICTION_FACTOR(d);
+  const float out[LANES] = {f.s0, f.s1, f.s2, f.s3, f.s4, f.s5, f.s6, f.s7};
+  for (uint l = 0; first + l < n; ++l) factor[first + l] = out[l];
+}
+
+// Bed friction on the velocity tangential to the surface of normal n, k from bed_friction_factors.
+inline float3 bed_friction(float3 v, float3 n, float k, float dt) {
   const float vn = dot(v, n);
   const float3 vt = v - vn * n;
-  const float k = SPH_MANNING_G_N2 / (depth * cbrt(depth));  // 1/m
   return vn * n + vt / (1.0f + dt * k * length(vt));
 }
 
@@ -80,7 +104,8 @@ inline float3 rebound(float3* v, float3 a, float3 n, float t, float dt) {
 __kernel void drift(const __global float* x, const __global float* y, const __global float* z, __global float* vx,
                     __global float* vy, __global float* vz, __global float* age, __global int* sediment,
                     __global uint* contacts, __global uint* id, const __global float* ax, const __global float* ay, const __global float* az,
-                    const __global float* depth, const __global float* rho, __global float* x_new,
+                    const __global float* depth, const __global float* friction, const __global float* rho,
+                    __global float* x_new,
                     __global float* y_new, __global float* z_new, const uint n, const float dt,
                     const __global float* terrain_contact, const __global float* terrain_normal, const int tnx,
                     const int tny, const float tcell, const float domain_x, const float domain_z,
@@ -164,8 +189,8 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
   }
   // Touching: in contact this step, or resting within ε. Bed friction on the water column.
   touching = touching || p.y - s.height <= SPH_SURFACE_EPS;
-  const float water_depth = fmax(depth[i], 1e-6f);
-  if (touching || (p.y - s.height) * s.normal.y <= water_depth) v = bed_friction(v, s.normal, water_depth, dt);
+  const float water_depth = fmax(depth[i], BED_FRICTION_DEPTH_FLOOR);
+  if (touching || (p.y - s.height) * s.normal.y <= water_depth) v = bed_friction(v, s.normal, friction[i], dt);
   // A collision is an arrival: touching now, not at the end of the last step (a particle that
   // rests or slides on the ground stays in one contact).
   const uint flags = contacts[i];

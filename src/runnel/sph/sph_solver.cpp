@@ -92,6 +92,7 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   continuity_ = Kernel(compute, program, "sph_continuity");
   continuity_direct_ = Kernel(compute, program, "sph_continuity_direct");
   drift_ = Kernel(compute, program, "drift");
+  friction_factors_ = Kernel(compute, program, "bed_friction_factors");
   stats_ = Kernel(compute, program, "step_stats");
   project_ = Kernel(compute, program, "project_to_surface");
   depth_scatter_ = Kernel(compute, program, "water_depth_scatter");
@@ -203,6 +204,7 @@ void SphSolver::drift_and_collide() {
       k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAge, kSediment, kContacts, kId, kAx, kAy, kAz, kDepth});
   store_.bind_new(k, {kX, kY, kZ});
   bind_continuity_inputs(store_, k);
+  launch_bed_friction_factors(store_, friction_factors_, k);
   terrain_.bind_contact(k);
   bind_extent(k);
   k.set("dt", static_cast<float>(dt_)).set("counters", counters_buffer_);
@@ -247,6 +249,14 @@ void bind_continuity_inputs(ParticleStore& store, Kernel& k) {
   static_assert(std::size(inputs) <= ParticleStore::kSpareCount);
   for (std::size_t s = 0; s < std::size(inputs); ++s)
     k.set(inputs[s], store.spare(static_cast<int>(s)));
+}
+
+void launch_bed_friction_factors(ParticleStore& store, Kernel& factors, Kernel& drift) {
+  const cl_uint n = static_cast<cl_uint>(store.size());
+  cl::Buffer& factor = store.scratch(kRho);
+  store.bind(factors, {kDepth});
+  factors.set("n", n).set("factor", factor).launch(lane_work(n));
+  drift.set("friction", factor);
 }
 
 void SphSolver::integrate_density() {

@@ -40,6 +40,10 @@ cl::Program& sph_program(ComputeContext& compute, const SphSettings& settings, d
 // store's spare buffers) as the arguments of the drift or continuity kernel `k`.
 void bind_continuity_inputs(ParticleStore& store, Kernel& k);
 
+// Launches bed_friction_factors (`factors`) over the store's particles, into the scratch buffer
+// of ρ (free until the continuity pass writes ρ(n+1) there), and sets it as the drift's friction.
+void launch_bed_friction_factors(ParticleStore& store, Kernel& factors, Kernel& drift);
+
 // The weakly compressible SPH solver (physics.md §2) on a terrain floor, with kick-drift-kick
 // leapfrog and an adaptive time step. Host code of cl/sph_continuity.cl, cl/sph_forces.cl and
 // cl/integrate.cl (with cl/collide.cl).
@@ -110,8 +114,9 @@ class SphSolver {
   ParticleStore store_;
   SpatialHash hash_;
   // The neighbour passes come in pairs: tiled, and direct for the lone tiles (SpatialHash).
-  Kernel forces_inputs_, forces_, forces_direct_, continuity_, continuity_direct_, drift_, stats_,
-      project_, depth_scatter_, depth_scatter_runs_, depth_gather_, depth_coarsen_;
+  Kernel forces_inputs_, forces_, forces_direct_, continuity_, continuity_direct_, drift_,
+      friction_factors_, stats_, project_, depth_scatter_, depth_scatter_runs_, depth_gather_,
+      depth_coarsen_;
   // Water on each terrain vertex, counts of 1 µm of depth, then its coarser levels for the films
   // (cl/water_depth.cl).
   cl::Buffer water_;
