@@ -77,7 +77,9 @@ inline SurfacePoint kept_surface(const __global float* surface, const __global f
   return s;
 }
 
+// The terrain itself: its heights are the surface kept at radius 0 (h + 0 / n_y is h, and a height,
+// a fixed-point value's view, is never −0), so it reads them without offset_surface's divisions.
 inline SurfacePoint terrain_surface(const __global float* height, const __global float* normal, int nx, int ny,
                                     float cell, float x, float z) {
-  return offset_surface(height, normal, nx, ny, cell, 0.0f, x, z);
+  return kept_surface(height, normal, nx, ny, cell, x, z);
 }
