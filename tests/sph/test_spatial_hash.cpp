@@ -221,9 +221,10 @@ TEST(SpatialHash, SortIsByCellAndDeterministic) {
 // The sort against std::stable_sort of the particles' cells, cut as a CPU cuts it (a few long runs,
 // one work-item scanning the histogram) and as a GPU does (thousands of short runs, the histogram
 // of a million counts scanned over many work-groups, in tiles): the same order, the reference's.
-// On grids of 8³, 16³, 64³ and 128³ cells over [0, 4]³, whose keys (10, 13, 19 and 22 bits) a CPU
-// sorts in one pass of 10 bits, two of 7, two of 10 and three of 8, and a GPU (digits of at most
-// 9 bits) in two of 5, two of 7, three of 7 and three of 8.
+// On grids of 1, 8³, 16³, 64³ and 128³ cells over [0, 4]³, whose keys (1, 10, 13, 19 and 22 bits) a
+// CPU sorts in one pass of 1 bit, one of 10, two of 7, two of 10 and three of 8, and a GPU (digits
+// of at most 9 bits) in one of 1, two of 5, two of 7, three of 7 and three of 8. (One cell: every
+// key is 0, the order the particles came in.)
 TEST(SpatialHash, SortMatchesAStableSortOnEitherDevicesCut) {
   std::mt19937 rng(11);
   std::normal_distribution<float> clump(1.3f, 0.2f);  // crowded cells and empty ones
@@ -231,7 +232,8 @@ TEST(SpatialHash, SortMatchesAStableSortOnEitherDevicesCut) {
   for (int i = 0; i < 50000; ++i) p.push(clump(rng), clump(rng), clump(rng), 0, 0, 0, 1000, 1);
   const struct {
     int cells, bits, passes[2], digit_bits[2];  // [a CPU's, a GPU's]
-  } grids[] = {{8, 10, {1, 2}, {10, 5}},
+  } grids[] = {{1, 1, {1, 1}, {1, 1}},
+               {8, 10, {1, 2}, {10, 5}},
                {16, 13, {2, 2}, {7, 7}},
                {64, 19, {2, 3}, {10, 7}},
                {128, 22, {3, 3}, {8, 8}}};
