@@ -93,6 +93,15 @@ inline float keyed_uniform(ulong key, uint counter) {
   return (float)(bits >> 8) * (1.0f / 16777216.0f);
 }
 
+// Inlined always: PoCL keeps some large functions that two kernels call (the neighbour passes' boundary
+// terms) as calls, and inlined they run faster (docs/performance.md). Clang's attribute (PoCL is
+// clang); another compiler takes a plain inline.
+#if defined(__clang__)
+#define ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define ALWAYS_INLINE inline
+#endif
+
 // Lanes: kernels whose work-item takes LANES items (droplets, particles) in the lanes of OpenCL
 // vectors, where written for one item they would run one lane at a time: the compilers of CPUs
 // (PoCL's among them) do not vectorise branchy code or loops of varying length across work-items.

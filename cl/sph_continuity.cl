@@ -39,7 +39,7 @@ inline void add_pair_continuity(float* drho, float* ghost_drho, float* shepard, 
 
 // The terrain under the particle (the mirrored normal velocity) and the tank walls, scaled by θ,
 // added to the neighbours' sums: particle i's dρ/dt and ρ(n+1).
-inline void finish_continuity(uint i, float3 mid_i, float3 vi, float rhoi, float drho_i, float drho_ghosts,
+ALWAYS_INLINE void finish_continuity(uint i, float3 mid_i, float3 vi, float rhoi, float drho_i, float drho_ghosts,
                               float shepard, float dt, const __global float* terrain_height,
                               const __global float* terrain_normal, int tnx, int tny, float tcell,
                               __global float* drho, __global float* rho_new) {

@@ -100,7 +100,7 @@ inline void add_pair_force(ForceSums* s, float dx, float dy, float dz, float dvx
 
 // The terrain under the particle and the tank walls, scaled by the fluid fullness θ, added to the
 // neighbours' sums: particle i's acceleration.
-inline void finish_forces(uint i, float3 pi, float rhoi, float pres_i, const ForceSums* sum,
+ALWAYS_INLINE void finish_forces(uint i, float3 pi, float rhoi, float pres_i, const ForceSums* sum,
                           const __global float* terrain_height, const __global float* terrain_normal, int tnx,
                           int tny, float tcell, __global float* ax, __global float* ay, __global float* az) {
   const SurfacePoint floor = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, pi.x, pi.z);
