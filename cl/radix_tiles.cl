@@ -17,8 +17,6 @@
 #define RADIX_TILE (RADIX_GROUP * RADIX_PER_ITEM)
 #define RADIX_ABSENT 0xFFFFFFFFu
 
-inline uint radix_digit(uint key, uint shift, uint bits) { return (key >> shift) & ((1u << bits) - 1u); }
-
 // Where each digit's run starts in a tile sorted by it (RADIX_ABSENT for a digit it lacks) and,
 // where `end` is not null, where it ends; from the keys in local memory, `valid` keys, the rest
 // padding.

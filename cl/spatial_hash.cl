@@ -11,6 +11,9 @@
 
 #define RADIX_MAX (1u << RADIX_MAX_BITS)
 
+// A key's digit in a pass: its `bits` bits from `shift` (both sorts, here and radix_tiles.cl).
+inline uint radix_digit(uint key, uint shift, uint bits) { return (key >> shift) & ((1u << bits) - 1u); }
+
 // key: the linear index of the particle's cell; dead particles get dead_key (> every live key) so the
 // sort moves them to the end, where they are dropped.
 // First it empties the cells the previous sort occupied (sorted_key, sorted_n: that sort's keys),
@@ -44,7 +47,7 @@ __kernel void radix_histogram(const __global uint* key, const uint n, const uint
   for (uint d = 0; d < radix; ++d) counts[d] = 0;
   const uint begin = block * chunk;
   const uint end = min(begin + chunk, n);
-  for (uint i = begin; i < end; ++i) counts[(key[i] >> shift) & (radix - 1)]++;
+  for (uint i = begin; i < end; ++i) counts[radix_digit(key[i], shift, bits)]++;
   for (uint d = 0; d < radix; ++d) hist[d * blocks + block] = counts[d];
 }
 
@@ -101,7 +104,7 @@ __kernel void radix_scatter(const __global uint* key_in, const __global uint* va
   const uint end = min(begin + chunk, n);
   for (uint i = begin; i < end; ++i) {
     const uint k = key_in[i];
-    const uint pos = offset[(k >> shift) & (radix - 1)]++;
+    const uint pos = offset[radix_digit(k, shift, bits)]++;
     key_out[pos] = k;
     value_out[pos] = value_in[i];
   }

@@ -96,10 +96,8 @@ TEST(Collision, SegmentWalkFindsTheEarliestHitOfABruteForceSearch) {
     cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n * 4);
     DeviceTerrain& terrain = solver.terrain();
     probe.set("surface", radius > 0 ? terrain.contact() : terrain.height());
-    probe.set("terrain_normal", terrain.normal()).set("tnx", terrain.nx()).set("tny", terrain.ny());
-    probe.set("tcell", terrain.cell())
-        .set("segments", seg_buffer)
-        .set("n", static_cast<cl_uint>(n));
+    terrain.bind_mesh(probe);
+    probe.set("segments", seg_buffer).set("n", static_cast<cl_uint>(n));
     probe.set("result", result).launch(n);
     std::vector<float> r(4 * n);
     compute().queue().enqueueReadBuffer(result, CL_TRUE, 0, r.size() * 4, r.data());

@@ -176,11 +176,12 @@ void DeviceTerrain::download_fixed(std::vector<std::int64_t>& fixed) {
 }
 
 void DeviceTerrain::bind(Kernel& k) {
-  k.set("terrain_height", height_)
-      .set("terrain_normal", normal())
-      .set("tnx", nx_)
-      .set("tny", ny_)
-      .set("tcell", cell_);
+  k.set("terrain_height", height_);
+  bind_mesh(k);
+}
+
+void DeviceTerrain::bind_mesh(Kernel& k) {
+  k.set("terrain_normal", normal()).set("tnx", nx_).set("tny", ny_).set("tcell", cell_);
 }
 
 void DeviceTerrain::carry_contact_surface(float radius) {
@@ -198,11 +199,8 @@ cl::Buffer& DeviceTerrain::contact() {
 }
 
 void DeviceTerrain::bind_contact(Kernel& k) {
-  k.set("terrain_contact", contact())
-      .set("terrain_normal", normal())
-      .set("tnx", nx_)
-      .set("tny", ny_)
-      .set("tcell", cell_);
+  k.set("terrain_contact", contact());
+  bind_mesh(k);
 }
 
 }  // namespace runnel

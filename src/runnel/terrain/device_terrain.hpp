@@ -57,6 +57,8 @@ class DeviceTerrain {
   cl::Buffer& contact();
   // terrain_contact (contact()), terrain_normal, tnx, tny, tcell.
   void bind_contact(Kernel& kernel);
+  // terrain_normal, tnx, tny, tcell: what every sampler of the mesh takes beside its heights.
+  void bind_mesh(Kernel& kernel);
   cl::Buffer& height() { return height_; }
   cl::Buffer& normal();
   cl::Buffer& delta() {
