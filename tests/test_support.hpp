@@ -16,6 +16,9 @@ namespace runnel::test {
 // The device every OpenCL test runs on, created once per test process: the CPU (PoCL), or
 // $RUNNEL_TEST_DEVICE.
 ComputeContext& compute();
+// That device's selector ("cpu", or $RUNNEL_TEST_DEVICE), for a test that needs a context of its
+// own.
+std::string test_device();
 // A second context on the same device whose passes of serial runs (the sort, the step
 // statistics) are cut as the other kind of device cuts them: a GPU's cut on the CPU, and back.
 ComputeContext& compute_cut_the_other_way();

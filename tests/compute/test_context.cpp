@@ -11,6 +11,7 @@
 #include "runnel/core/rng.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
@@ -58,14 +59,14 @@ TEST(ComputeContext, CompileErrorNamesFileAndLine) {
 }
 
 TEST(ComputeContext, EveryEmbeddedKernelCompiles) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   EXPECT_NO_THROW(compute.program({"cl/common.cl", "cl/terrain_normals.cl"}));
   EXPECT_NO_THROW(compute.program({"cl/common.cl", "cl/rng_probe.cl"}));
   EXPECT_THROW(embedded_source("cl/nope.cl"), Error);
 }
 
 TEST(TerrainNormals, KernelMatchesHostReference) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   TerrainNormals normals(compute);
   const Heightmap t = generate_terrain("fbm", 97, 61, 1.5, 3);
   const auto device = normals.compute(t);
@@ -75,7 +76,7 @@ TEST(TerrainNormals, KernelMatchesHostReference) {
 }
 
 TEST(TerrainNormals, PlaneNormalIsAnalytic) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   TerrainNormals normals(compute);
   const Heightmap t = generate_terrain("plane", 9, 9, 1.0, 1, {{"slope", 30.0}, {"azimuth", 90.0}});
   const auto n = normals.compute(t);
@@ -88,7 +89,7 @@ TEST(TerrainNormals, PlaneNormalIsAnalytic) {
 }
 
 TEST(Rng, DeviceDrawsTheSameBitsAsTheHost) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   Kernel probe(compute, compute.program({"cl/common.cl", "cl/rng_probe.cl"}), "rng_probe");
   const std::size_t n = 4096;
   cl::Buffer bits(compute.context(), CL_MEM_WRITE_ONLY, n * sizeof(cl_ulong));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "runnel/compute/kernel.hpp"
+#include "test_support.hpp"
 
 using namespace runnel;
 
@@ -30,7 +31,8 @@ __kernel __attribute__((reqd_work_group_size(4, 1, 1))) void tiled(__global floa
 )CL";
 
 ComputeContext& compute() {
-  static ComputeContext c("cpu");
+  static ComputeContext& c =
+      *new ComputeContext(test::test_device());  // never destroyed: test_support.cpp
   return c;
 }
 

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "runnel/compute/kernel.hpp"
+#include "test_support.hpp"
 
 using namespace runnel;
 
@@ -28,7 +29,8 @@ __kernel void second(__global float* values, const uint n) {
 )CL";
 
 ComputeContext& compute() {
-  static ComputeContext c("cpu");
+  static ComputeContext& c =
+      *new ComputeContext(test::test_device());  // never destroyed: test_support.cpp
   return c;
 }
 

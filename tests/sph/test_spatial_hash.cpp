@@ -10,6 +10,7 @@
 #include <set>
 
 #include "runnel/sph/spatial_hash.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
@@ -81,7 +82,7 @@ void expect_kd_tree_neighbours(SpatialHash& hash, ParticleStore& store, const Cl
 }
 
 void expect_same_neighbours(const Cloud& cloud) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   ParticleStore store(compute, 16);  // small, so appending grows it
   store.append(to_particles(cloud));
   SpatialHash hash(compute, test_grid());
@@ -106,7 +107,7 @@ TEST(SpatialHash, RandomParticlesMatchKdTree) {
 // the cells they filled for others next to them, and a stale cell there would hand their neighbours
 // ranges of the wrong particles.
 TEST(SpatialHash, ARebuildForgetsTheCellsTheParticlesLeftWhileTheyGrew) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   ParticleStore store(compute, 16);
   SpatialHash hash(compute, test_grid());
   std::mt19937 rng(5);
@@ -184,7 +185,7 @@ TEST(SpatialHash, ParticlesOnCellBordersAndOutsideTheGridMatchKdTree) {
 }
 
 TEST(SpatialHash, SortIsByCellAndDeterministic) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   std::mt19937 rng(4);
   HostParticles p = uniform_particles(rng, 5000);
   std::vector<std::uint32_t> orders[2];
@@ -251,7 +252,7 @@ TEST(SpatialHash, SortMatchesAStableSortOnEitherDevicesCut) {
     std::stable_sort(expected.begin(), expected.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
     for (bool wide : {false, true}) {
-      ComputeContext compute("cpu");
+      ComputeContext compute(test::test_device());
       compute.set_wide(wide);
       ParticleStore store(compute);
       store.append(p);
@@ -269,7 +270,7 @@ TEST(SpatialHash, SortMatchesAStableSortOnEitherDevicesCut) {
 // to its end with their flag, and the tile counts are the last build's; then it holds the live
 // ones in the order build() leaves them.
 TEST(SpatialHash, ASplitBuildDropsTheDeadWhenItFinishes) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   std::mt19937 rng(5);
   HostParticles p = uniform_particles(rng, 3000);
   std::size_t live = 0;
@@ -301,7 +302,7 @@ TEST(SpatialHash, ASplitBuildDropsTheDeadWhenItFinishes) {
 // kSmallTile particles listed first, then those of more than kLoneTile, then the lone ones;
 // against lists made here from the sorted positions.
 TEST(SpatialHash, TilesCoverEachCellInRunsOfTheTileSize) {
-  ComputeContext compute("cpu");
+  ComputeContext compute(test::test_device());
   std::mt19937 rng(9);
   std::normal_distribution<float> clump(2.0f, 0.05f);  // cells of 100+ particles: several tiles
   HostParticles p = uniform_particles(rng, 3000);

@@ -10,6 +10,7 @@
 #include "runnel/compute/launch.hpp"
 #include "runnel/sph/sph_reference.hpp"
 #include "runnel/sph/sph_settings.hpp"
+#include "test_support.hpp"
 
 namespace runnel {
 namespace {
@@ -21,7 +22,8 @@ struct Probe {
 };
 
 Probe probe(const std::vector<float>& r, double h = kH) {
-  static ComputeContext compute("cpu");
+  static ComputeContext& compute =
+      *new ComputeContext(test::test_device());               // never destroyed: test_support.cpp
   SphSettings s = SphSettings::from(Parameters(), 0.1, 2.0);  // dx 0.1 m, c0 20 m/s
   s.h = h;
   Kernel k(compute,
