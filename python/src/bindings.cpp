@@ -33,8 +33,10 @@ using namespace runnel;
 namespace {
 
 // One OpenCL context per device, shared by every model on it (building the kernels is the slow part).
+// The table is never destroyed: a context released at the interpreter's exit, after the OpenCL
+// implementation's own statics, can crash it.
 std::shared_ptr<ComputeContext> context_for(const std::string& device) {
-  static std::map<std::string, std::shared_ptr<ComputeContext>> contexts;
+  static auto& contexts = *new std::map<std::string, std::shared_ptr<ComputeContext>>;
   auto& slot = contexts[device];
   if (!slot) slot = std::make_shared<ComputeContext>(device);
   return slot;

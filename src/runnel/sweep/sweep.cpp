@@ -312,7 +312,9 @@ void run_member(const SweepSpec& spec, const SweepMember& member, const std::str
   fs::remove(dir / "result.csv", ec);
   write_text_atomically((dir / "scenario.toml").string(), parameters_toml(member.params));
   try {
-    static ComputeContext compute;  // one per process: every member of a worker shares its kernels
+    // One per process: every member of a worker shares its kernels. Never destroyed: a context
+    // released by the exit handlers, after the OpenCL implementation's own statics, can crash it.
+    static ComputeContext& compute = *new ComputeContext;
     // An interrupted member goes on from its newest checkpoint (bit for bit the run it would have
     // been).
     const std::string checkpoint = newest_checkpoint(dir / "checkpoints");
