@@ -64,7 +64,9 @@ __kernel void bed_friction_factors(const __global float* depth, const uint n, __
     STOREV(BED_FRICTION_FACTOR(d), get_global_id(0), factor);
     return;
   }
-  const intv k = min((int)first + LANE_INDEX, (int)n - 1);  // the last work-item's spare lanes
+  // The last work-item's spare lanes read the last particle. The bound is a vector: Oclgrind 21.10
+  // (scripts/oclgrind-check.sh) gets min(int8, int) wrong in some lanes.
+  const intv k = min((int)first + LANE_INDEX, (intv)((int)n - 1));
   const floatv d = fmax(gather_float(depth, k), BED_FRICTION_DEPTH_FLOOR);
   const floatv f = BED_FRICTION_FACTOR(d);
   const float out[LANES] = {f.s0, f.s1, f.s2, f.s3, f.s4, f.s5, f.s6, f.s7};
