@@ -21,6 +21,7 @@ packages=(
   clang-format
   clang libclang-rt-14-dev  # scripts/sanitize.sh: ASan + UBSan build and the libFuzzer targets
   patchelf  # scripts/gpu-bundle.sh: the bundle's binaries find their libraries through an RPATH
+  oclgrind  # scripts/oclgrind-check.sh (a CTest): every kernel access checked, data races found
 )
 
 missing=()
