@@ -179,7 +179,7 @@ if [ ! -x .venv/bin/python ]; then
 fi
 run_tests() {
   local rc
-  (cd "$build" && RUNNEL_TEST_DEVICE=$device ctest -j "$(nproc)" --timeout 150 --output-on-failure -LE fuzz ${exclude:+-E "$exclude"} ${GPU_CHECK_TESTS:+-R "$GPU_CHECK_TESTS"}) \
+  (cd "$build" && RUNNEL_TEST_DEVICE=$device ctest -j "$(nproc)" --timeout 150 --output-on-failure -LE "fuzz|oclgrind" ${exclude:+-E "$exclude"} ${GPU_CHECK_TESTS:+-R "$GPU_CHECK_TESTS"}) \
     >"$out/tests.log" 2>&1
   rc=$?
   tail -3 "$out/tests.log" >&2
