@@ -71,7 +71,9 @@ check() {
   fi
   echo "$verdict|$((SECONDS - start))|$name" >>"$work/verdicts"
   printf '  %-9s %4d s  %s\n' "${verdict%% *}" "$((SECONDS - start))" "$name"
-  if [[ "$verdict" != ok ]]; then grep -v -E '^\[ *(RUN|OK) ' "$log" | head -40 | sed 's/^/    /'; fi
+  if [[ "$verdict" != ok ]]; then
+    grep -v -E '^\[ *(RUN|OK) ' "$log" | head -40 | sed 's/^/    /' || true  # (an empty log: no lines)
+  fi
   return 0
 }
 export -f check
