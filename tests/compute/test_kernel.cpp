@@ -30,11 +30,7 @@ __kernel __attribute__((reqd_work_group_size(4, 1, 1))) void tiled(__global floa
 }
 )CL";
 
-ComputeContext& compute() {
-  static ComputeContext& c =
-      *new ComputeContext(test::test_device());  // never destroyed: test_support.cpp
-  return c;
-}
+using test::compute;
 
 }  // namespace
 

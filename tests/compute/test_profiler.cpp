@@ -28,9 +28,10 @@ __kernel void second(__global float* values, const uint n) {
 }
 )CL";
 
+// A context of its own, whose profiler sees only these tests' launches; never destroyed, as in
+// test_support.cpp.
 ComputeContext& compute() {
-  static ComputeContext& c =
-      *new ComputeContext(test::test_device());  // never destroyed: test_support.cpp
+  static ComputeContext& c = *new ComputeContext(test::test_device());
   return c;
 }
 

@@ -22,8 +22,7 @@ struct Probe {
 };
 
 Probe probe(const std::vector<float>& r, double h = kH) {
-  static ComputeContext& compute =
-      *new ComputeContext(test::test_device());               // never destroyed: test_support.cpp
+  ComputeContext& compute = test::compute();
   SphSettings s = SphSettings::from(Parameters(), 0.1, 2.0);  // dx 0.1 m, c0 20 m/s
   s.h = h;
   Kernel k(compute,
