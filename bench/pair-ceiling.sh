@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # How fast the SPH benchmark could be with fewer candidates in its pair loop (issue 15): builds
 # throwaway copies of this tree whose two tiled neighbour passes evaluate only the first N
 # candidates of each tile's list (their results are wrong: timing only), everything else unchanged,
@@ -23,8 +24,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # The pair loop of each tiled pass, as the kernels spell it; the script refuses to run if either file
 # no longer has exactly one, rather than time an unpatched pass.
+passes=(cl/sph_forces.cl cl/sph_continuity.cl)
 loop='      for (uint k = 0; k < length; ++k) {'
-for f in cl/sph_forces.cl cl/sph_continuity.cl; do
+for f in "${passes[@]}"; do
   if [ "$(grep -c -F -x "$loop" "$f")" != 1 ]; then
     echo "pair-ceiling: $f: expected one pair loop '$loop'" >&2
     exit 2
@@ -38,7 +40,7 @@ if [ -x /usr/bin/python3 ]; then python_args+=(-DPython3_EXECUTABLE=/usr/bin/pyt
 binaries="$work/binaries"
 mkdir -p "$binaries"
 for cap in $caps; do
-  for f in cl/sph_forces.cl cl/sph_continuity.cl; do
+  for f in "${passes[@]}"; do
     cp "$f" "$work/$f"
     if [ "$cap" != all ]; then
       sed -i "s|^$loop\$|      for (uint k = 0; k < (base == 0 ? min(length, ${cap}u) : 0u); ++k) {|" "$work/$f"
