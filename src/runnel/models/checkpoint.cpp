@@ -109,6 +109,8 @@ std::string digest_of(const CheckpointData& d) {
   for (const auto& field : d.particles.f) g.add(field);
   g.add(d.particles.sediment).add(d.particles.contacts).add(d.particles.id);
   g.add(d.ax).add(d.ay).add(d.az).add(d.drho).add(d.depth).add(d.next_id);
+  // Only when present, so files of the weakly compressible solver verify as before.
+  if (!d.kappa.empty() || !d.kappa_v.empty()) g.add(d.kappa).add(d.kappa_v);
   g.add(d.time).add(d.dt).add(d.steps).add(d.rain_spawned).add(d.rain_carry).add(d.seed);
   const SphCounters& c = d.counters;
   for (long long v : {c.surface_projections, c.outflow_particles, c.collisions, c.outflow_sediment,
@@ -208,6 +210,8 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.write("/particles/az", d.az, {n});
     f.write("/particles/drho", d.drho, {n});
     f.write("/particles/depth", d.depth, {n});
+    if (!d.kappa.empty()) f.write("/particles/kappa", d.kappa, {n});
+    if (!d.kappa_v.empty()) f.write("/particles/kappa_v", d.kappa_v, {n});
     f.attribute("/particles", "count", static_cast<std::int64_t>(n));
     f.attribute("/particles", "next_id", static_cast<std::int64_t>(d.next_id));
     f.attribute("/particles", "sediment_quantum_m3", d.height_quantum * t.cell * t.cell);
@@ -345,6 +349,10 @@ CheckpointData read_checkpoint_contents(const std::string& path) {
   d.az = f.read_float("/particles/az", n);
   d.drho = f.read_float("/particles/drho", n);
   d.depth = f.read_float("/particles/depth", n);
+  if (f.exists("/particles/kappa")) d.kappa = f.read_float("/particles/kappa", n);
+  if (f.exists("/particles/kappa_v")) d.kappa_v = f.read_float("/particles/kappa_v", n);
+  require_finite(path, "/particles/kappa", d.kappa);
+  require_finite(path, "/particles/kappa_v", d.kappa_v);
   for (auto* rates : {&d.ax, &d.ay, &d.az, &d.drho})
     require_finite(path, "/particles rates", *rates);
   d.next_id = static_cast<std::uint32_t>(f.read_int_attribute("/particles", "next_id"));

@@ -30,6 +30,9 @@ struct CheckpointData {
   // Particles in their current (sorted) order, with the rates of the last force pass.
   HostParticles particles;
   std::vector<float> ax, ay, az, drho, depth;
+  // dfsph's kept pressures (the warm start of its solves); empty with wcsph and in files that
+  // have none.
+  std::vector<float> kappa, kappa_v;
   std::uint32_t next_id = 0;
   // Clocks and counters.
   double time = 0, dt = 0;

@@ -156,6 +156,10 @@ CheckpointData Simulation::checkpoint() {
   d.az = store.read_field(kAz);
   d.drho = store.read_field(kDrho);
   d.depth = store.read_field(kDepth);
+  if (solver_->settings().incompressible()) {
+    d.kappa = store.read_field(kKappa);
+    d.kappa_v = store.read_field(kKappaV);
+  }
   d.next_id = store.next_id();
   d.time = solver_->time();
   d.dt = solver_->dt();
@@ -185,6 +189,11 @@ void Simulation::restore(const CheckpointData& d) {
   store.upload_field(kAz, d.az);
   store.upload_field(kDrho, d.drho);
   store.upload_field(kDepth, d.depth);
+  if (solver_->settings().incompressible()) {
+    // A checkpoint of the other solver has none: the solves then start cold.
+    store.upload_field(kKappa, d.kappa.empty() ? std::vector<float>(d.depth.size()) : d.kappa);
+    store.upload_field(kKappaV, d.kappa_v.empty() ? std::vector<float>(d.depth.size()) : d.kappa_v);
+  }
   store.set_next_id(d.next_id);
   solver_->restore_clock(d.time, d.dt, d.steps);
   solver_->restore_counters(d.counters);

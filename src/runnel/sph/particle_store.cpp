@@ -11,15 +11,16 @@ namespace {
 constexpr double kGrowthFactor = 1.5;  // amortised growth; keeps spare capacity below 50 %
 
 const ParticleFieldInfo kFieldInfo[kFieldCount] = {
-    {"x", "m", false},        {"y", "m", false},
-    {"z", "m", false},        {"vx", "m/s", false},
-    {"vy", "m/s", false},     {"vz", "m/s", false},
-    {"rho", "kg/m^3", false}, {"sediment", "quanta", true},
-    {"age", "s", false},      {"lifespan", "s", false},
-    {"contacts", "1", true},  {"id", "1", true},
-    {"ax", "m/s^2", false},   {"ay", "m/s^2", false},
-    {"az", "m/s^2", false},   {"drho", "kg/m^3/s", false},
-    {"depth", "m", false},
+    {"x", "m", false},           {"y", "m", false},
+    {"z", "m", false},           {"vx", "m/s", false},
+    {"vy", "m/s", false},        {"vz", "m/s", false},
+    {"rho", "kg/m^3", false},    {"sediment", "quanta", true},
+    {"age", "s", false},         {"lifespan", "s", false},
+    {"contacts", "1", true},     {"id", "1", true},
+    {"ax", "m/s^2", false},      {"ay", "m/s^2", false},
+    {"az", "m/s^2", false},      {"drho", "kg/m^3/s", false},
+    {"depth", "m", false},       {"kappa", "m^2", false},
+    {"kappa_v", "m^2/s", false},
 };
 static_assert(sizeof(kFieldInfo) / sizeof(kFieldInfo[0]) == kFieldCount);
 

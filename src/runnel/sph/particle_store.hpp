@@ -27,6 +27,9 @@ enum ParticleField : int {
   kAx = kPersistentFieldCount, kAy, kAz,  // acceleration, m/s²
   kDrho,                                  // dρ/dt, kg/m³/s
   kDepth,                                 // local water depth (m), from the force pass
+  kKappa,     // dfsph: the constant-density solve's pressure κ (m²/s²), kept as κ·dt² (m²) between
+              // steps for the next solve's warm start; the sort carries it
+  kKappaV,    // dfsph: the divergence-free solve's κ, kept as κ·dt (m²/s); the sort carries it
   kFieldCount
   // clang-format on
 };
@@ -120,8 +123,8 @@ class ParticleStore {
   std::array<cl::Buffer, kFieldCount> current_;
   static constexpr int kNewFieldCount = 4;  // x, y, z, rho
   static int new_slot(ParticleField f);
-  // The next state of x, y, z, rho, then the spares: 11 words, so that with the 17 fields and the
-  // hash's 4 a particle of capacity holds 32 words (128 bytes).
+  // The next state of x, y, z, rho, then the spares: 11 words, so that with the 19 fields and the
+  // hash's 4 a particle of capacity holds 34 words (136 bytes).
   std::array<cl::Buffer, kNewFieldCount + kSpareCount> scratch_;
   static_assert(kTemporaryCount == kNewFieldCount + kSpareCount);
 };

@@ -196,12 +196,14 @@ void SpatialHash::begin_build(ParticleStore& store) {
   static constexpr const char* kOut[kSlots] = {"out0", "out1", "out2", "out3",
                                                "out4", "out5", "out6"};
   static_assert(kSlots <= ParticleStore::kTemporaryCount);
-  const int fields = kPersistentFieldCount + (carry_depth_ ? 1 : 0);
+  std::vector<ParticleField> carried;
+  for (int k = 0; k < kPersistentFieldCount; ++k) carried.push_back(static_cast<ParticleField>(k));
+  if (carry_depth_) carried.push_back(kDepth);
+  if (carry_pressure_) carried.insert(carried.end(), {kKappa, kKappaV});
+  const int fields = static_cast<int>(carried.size());
   const int launches = (fields + kSlots - 1) / kSlots;
   const int per_launch = (fields + launches - 1) / launches;
-  auto field = [](int k) {
-    return k < kPersistentFieldCount ? static_cast<ParticleField>(k) : kDepth;
-  };
+  auto field = [&carried](int k) { return carried[static_cast<std::size_t>(k)]; };
   for (int first = 0; first < fields; first += per_launch) {
     const int end = std::min(first + per_launch, fields);
     reorder_.set("perm", values_[in]).set("n", n);

@@ -16,14 +16,19 @@ namespace {
 
 // clang-format off
 const SettingsTable<SphSettings> kSphTable = {
-      // sph: the weakly compressible SPH fluid (physics.md §2)
+      // sph: the SPH fluid (physics.md §2, docs/sph.md)
+      {"sph.solver", "\"wcsph\"", "", 0, 0, {"wcsph", "dfsph"}, "the pressure solver: wcsph, weakly compressible (Tait equation, time step set by the sound speed c0); dfsph, incompressible (divergence-free SPH: two pressure solves a step, time step set by the flow, sph.cfl_flow)", &SphSettings::solver},
       {"sph.spacing", "0", "m", 0, 1e4, {}, "particle spacing dx (particle volume dx³); 0: derived from the case (half the terrain's cell size for runs: several particles across a channel)", &SphSettings::spacing},
       {"sph.h_factor", "1.2", "1", 0.8, 2.5, {}, "smoothing length h = h_factor · dx (support radius 2h)", &SphSettings::h_factor},
       {"sph.rho0", "1000", "kg/m^3", 1, 1e5, {}, "rest density ρ0", &SphSettings::rho0, "SPH_RHO0"},
-      {"sph.c0", "0", "m/s", 0, 1e5, {}, "speed of sound; 0: 10 × the case's reference speed (free fall from the spawn height, or sqrt(g H))", &SphSettings::c0, "SPH_C0"},
+      {"sph.c0", "0", "m/s", 0, 1e5, {}, "speed of sound of wcsph (with dfsph it only scales the viscosity, α c0 h / 10); 0: 10 × the case's reference speed (free fall from the spawn height, or sqrt(g H))", &SphSettings::c0, "SPH_C0"},
       {"sph.alpha_visc", "0.02", "1", 0, 10, {}, "Monaghan artificial viscosity α", &SphSettings::alpha_visc, "SPH_ALPHA_VISC"},
       {"sph.delta", "0.1", "1", 0, 1, {}, "δ-SPH density diffusion coefficient (Molteni & Colagrossi 2009)", &SphSettings::delta, "SPH_DELTA"},
-      {"sph.cfl", "0.25", "1", 0.01, 0.5, {}, "time step factor: dt = cfl · min(h/(c0 + |v|max), sqrt(h/|a|max))", &SphSettings::cfl},
+      {"sph.cfl", "0.25", "1", 0.01, 0.5, {}, "wcsph's time step factor: dt = cfl · min(h/(c0 + |v|max), sqrt(h/|a|max))", &SphSettings::cfl},
+      {"sph.cfl_flow", "0.4", "1", 0.01, 1, {}, "dfsph's time step factor: dt = cfl_flow · min(dx/|v|max, sqrt(dx/|a|max)), |a| the non-pressure accelerations", &SphSettings::cfl_flow},
+      {"sph.dfsph_density_error", "0.05", "%", 1e-4, 10, {}, "dfsph: the constant-density solve iterates until the mean compression of the particles under pressure is below this share of ρ0", &SphSettings::dfsph_density_error},
+      {"sph.dfsph_divergence_error", "0.5", "%", 1e-3, 100, {}, "dfsph: the divergence-free solve iterates until the mean rate of compression, over one step, is below this share of ρ0", &SphSettings::dfsph_divergence_error},
+      {"sph.dfsph_max_iterations", "100", "1", 1, 10000, {}, "dfsph: iterations of each pressure solve at most; a solve that reaches it goes on with the error it has, and the run says so on stderr", &SphSettings::dfsph_max_iterations},
       {"sph.dt_min", "1e-7", "s", 1e-12, 1, {}, "smallest time step: reaching it stops the run as unstable", &SphSettings::dt_min},
       {"sph.dt_max", "0.01", "s", 1e-9, 10, {}, "largest time step", &SphSettings::dt_max},
       {"sph.gravity", "9.81", "m/s^2", 0, 100, {}, "gravitational acceleration (along −y)", &SphSettings::gravity, "SPH_GRAVITY"},
@@ -68,6 +73,23 @@ double footprint_radius(const SphSettings& s, double terrain_cell) {
   return std::min(std::max(2.0 * s.h, 2.0 * terrain_cell), 8.0 * terrain_cell);
 }
 
+double SphSettings::lattice_sum() const {
+  // Σ_j dx³ W(|x_j|) over a cubic lattice of spacing dx (the particle itself included), in
+  // double precision, with W the Wendland C2 kernel of cl/sph_kernel.cl.
+  const double alpha = 21.0 / (16.0 * 3.14159265358979323846 * h * h * h);
+  const int reach = static_cast<int>(std::ceil(2.0 * h / spacing));
+  double sum = 0.0;
+  for (int i = -reach; i <= reach; ++i)
+    for (int j = -reach; j <= reach; ++j)
+      for (int k = -reach; k <= reach; ++k) {
+        const double q = spacing * std::sqrt(double(i * i + j * j + k * k)) / h;
+        if (q >= 2.0) continue;
+        const double t = 1.0 - 0.5 * q;
+        sum += alpha * t * t * t * t * (2.0 * q + 1.0);
+      }
+  return sum * spacing * spacing * spacing;
+}
+
 std::string SphSettings::build_options() const {
   std::string o = settings_defines(*this, kSphTable);
   o += float_define("SPH_H", h);
@@ -75,6 +97,7 @@ std::string SphSettings::build_options() const {
   o += float_define("SPH_B", tait_b());
   o += float_define("SPH_MANNING_G_N2", gravity * manning_n * manning_n);
   o += float_define("SPH_RHO_FLOOR", density_min * rho0);
+  o += float_define("DFSPH_VOLUME", spacing * spacing * spacing / lattice_sum());
   return o;
 }
 

@@ -14,7 +14,8 @@ double footprint_radius(const SphSettings& s, double terrain_cell);
 // The SPH parameters of one run, resolved: no "auto" values left. The sph.* parameters fill it
 // from their table (sph_settings.cpp: defaults, units, meaning); from() resolves the rest.
 struct SphSettings {
-  double spacing;  // dx, m
+  std::string solver;  // "wcsph" (weakly compressible) or "dfsph" (incompressible, docs/sph.md)
+  double spacing;      // dx, m
   double h_factor;
   double h;     // smoothing length h_factor · dx, m
   double rho0;  // kg/m³
@@ -22,9 +23,13 @@ struct SphSettings {
   double alpha_visc;
   double delta;
   double cfl;
-  double dt_min;   // s
-  double dt_max;   // s
-  double gravity;  // m/s²
+  double cfl_flow;                // dfsph: dt = cfl_flow · dx / |v|max
+  double dfsph_density_error;     // dfsph: mean density error the constant-density solve allows, %
+  double dfsph_divergence_error;  // dfsph: mean compression per step the divergence solve allows, %
+  int dfsph_max_iterations;       // dfsph: iterations of each solve at most
+  double dt_min;                  // s
+  double dt_max;                  // s
+  double gravity;                 // m/s²
   double restitution;
   double manning_n;       // s/m^(1/3), bed friction of the terrain contact
   double contact_radius;  // m (the parameter is in dx): a particle touches with its lowest point
@@ -34,8 +39,13 @@ struct SphSettings {
   bool clamp_negative_pressure;
   bool walls;
 
+  bool incompressible() const { return solver == "dfsph"; }
   double mass() const { return rho0 * spacing * spacing * spacing; }  // kg
-  double tait_b() const { return c0 * c0 * rho0 / 7.0; }              // Pa
+  // The kernel summed over a cubic lattice of spacing dx, in particle volumes dx³: 1.0175 at
+  // h = 1.2 dx. dfsph's summation density divides by it, so that water at rest at the spacing
+  // it was made with is at ρ0 (docs/sph.md).
+  double lattice_sum() const;
+  double tait_b() const { return c0 * c0 * rho0 / 7.0; }  // Pa
 
   // `default_spacing` and `reference_speed` fill sph.spacing = 0 and sph.c0 = 0 (c0 = 10 v_ref).
   static SphSettings from(const Parameters& params, double default_spacing, double reference_speed);

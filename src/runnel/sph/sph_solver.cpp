@@ -17,7 +17,8 @@ namespace {
 const std::vector<std::string> kSphSources = {
     "cl/common.cl",         "cl/counters.cl",     "cl/grid.cl",      "cl/sph_kernel.cl",
     "cl/terrain_sample.cl", "cl/sph_boundary.cl", "cl/collide.cl",   "cl/sph_forces.cl",
-    "cl/sph_continuity.cl", "cl/integrate.cl",    "cl/footprint.cl", "cl/water_depth.cl"};
+    "cl/sph_continuity.cl", "cl/integrate.cl",    "cl/footprint.cl", "cl/water_depth.cl",
+    "cl/dfsph_density.cl",  "cl/dfsph_solve.cl"};
 constexpr int kStatColumns = 6;
 // step_stats' rows: on a CPU at most 256 contiguous runs; on a GPU at most 16384 interleaved ones
 // of at least 64 particles (a thread per row, and rows enough to keep the GPU busy).
@@ -99,6 +100,10 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   depth_scatter_runs_ = Kernel(compute, program, "water_depth_scatter_runs");
   depth_gather_ = Kernel(compute, program, "water_depth_gather");
   depth_coarsen_ = Kernel(compute, program, "water_depth_coarsen");
+  if (settings.incompressible()) {
+    dfsph_ = std::make_unique<Dfsph>(compute, program, settings);
+    hash_.carry_solver_pressure(true);
+  }
   water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE,
                       film_level_vertices(floor.nx, floor.ny) * sizeof(cl_long));
   stat_blocks_ = compute.wide() ? kStatBlocksGpu : kStatBlocksCpu;
@@ -120,7 +125,12 @@ void SphSolver::prepare() {
   sort_particles();
   measure_water_depth();
   drop_dead_particles();
-  compute_forces();
+  if (dfsph_) {
+    dfsph_->measure_density(store_, hash_, terrain_);
+    dfsph_->non_pressure_accelerations(store_, hash_, terrain_);
+  } else {
+    compute_forces();
+  }
   choose_next_dt();
   rates_ready_ = true;
 }
@@ -133,7 +143,20 @@ void SphSolver::step() {
 
 void SphSolver::drift() {
   if (!rates_ready_) prepare();
-  if (hash_stale_) build_hash();  // a restored state: same order, cell tables rebuilt
+  if (hash_stale_) {  // a restored state: same order, cell tables rebuilt
+    build_hash();
+    if (dfsph_) dfsph_->measure_density(store_, hash_, terrain_);  // the solver's factors
+  }
+  if (dfsph_) {
+    // The pressure impulse that keeps the density at ρ0 over the step, then the drift as for
+    // wcsph: v(n+½) = v(n) + dt·a(κ) + a(n)·dt/2, x(n+1) = x(n) + v(n+½)·dt (walls, outflow,
+    // terrain contact, bed friction). The non-pressure forces are leapfrogged, so a drop's flight
+    // and bounce are the weakly compressible solver's.
+    dfsph_->solve_density(store_, hash_, terrain_, dt_);
+    drift_and_collide();
+    store_.swap_scratch({kX, kY, kZ});  // x(n+1); ρ(n+1) is measured after the sort
+    return;
+  }
   // v(n+½) = v(n) + a(n)·dt/2, then x(n+1) into scratch: walls, outflow, terrain contact, bed
   // friction; and the drift's midpoints and velocities for the continuity pass.
   drift_and_collide();
@@ -181,12 +204,19 @@ void SphSolver::complete_step() {
   // D at x(n+1), new drops included: the next step's friction and erosion.
   if (depth_interval_ <= 0) measure_water_depth();
   drop_dead_particles();  // the hash's live count and tiles, read while any depth pass runs
-  compute_forces();       // a(n+1) at x(n+1), ρ(n+1)
+  if (dfsph_) {
+    dfsph_->measure_density(store_, hash_, terrain_);             // ρ(n+1), the solver's factors
+    dfsph_->non_pressure_accelerations(store_, hash_, terrain_);  // a(n+1): viscosity, gravity
+    dfsph_->half_kick(store_, dt_);                               // v(n+1) = v(n+½) + a(n+1)·dt/2
+    dfsph_->solve_divergence(store_, hash_, terrain_, dt_);       // made divergence-free
+  } else {
+    compute_forces();  // a(n+1) at x(n+1), ρ(n+1)
+  }
   time_ += dt_;
   ++steps_;
-  // v(n+1) = v(n+½) + a(n+1)·dt/2 in the pass that measures the state; then the CFL and
+  // wcsph: v(n+1) = v(n+½) + a(n+1)·dt/2 in the pass that measures the state; then the CFL and
   // acceleration limits. Stops on NaN or a collapsing step.
-  choose_next_dt(/*closing_kick=*/true);
+  choose_next_dt(/*closing_kick=*/!dfsph_);
   // Or D only before a step that will exchange with the bed (its dt is now chosen).
   if (depth_interval_ > 0 && interval_credit(depth_interval_, time_, dt_) > 0)
     measure_water_depth();
@@ -291,7 +321,7 @@ void SphSolver::choose_next_dt(bool closing_kick) {
   health_ = SphHealth{};
   const auto& s = settings_;
   if (n == 0) {  // no fluid yet: the acoustic limit, so rain that arrives next starts stable
-    dt_ = std::min(s.cfl * s.h / s.c0, s.dt_max);
+    dt_ = s.incompressible() ? s.dt_max : std::min(s.cfl * s.h / s.c0, s.dt_max);
     return;
   }
   // A CPU: a few contiguous runs; a GPU: thousands of interleaved ones (step_stats in
@@ -324,25 +354,47 @@ void SphSolver::choose_next_dt(bool closing_kick) {
       "SPH step " + std::to_string(steps_) + " (t = " + std::to_string(time_) + " s): ";
   if (bad > 0)
     throw runtime_error(where + std::to_string(bad) + " particles have NaN or infinite values");
-  if (rmin < s.density_min * s.rho0 || rmax > s.density_max * s.rho0) {
+  // (dfsph's summation density is below ρ0 wherever the water thins: only its upper bound is
+  // a sign of trouble.)
+  const bool too_thin = !s.incompressible() && rmin < s.density_min * s.rho0;
+  if (too_thin || rmax > s.density_max * s.rho0) {
     std::ostringstream msg;
-    msg << where << "density " << (rmin < s.density_min * s.rho0 ? rmin : rmax)
-        << " kg/m^3 is outside the sane range [" << s.density_min * s.rho0 << ", "
-        << s.density_max * s.rho0 << "] (sph.density_min/max): the run is unstable";
+    msg << where << "density " << (too_thin ? rmin : rmax) << " kg/m^3 is outside the sane range ["
+        << s.density_min * s.rho0 << ", " << s.density_max * s.rho0
+        << "] (sph.density_min/max): the run is unstable";
     // (Continuity holds the density at the floor, so only a particle added below it, or the
     // compressive side, reach here.)
     throw runtime_error(msg.str());
   }
-  double dt = s.h / (s.c0 + health_.v_max);
-  if (health_.a_max > 0) dt = std::min(dt, std::sqrt(s.h / health_.a_max));
-  dt = std::min(s.cfl * dt, s.dt_max);
+  dt_ = next_dt(s, health_);
+  const double dt = dt_;
   if (dt < s.dt_min) {
     std::ostringstream msg;
     msg << where << "time step " << dt << " s fell below sph.dt_min = " << s.dt_min << " s (|v|max "
         << health_.v_max << " m/s, |a|max " << health_.a_max << " m/s^2): the run is unstable";
     throw runtime_error(msg.str());
   }
-  dt_ = dt;
+}
+
+// wcsph: the acoustic CFL and the acceleration limit, dt = cfl · min(h/(c0 + |v|max),
+// sqrt(h/|a|max)). dfsph: the flow's, dt = cfl_flow · min(dx/|v|max, sqrt(dx/|a|max)) with the
+// non-pressure accelerations, and the explicit viscosity's diffusion limit 0.125 h²/ν,
+// ν = α c0 h / 10. Both at most dt_max.
+double next_dt(const SphSettings& s, const SphHealth& health) {
+  double dt;
+  if (s.incompressible()) {
+    dt = s.dt_max / s.cfl_flow;
+    if (health.v_max > 0) dt = std::min(dt, s.spacing / health.v_max);
+    if (health.a_max > 0) dt = std::min(dt, std::sqrt(s.spacing / health.a_max));
+    dt *= s.cfl_flow;
+    const double nu = s.alpha_visc * s.c0 * s.h / 10.0;
+    if (nu > 0) dt = std::min(dt, 0.125 * s.h * s.h / nu);
+  } else {
+    dt = s.h / (s.c0 + health.v_max);
+    if (health.a_max > 0) dt = std::min(dt, std::sqrt(s.h / health.a_max));
+    dt *= s.cfl;
+  }
+  return std::min(dt, s.dt_max);
 }
 
 void SphSolver::restore_clock(double time, double dt, std::uint64_t steps) {
@@ -351,6 +403,17 @@ void SphSolver::restore_clock(double time, double dt, std::uint64_t steps) {
   steps_ = steps;
   rates_ready_ = true;  // the restored accelerations belong to the restored state
   hash_stale_ = true;   // but the cell tables must be rebuilt before the next continuity pass
+}
+
+std::vector<float> SphSolver::pressure() {
+  if (dfsph_) return dfsph_->pressure(store_);
+  std::vector<float> p = store_.read_field(kRho);
+  for (float& v : p) {
+    const double r = v / settings_.rho0;
+    const double tait = settings_.tait_b() * (std::pow(r, 7.0) - 1.0);
+    v = static_cast<float>(settings_.clamp_negative_pressure ? std::max(0.0, tait) : tait);
+  }
+  return p;
 }
 
 SphCounters SphSolver::counters() {

@@ -5,6 +5,7 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
+#include "runnel/sph/dfsph.hpp"
 #include "runnel/sph/particle_store.hpp"
 #include "runnel/sph/spatial_hash.hpp"
 #include "runnel/sph/sph_settings.hpp"
@@ -44,9 +45,12 @@ void bind_continuity_inputs(ParticleStore& store, Kernel& k);
 // of ρ (free until the continuity pass writes ρ(n+1) there), and sets it as the drift's friction.
 void launch_bed_friction_factors(ParticleStore& store, Kernel& factors, Kernel& drift);
 
-// The weakly compressible SPH solver (physics.md §2) on a terrain floor, with kick-drift-kick
-// leapfrog and an adaptive time step. Host code of cl/sph_continuity.cl, cl/sph_forces.cl and
-// cl/integrate.cl (with cl/collide.cl).
+// The next time step after a step that left the particles in `health` (docs/sph.md).
+double next_dt(const SphSettings& settings, const SphHealth& health);
+
+// The SPH solver (physics.md §2) on a terrain floor with an adaptive time step: weakly compressible
+// with kick-drift-kick leapfrog (host code of cl/sph_continuity.cl, cl/sph_forces.cl and
+// cl/integrate.cl, with cl/collide.cl), or incompressible, DFSPH (Dfsph; docs/sph.md).
 class SphSolver {
  public:
   // `top` is the highest y the fluid is expected to reach (m): the hash grid spans the terrain's
@@ -91,6 +95,10 @@ class SphSolver {
   SphCounters counters();
   void restore_counters(const SphCounters& counters);
   cl::Buffer& counters_buffer() { return counters_buffer_; }
+  // The incompressible solver (nullptr with wcsph).
+  const Dfsph* dfsph() const { return dfsph_.get(); }
+  // Each particle's pressure (Pa): wcsph's Tait equation of its density, dfsph's solves.
+  std::vector<float> pressure();
 
  private:
   void drift_and_collide();
@@ -119,6 +127,7 @@ class SphSolver {
       depth_coarsen_;
   // Water on each terrain vertex, counts of 1 µm of depth, then its coarser levels for the films
   // (cl/water_depth.cl).
+  std::unique_ptr<Dfsph> dfsph_;  // sph.solver = "dfsph"
   cl::Buffer water_;
   cl::Buffer stats_buffer_, counters_buffer_;
   cl_uint stat_blocks_;           // step_stats' rows at most (a CPU: a few, a GPU: many)

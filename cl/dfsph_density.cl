@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: MIT
+// The incompressible solver's state at the hashed positions (DFSPH: Bender & Koschier 2015, 2017):
+// each particle's summation density, the solver's factor, the fluid fullness θ, and the
+// non-pressure accelerations (viscosity, gravity). In particle volumes V0 = dx³ / S, S the kernel's
+// sum over a cubic lattice of spacing dx (1.0175 at h = 1.2 dx: SphSettings::lattice_sum), so that
+// water at its initial spacing is at rest density rather than 1.75 % compressed:
+//   ρ̂_i = ρ_i/ρ0 = V0 Σ_j W_ij + V0 Σ_ghosts W_ij' + Γ(d_i)
+//   g_i  = ∇_i ρ̂_i = V0 Σ_j ∇W_ij + V0 Σ_ghosts ∇W_ij' − G(d_i) n_i
+//   factor_i = 1 / (max(g_i·(g_i − G(d_i) n_i), 0) + V0² Σ_j |∇W_ij|²)
+// (0 for a particle alone: nothing to solve), the inverse of the diagonal of the solves' system:
+// how fast ρ̂_i changes with κ_i through a_i (dfsph_solve.cl), in which the terrain mirrors the
+// particle's own pressure (its share −G n counts twice there) and the neighbours' in theirs.
+// The terrain under the particle is the volume map of a half-space: Γ(d) is the share of the
+// kernel beyond the tangent plane at distance d (Bender et al. 2019 tabulate it for any shape; a
+// plane's is closed form, sph_kernel.cl), and ∇Γ = −G(d) n. The tank walls' mirror ghosts
+// (sph_boundary.cl) count like neighbours. The boundary is always complete: with a summation
+// density the solves' clamp at ρ0 does what θ does for the continuity density of the weakly
+// compressible passes, since a drop resting on the ground (ρ̂ = V0 W(0) + Γ(dx/2) = 0.46 at
+// h = 1.2 dx) and a single sheet of water (about 0.85) stay below 1 and feel no pressure, while
+// water two particles deep is completed in full. (Scaling the boundary by θ < 1 leaves the bottom
+// layer's own pressure pushing it into the ground.) θ, the Shepard sum of the others against a
+// full neighbourhood's (sph_boundary.cl), decides where the divergence-free solve acts.
+// One work-item a particle over its cell's neighbourhood (the candidates as the direct passes walk
+// them, sph_boundary.cl). Units: ρ in kg/m³, factor in m², accelerations in m/s².
+// Compile-time constants (host -D): SPH_H, SPH_MASS, SPH_RHO0, SPH_C0, SPH_ALPHA_VISC, SPH_GRAVITY,
+// SPH_WALLS.
+
+#define DFSPH_V0 DFSPH_VOLUME
+
+// Particle i's candidates: its own cell's neighbourhood and wall images, as a lone tile of one.
+inline LoneTile particle_candidates(uint i, float3 pi, Grid grid, const __global uint* cell_start,
+                                    const __global uint* cell_end, float domain_x, float domain_z) {
+  LoneTile t;
+  t.first = i;
+  t.last = i + 1;
+  const int3 cell = cell_of(pi, grid);
+  t.nb = cell_neighbourhood(cell, grid, cell_start, cell_end);
+  t.images = tile_images(cell, grid, domain_x, domain_z);
+  return t;
+}
+
+// The terrain's tangent plane under a particle: distance d along the unit normal n.
+typedef struct {
+  float d;
+  float3 n;
+} FloorPlane;
+
+inline FloorPlane floor_plane(float3 p, const __global float* terrain_height, const __global float* terrain_normal,
+                              int tnx, int tny, float tcell) {
+  const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, p.x, p.z);
+  FloorPlane f;
+  f.d = (p.y - s.height) * s.normal.y;
+  f.n = s.normal;
+  return f;
+}
+
+__kernel void dfsph_density(const __global float* x, const __global float* y, const __global float* z, const uint n,
+                            const float ox, const float oy, const float oz, const float inv_cell, const int gx,
+                            const int gy, const int gz, const __global uint* cell_start,
+                            const __global uint* cell_end, const __global float* terrain_height,
+                            const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
+                            const float domain_x, const float domain_z, __global float* rho, __global float* factor,
+                            __global float* theta) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const float3 pi = (float3)(x[i], y[i], z[i]);
+  const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
+  float w_fluid = 0.0f, w_ghost = 0.0f, others = 0.0f, sq_fluid = 0.0f, sq_ghost = 0.0f;
+  float3 g_fluid = (float3)(0.0f), g_ghost = (float3)(0.0f);
+  LONE_CANDIDATES_BEGIN(t)
+  const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+  const float3 xij = pi - pj;
+  const float r = length(xij);
+  const float w = wendland_w(r);
+  const float3 grad = wendland_grad_factor(r) * xij;
+  const float sq = dot(grad, grad);
+  if (image_ == 0) {
+    w_fluid += w;
+    g_fluid += grad;
+    sq_fluid += sq;
+    if (j != i) others += w;
+  } else {
+    w_ghost += w;
+    g_ghost += grad;
+    sq_ghost += sq;
+    others += w;
+  }
+  LONE_CANDIDATES_END
+  const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
+  const float th = fluid_fullness((SPH_MASS / SPH_RHO0) * others, f.d, SPH_RHO0);
+  const float rho_hat = DFSPH_V0 * (w_fluid + w_ghost) + wall_volume(f.d);
+  const float3 g = DFSPH_V0 * (g_fluid + g_ghost) - wall_integral(f.d) * f.n;
+  const float3 g_pressure = g - wall_integral(f.d) * f.n;
+  const float denominator = max(dot(g, g_pressure), 0.0f) + DFSPH_V0 * DFSPH_V0 * (sq_fluid + sq_ghost);
+  rho[i] = SPH_RHO0 * rho_hat;
+  factor[i] = denominator > 1e-6f / (SPH_H * SPH_H) ? 1.0f / denominator : 0.0f;
+  theta[i] = th;
+}
+
+// Viscosity and gravity at the divergence-free velocities: Monaghan's artificial viscosity with the
+// weakly compressible solver's α and c0 (kinematic viscosity α c0 h / 10), on the rest density, as
+// an explicit force; the wall ghosts' too (free slip: their tangential velocity is the particle's
+// own, so they damp only the normal motion).
+//   dv_i/dt = −Σ_j m Π_ij ∇_iW_ij + g,  Π_ij = −α c0 μ_ij / ρ0 when v_ij·x_ij < 0,
+//   μ_ij = h v_ij·x_ij / (|x_ij|² + 0.01h²)
+__kernel void dfsph_non_pressure(const __global float* x, const __global float* y, const __global float* z,
+                                 const __global float* vx, const __global float* vy, const __global float* vz,
+                                 const uint n, const float ox, const float oy,
+                                 const float oz, const float inv_cell, const int gx, const int gy, const int gz,
+                                 const __global uint* cell_start, const __global uint* cell_end,
+                                 const float domain_x, const float domain_z, __global float* ax, __global float* ay,
+                                 __global float* az) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const float3 pi = (float3)(x[i], y[i], z[i]);
+  const float3 vi = (float3)(vx[i], vy[i], vz[i]);
+  const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
+  const float eta2 = 0.01f * SPH_H * SPH_H;
+  float3 acc = (float3)(0.0f);
+  LONE_CANDIDATES_BEGIN(t)
+  const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+  const float3 vj = image_velocity(image_, (float3)(vx[j], vy[j], vz[j]));
+  const float3 xij = pi - pj;
+  const float r2 = dot(xij, xij);
+  const float vdotx = dot(vi - vj, xij);
+  const float visc = -SPH_ALPHA_VISC * SPH_C0 * SPH_H * min(vdotx, 0.0f) / ((r2 + eta2) * SPH_RHO0);
+  acc += (-SPH_MASS * visc * wendland_grad_factor(sqrt(r2))) * xij;
+  LONE_CANDIDATES_END
+  ax[i] = acc.x;
+  ay[i] = acc.y - SPH_GRAVITY;
+  az[i] = acc.z;
+}

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+// DFSPH's two pressure solves (Bender & Koschier 2017, Algorithms 2 and 3; the Jacobi form of
+// SPlisHSPlasH), on the density, factor and θ of dfsph_density.cl. Each solves for a pressure
+// κ (p/ρ² · ρ0, m²/s²) whose acceleration
+//   a_i = −V0 Σ_j (κ_i + κ_j) ∇W_ij − V0 Σ_ghosts (κ_i + κ_j) ∇W_ij' + 2 κ_i G(d_i) n_i
+// (the terrain's volume map with the particle's own pressure mirrored, as the weakly compressible
+// momentum pass has it: with κ_i alone there, the particle's own pressure cancels and its
+// neighbours' pressure pushes the bottom layer into the ground, which the solve can only answer
+// with a pressure that alternates from layer to layer)
+// applied over the step dt removes
+//   the constant-density solve:  the predicted compression, ρ̂_i + dt Δ_i(v) ≤ 1, and
+//   the divergence-free solve:   the rate of compression, Δ_i(v) ≤ 0,
+// where Δ_i(u) = V0 Σ_j (u_i − u_j)·∇W_ij + V0 Σ_ghosts (u_i − u_j')·∇W_ij' − G(d_i) u_i·n_i
+// is the rate of change of ρ̂_i that the velocities u cause (the ghosts' u mirrored as their
+// velocities are). Only compression is removed: κ ≥ 0, so water may thin at a free surface and a
+// drop keeps no pressure. Projected Jacobi: κ_i ← max(κ_i − ω r_i · factor_i / dt^k, 0) with the
+// residual r_i = s_i − dt^k Δ_i(a) (k = 2 for the density, 1 for the divergence), s_i the source
+// (IISPH's clamp; a κ that only grew, as in SPlisHSPlasH, cannot undo a warm start that pushes
+// too hard). The divergence-free solve acts only where θ > 0 (a full neighbourhood, as SPlisHSPlasH
+// leaves particles with fewer than 20 neighbours out): at a free surface the summation density is
+// deficient and the constant-density solve alone keeps the water from compressing.
+// Every particle adds its error to fixed-point sums (integer atomics: the totals do not depend on
+// the order), from which the host decides whether to iterate again.
+// Compile-time constants (host -D): SPH_H, SPH_MASS, SPH_RHO0, SPH_WALLS.
+
+#define DFSPH_ERROR_QUANTUM 1e-9f
+// Jacobi's relaxation, as IISPH's (Ihmsen et al. 2014): with the full step (1) the iteration
+// diverges on a water column, the diagonal being only part of what κ_i changes.
+#define DFSPH_RELAXATION 0.5f  // of the dimensionless density error, in the fixed-point sums
+
+// v += a·dt/2 with the non-pressure accelerations of dfsph_non_pressure: the step's closing half
+// kick (its opening one is the drift's, integrate.cl).
+__kernel void dfsph_kick(__global float* vx, __global float* vy, __global float* vz, const __global float* ax,
+                         const __global float* ay, const __global float* az, const uint n, const float half_dt) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  vx[i] += half_dt * ax[i];
+  vy[i] += half_dt * ay[i];
+  vz[i] += half_dt * az[i];
+}
+
+// The pressure acceleration a_i of the current κ (above), into (apx, apy, apz).
+__kernel void dfsph_pressure_acceleration(
+    const __global float* x, const __global float* y, const __global float* z, const __global float* kappa,
+    const uint n, const float ox, const float oy, const float oz, const float inv_cell,
+    const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
+    const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
+    const float tcell, const float domain_x, const float domain_z, __global float* apx, __global float* apy,
+    __global float* apz) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const float3 pi = (float3)(x[i], y[i], z[i]);
+  const float ki = kappa[i];
+  const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
+  float3 acc = (float3)(0.0f);
+  LONE_CANDIDATES_BEGIN(t)
+  const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+  const float3 xij = pi - pj;
+  acc += (-DFSPH_V0 * (ki + kappa[j]) * wendland_grad_factor(length(xij))) * xij;
+  LONE_CANDIDATES_END
+  const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
+  acc += (2.0f * ki * wall_integral(f.d)) * f.n;
+  apx[i] = acc.x;
+  apy[i] = acc.y;
+  apz[i] = acc.z;
+}
+
+// Δ_i(u) (above) for velocities or accelerations u (plus a·half_dt: the constant-density solve's
+// source takes the velocity the drift will move the particles at, v + a·dt/2 with the non-pressure
+// accelerations a; otherwise half_dt is 0), then one of two updates of particle i:
+//   source (iterate 0): the source s_i from u (density: 1 − ρ̂_i − dt Δ_i(u); divergence:
+//     −Δ_i(u)), and κ_i's warm start, the κ the last solve ended with (kept as κ·dt^k, so that it
+//     does not depend on the step): the projection lowers it again where it is too high;
+//   iterate (iterate 1): u = a of the current κ; the residual and the Jacobi update of κ_i.
+// `dt_k` is dt² (density) or dt (divergence); `error_scale` turns a residual into a density error
+// (1, or dt for a rate). `errors` gets Σ error and the count of particles in the solve (residual
+// below 0, or after an iteration pressure above 0) in quanta, `error_max` the largest error's bits.
+__kernel void dfsph_density_change(
+    const __global float* x, const __global float* y, const __global float* z, const __global float* ux,
+    const __global float* uy, const __global float* uz, const __global float* ax, const __global float* ay,
+    const __global float* az, const float half_dt, const __global float* rho, const __global float* factor,
+    const __global float* theta, __global float* source, __global float* kappa, const uint n, const float ox,
+    const float oy, const float oz, const float inv_cell, const int gx, const int gy, const int gz,
+    const __global uint* cell_start, const __global uint* cell_end, const __global float* terrain_height,
+    const __global float* terrain_normal, const int tnx, const int tny, const float tcell, const float domain_x,
+    const float domain_z, const float dt, const float dt_k, const float error_scale, const uint divergence,
+    const uint iterate, volatile __global long* errors, volatile __global uint* error_max) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
+  const float3 pi = (float3)(x[i], y[i], z[i]);
+  const float3 ui = (float3)(ux[i], uy[i], uz[i]) + half_dt * (float3)(ax[i], ay[i], az[i]);
+  const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
+  float sum = 0.0f;
+  LONE_CANDIDATES_BEGIN(t)
+  const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+  const float3 uj =
+      image_velocity(image_, (float3)(ux[j], uy[j], uz[j]) + half_dt * (float3)(ax[j], ay[j], az[j]));
+  const float3 xij = pi - pj;
+  sum += dot(ui - uj, xij) * wendland_grad_factor(length(xij));
+  LONE_CANDIDATES_END
+  const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
+  const float change = DFSPH_V0 * sum - wall_integral(f.d) * dot(ui, f.n);
+  // The divergence-free solve leaves particles of a deficient neighbourhood alone.
+  const bool solved = !divergence || theta[i] > 0.0f;
+  float residual;
+  float ki = kappa[i];
+  if (!iterate) {
+    const float s = !solved ? 0.0f : divergence ? -change : 1.0f - rho[i] * (1.0f / SPH_RHO0) - dt * change;
+    source[i] = s;
+    residual = min(s, 0.0f);
+    ki = solved ? ki / dt_k : 0.0f;
+  } else {
+    // Projected Jacobi: κ may fall again (a warm start or an iteration that pushed too hard) but
+    // never below 0; the error is the residual where there is pressure, the compression elsewhere.
+    const float r = solved ? source[i] - dt_k * change : 0.0f;
+    ki = max(ki - DFSPH_RELAXATION * r * factor[i] / dt_k, 0.0f);
+    residual = ki > 0.0f ? -fabs(r) : min(r, 0.0f);
+  }
+  kappa[i] = ki;
+  if (residual < 0.0f || (iterate && ki > 0.0f)) {
+    const float e = residual < 0.0f ? -residual * error_scale : 0.0f;
+    atom_add(&errors[0], (long)(e * (1.0f / DFSPH_ERROR_QUANTUM) + 0.5f));
+    atom_inc(&errors[1]);
+    atomic_max(error_max, as_uint(e));
+  }
+}
+
+// The end of a solve: v += dt·a of the last iteration's κ (the one whose residual ended the
+// solve), and κ kept as κ·dt^k for the next step's warm start.
+__kernel void dfsph_finish(__global float* vx, __global float* vy, __global float* vz, const __global float* apx,
+                           const __global float* apy, const __global float* apz, __global float* kappa,
+                           const uint n, const float dt, const float dt_k) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  vx[i] += dt * apx[i];
+  vy[i] += dt * apy[i];
+  vz[i] += dt * apz[i];
+  kappa[i] *= dt_k;
+}

@@ -1,0 +1,208 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sph/dfsph.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <tuple>
+
+#include "runnel/compute/launch.hpp"
+
+namespace runnel {
+namespace {
+
+// The store's spares during the solves (valid from measure_density() to the next sort).
+enum DfsphSpare : int { kFactor = 0, kTheta = 1, kSource = 2, kPressureAx = 3 };
+constexpr double kErrorQuantum = 1e-9;  // DFSPH_ERROR_QUANTUM of cl/dfsph_solve.cl
+
+}  // namespace
+
+Dfsph::Dfsph(ComputeContext& compute, cl::Program& program, const SphSettings& settings)
+    : compute_(compute), settings_(settings) {
+  density_ = Kernel(compute, program, "dfsph_density");
+  non_pressure_ = Kernel(compute, program, "dfsph_non_pressure");
+  kick_ = Kernel(compute, program, "dfsph_kick");
+  pressure_acceleration_ = Kernel(compute, program, "dfsph_pressure_acceleration");
+  density_change_ = Kernel(compute, program, "dfsph_density_change");
+  finish_ = Kernel(compute, program, "dfsph_finish");
+  errors_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, 2 * sizeof(cl_long));
+  error_max_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE, sizeof(cl_uint));
+}
+
+void Dfsph::bind_neighbourhood(Kernel& k, ParticleStore& store, const SpatialHash& hash,
+                               DeviceTerrain& terrain) {
+  store.bind(k, {kX, kY, kZ});
+  hash.bind_cells(k);
+  if (k.has("terrain_height")) terrain.bind(k);
+  k.set("domain_x", static_cast<float>(terrain.extent_x()));
+  k.set("domain_z", static_cast<float>(terrain.extent_z()));
+}
+
+void Dfsph::measure_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain) {
+  const std::size_t n = store.size();
+  if (n == 0) return;
+  bind_neighbourhood(density_, store, hash, terrain);
+  store.bind(density_, {kRho});
+  density_.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
+  density_.launch(round_up_work(n));
+}
+
+void Dfsph::non_pressure_accelerations(ParticleStore& store, const SpatialHash& hash,
+                                       DeviceTerrain& terrain) {
+  const std::size_t n = store.size();
+  if (n == 0) return;
+  bind_neighbourhood(non_pressure_, store, hash, terrain);
+  store.bind(non_pressure_, {kVx, kVy, kVz, kAx, kAy, kAz});
+  non_pressure_.launch(round_up_work(n));
+}
+
+void Dfsph::half_kick(ParticleStore& store, double dt) {
+  const std::size_t n = store.size();
+  if (n == 0) return;
+  store.bind(kick_, {kVx, kVy, kVz, kAx, kAy, kAz});
+  kick_.set("half_dt", static_cast<float>(0.5 * dt)).launch(round_up_work(n));
+}
+
+void Dfsph::solve_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
+                          double dt) {
+  const SolveResult r = solve(store, hash, terrain, dt, /*divergence=*/false);
+  density_dt_ = dt;
+  ++stats_.density_solves;
+  stats_.density_iterations += static_cast<std::uint64_t>(r.iterations);
+  stats_.last_density_error = r.mean_error;
+  stats_.worst_density_error = r.worst_error;
+  if (r.capped) {
+    ++stats_.density_capped;
+    caution("constant-density", r, settings_.dfsph_density_error);
+  }
+}
+
+void Dfsph::solve_divergence(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
+                             double dt) {
+  const SolveResult r = solve(store, hash, terrain, dt, /*divergence=*/true);
+  divergence_dt_ = dt;
+  ++stats_.divergence_solves;
+  stats_.divergence_iterations += static_cast<std::uint64_t>(r.iterations);
+  stats_.last_divergence_error = r.mean_error;
+  if (r.capped) {
+    ++stats_.divergence_capped;
+    caution("divergence-free", r, settings_.dfsph_divergence_error);
+  }
+}
+
+// One solve, Jacobi iterations of dfsph_pressure_acceleration and dfsph_density_change until the
+// mean error of the particles in the solve is within the tolerance. The first pass measures the
+// error without pressure: where no particle is compressed (a film, rain) the solve ends there.
+Dfsph::SolveResult Dfsph::solve(ParticleStore& store, const SpatialHash& hash,
+                                DeviceTerrain& terrain, double dt, bool divergence) {
+  SolveResult r{0, false, 0.0, 0.0};
+  const std::size_t n = store.size();
+  if (n == 0) return r;
+  const double dt_k = divergence ? dt : dt * dt;
+  const double tolerance =
+      0.01 * (divergence ? settings_.dfsph_divergence_error : settings_.dfsph_density_error);
+  cl::Buffer& kappa = store.buffer(divergence ? kKappaV : kKappa);
+
+  Kernel& change = density_change_;
+  bind_neighbourhood(change, store, hash, terrain);
+  store.bind(change, {kRho});
+  change.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
+  change.set("source", store.spare(kSource)).set("kappa", kappa);
+  change.set("dt", static_cast<float>(dt)).set("dt_k", static_cast<float>(dt_k));
+  change.set("error_scale", static_cast<float>(divergence ? dt : 1.0));
+  change.set("divergence", cl_uint{divergence});
+  change.set("ux", store.buffer(kVx)).set("uy", store.buffer(kVy)).set("uz", store.buffer(kVz));
+  store.bind(change, {kAx, kAy, kAz});
+  // The density's source takes the drift's velocity, v + a·dt/2 (the drift's opening half kick).
+  change.set("half_dt", static_cast<float>(divergence ? 0.0 : 0.5 * dt));
+  std::tie(r.mean_error, r.worst_error) = density_change(store, /*iterate=*/false);
+  change.set("half_dt", 0.0f);
+  if (r.mean_error <= tolerance) {
+    // No pressure needed: none kept for the next step's warm start either.
+    compute_.queue().enqueueFillBuffer(kappa, 0.0f, 0, n * sizeof(float));
+    return r;
+  }
+
+  Kernel& accel = pressure_acceleration_;
+  bind_neighbourhood(accel, store, hash, terrain);
+  accel.set("kappa", kappa);
+  const char* accel_out[3] = {"apx", "apy", "apz"};
+  const char* change_in[3] = {"ux", "uy", "uz"};
+  for (int c = 0; c < 3; ++c) {
+    accel.set(accel_out[c], store.spare(kPressureAx + c));
+    change.set(change_in[c], store.spare(kPressureAx + c));
+  }
+  while (true) {
+    accel.launch(round_up_work(n));
+    std::tie(r.mean_error, r.worst_error) = density_change(store, /*iterate=*/true);
+    ++r.iterations;
+    if (r.mean_error <= tolerance) break;
+    if (r.iterations >= settings_.dfsph_max_iterations) {
+      r.capped = true;
+      break;
+    }
+  }
+  store.bind(finish_, {kVx, kVy, kVz});
+  for (int c = 0; c < 3; ++c) finish_.set(accel_out[c], store.spare(kPressureAx + c));
+  finish_.set("kappa", kappa).set("dt", static_cast<float>(dt));
+  finish_.set("dt_k", static_cast<float>(dt_k)).launch(round_up_work(n));
+  return r;
+}
+
+std::pair<double, double> Dfsph::density_change(ParticleStore& store, bool iterate) {
+  auto& q = compute_.queue();
+  q.enqueueFillBuffer(errors_, cl_long{0}, 0, 2 * sizeof(cl_long));
+  q.enqueueFillBuffer(error_max_, cl_uint{0}, 0, sizeof(cl_uint));
+  density_change_.set("iterate", cl_uint{iterate});
+  density_change_.set("errors", errors_).set("error_max", error_max_);
+  density_change_.launch(round_up_work(store.size()));
+  cl_long sums[2] = {0, 0};
+  cl_uint worst_bits = 0;
+  q.enqueueReadBuffer(errors_, CL_FALSE, 0, sizeof(sums), sums);
+  q.enqueueReadBuffer(error_max_, CL_TRUE, 0, sizeof(worst_bits), &worst_bits);
+  float worst = 0.0f;
+  std::memcpy(&worst, &worst_bits, sizeof(worst));
+  const double mean = sums[1] > 0 ? static_cast<double>(sums[0]) * kErrorQuantum / sums[1] : 0.0;
+  return {mean, static_cast<double>(worst)};
+}
+
+void Dfsph::caution(const char* solve, const SolveResult& r, double tolerance) {
+  if (cautioned_) return;  // once a run; the totals are in stats()
+  cautioned_ = true;
+  std::fprintf(stderr,
+               "runnel: caution: the dfsph %s solve stopped at sph.dfsph_max_iterations = %d with "
+               "a mean error of %.3g %% of rho0 (tolerance %.3g %%); the run goes on, and later "
+               "solves that stop there are counted, not reported\n",
+               solve, settings_.dfsph_max_iterations, 100.0 * r.mean_error, tolerance);
+}
+
+std::vector<float> Dfsph::pressure(ParticleStore& store) const {
+  const std::vector<float> kappa = store.read_field(kKappa), kappa_v = store.read_field(kKappaV);
+  std::vector<float> p(kappa.size(), 0.0f);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    double k = 0;
+    if (density_dt_ > 0) k += kappa[i] / (density_dt_ * density_dt_);
+    if (divergence_dt_ > 0) k += kappa_v[i] / divergence_dt_;
+    p[i] = static_cast<float>(settings_.rho0 * k);
+  }
+  return p;
+}
+
+JsonObject Dfsph::json() const {
+  const DfsphStats& s = stats_;
+  auto mean = [](std::uint64_t iterations, std::uint64_t solves) {
+    return solves > 0 ? static_cast<double>(iterations) / static_cast<double>(solves) : 0.0;
+  };
+  return JsonObject()
+      .add("solver", "dfsph")
+      .add("density_solves", static_cast<long long>(s.density_solves))
+      .add("density_iterations_mean", mean(s.density_iterations, s.density_solves))
+      .add("density_solves_capped", static_cast<long long>(s.density_capped))
+      .add("divergence_solves", static_cast<long long>(s.divergence_solves))
+      .add("divergence_iterations_mean", mean(s.divergence_iterations, s.divergence_solves))
+      .add("divergence_solves_capped", static_cast<long long>(s.divergence_capped))
+      .add("last_density_error", s.last_density_error)
+      .add("last_divergence_error", s.last_divergence_error);
+}
+
+}  // namespace runnel

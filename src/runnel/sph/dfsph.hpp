@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <cstdint>
+#include <utility>
+
+#include "runnel/compute/context.hpp"
+#include "runnel/compute/kernel.hpp"
+#include "runnel/io/json.hpp"
+#include "runnel/sph/particle_store.hpp"
+#include "runnel/sph/spatial_hash.hpp"
+#include "runnel/sph/sph_settings.hpp"
+#include "runnel/terrain/device_terrain.hpp"
+
+namespace runnel {
+
+// What the pressure solves of a run have done so far (dfsph): iterations, and the solves that
+// stopped at sph.dfsph_max_iterations with their error still above the tolerance.
+struct DfsphStats {
+  std::uint64_t density_solves = 0, density_iterations = 0, density_capped = 0;
+  std::uint64_t divergence_solves = 0, divergence_iterations = 0, divergence_capped = 0;
+  double last_density_error = 0, last_divergence_error = 0;  // mean, fraction of ρ0
+  double worst_density_error = 0;  // the largest particle's at the end of the last density solve
+};
+
+// Host code of cl/dfsph_density.cl and cl/dfsph_solve.cl: the incompressible solver's passes over
+// the particles of a built hash. The step that orders them is SphSolver's (docs/sph.md).
+class Dfsph {
+ public:
+  Dfsph(ComputeContext& compute, cl::Program& program, const SphSettings& settings);
+
+  // ρ (summation), the solver's factor and θ at the hashed positions (into the store's spares:
+  // valid until the next sort).
+  void measure_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain);
+  // Viscosity and gravity into a (kAx, kAy, kAz), after measure_density().
+  void non_pressure_accelerations(ParticleStore& store, const SpatialHash& hash,
+                                  DeviceTerrain& terrain);
+  // v += a·dt/2: a step's closing half kick (the drift's kernel gives the opening one).
+  void half_kick(ParticleStore& store, double dt);
+  // The constant-density solve before the drift over dt: the pressure impulse dt·a(κ) added to v
+  // keeps the density at ρ0 when the particles move at v + a·dt/2 + dt·a(κ).
+  void solve_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
+                     double dt);
+  // The divergence-free solve on v after the drift over dt and measure_density().
+  void solve_divergence(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
+                        double dt);
+
+  const DfsphStats& stats() const { return stats_; }
+  // Each particle's pressure (Pa) in the last step: ρ0 (κ + κ_v) of its two solves.
+  std::vector<float> pressure(ParticleStore& store) const;
+  // The stats as JSON: solves, mean iterations, capped solves, last errors.
+  JsonObject json() const;
+
+ private:
+  struct SolveResult {
+    int iterations;
+    bool capped;
+    double mean_error, worst_error;
+  };
+  SolveResult solve(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
+                    double dt, bool divergence);
+  // Launches dfsph_density_change and reads the error sums: mean over the particles in the solve,
+  // and the worst.
+  std::pair<double, double> density_change(ParticleStore& store, bool iterate);
+  void bind_neighbourhood(Kernel& k, ParticleStore& store, const SpatialHash& hash,
+                          DeviceTerrain& terrain);
+  void caution(const char* solve, const SolveResult& r, double tolerance);
+
+  ComputeContext& compute_;
+  SphSettings settings_;
+  Kernel density_, non_pressure_, kick_, pressure_acceleration_, density_change_, finish_;
+  cl::Buffer errors_, error_max_;
+  DfsphStats stats_;
+  double density_dt_ = 0, divergence_dt_ = 0;  // the steps of the last solves (κ is kept × dt^k)
+  bool cautioned_ = false;
+};
+
+}  // namespace runnel

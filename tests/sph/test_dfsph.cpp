@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: MIT
+// The incompressible solver (sph.solver = "dfsph") on PoCL: its density pass against a brute-force
+// sum in double precision, a lone drop's bounce, and bitwise reproducibility.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <string>
+
+#include "runnel/sph/sph_reference.hpp"
+#include "runnel/sph/sph_solver.hpp"
+#include "runnel/validation/tank.hpp"
+#include "runnel/validation/validation.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::compute;
+
+Parameters dfsph_parameters() {
+  Parameters p;
+  p.set("sph.solver", std::string("dfsph"));
+  p.set("sph.walls", false);
+  p.set("sph.dt_max", 0.05);  // the flow's step, not the default cap, decides
+  return p;
+}
+
+// A jittered block of water on the floor (height 0) of a 2 m × 2 m terrain, away from its edges,
+// and a few lone drops above it: bulk, free surface, the floor's volume map and drops.
+HostParticles block_on_floor(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> jitter(-0.01f, 0.01f), vel(-0.3f, 0.3f);
+  HostParticles p;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 5; ++k)
+        p.push(0.6f + 0.1f * i + jitter(rng), 0.05f + 0.1f * j + std::fabs(jitter(rng)),
+               0.6f + 0.1f * k + jitter(rng), vel(rng), vel(rng), vel(rng), 1000.0f, 1e30f);
+  for (int d = 0; d < 3; ++d)
+    p.push(0.5f + 0.3f * d, 1.0f + 0.2f * d, 1.5f, vel(rng), -1.0f, vel(rng), 1000.0f, 1e30f);
+  return p;
+}
+
+std::vector<float> read_buffer(const cl::Buffer& b, std::size_t n) {
+  std::vector<float> v(n);
+  if (n > 0) compute().queue().enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(float), v.data());
+  return v;
+}
+
+TEST(Dfsph, DensityAndFactorMatchABruteForceSum) {
+  const SphSettings s = SphSettings::from(dfsph_parameters(), 0.1, 2.0);
+  ASSERT_TRUE(s.incompressible());
+  const double floor_height = 0.0;  // flat_floor's
+  SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);
+  solver.add(block_on_floor(3));
+  solver.prepare();  // sorts, then the density pass at the sorted positions
+  ParticleStore& store = solver.particles();
+  const HostParticles p = store.download();
+  const std::size_t n = p.size();
+  // The pass's factors in the store's first spare (dfsph.cpp), valid until the next sort.
+  const std::vector<float> factor = read_buffer(store.spare(0), n);
+
+  // The brute force: every pair, double precision, the floor a plane at floor_height.
+  const double h = s.h, v0 = std::pow(s.spacing, 3) / s.lattice_sum();
+  double worst_rho = 0, worst_factor = 0;
+  int bulk = 0, lone = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double w = 0, sq = 0, g[3] = {0, 0, 0};
+    int neighbours = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double x[3] = {double(p.f[kX][i]) - p.f[kX][j], double(p.f[kY][i]) - p.f[kY][j],
+                           double(p.f[kZ][i]) - p.f[kZ][j]};
+      const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+      if (r >= 2 * h) continue;
+      neighbours += j != i;
+      w += sph_reference::wendland_w(r, h);
+      const double f = sph_reference::wendland_grad_factor(r, h);
+      for (int c = 0; c < 3; ++c) g[c] += v0 * f * x[c];
+      sq += v0 * v0 * f * f * r * r;
+    }
+    const double d = p.f[kY][i] - floor_height;
+    const double gw = sph_reference::wall_integral(d, h);
+    const double rho_hat = v0 * w + sph_reference::wall_volume(d, h);
+    // ∇ρ̂ = g − G n and the pressure's gradient with the mirrored floor, g − 2G n (n = +y).
+    const double grad_rho = g[0] * g[0] + (g[1] - gw) * (g[1] - 2 * gw) + g[2] * g[2];
+    const double denominator = std::max(grad_rho, 0.0) + sq;
+    const double expected_factor = denominator > 1e-6 / (h * h) ? 1.0 / denominator : 0.0;
+    worst_rho = std::max(worst_rho, std::fabs(p.f[kRho][i] / s.rho0 - rho_hat));
+    if (expected_factor > 0) {
+      worst_factor =
+          std::max(worst_factor, std::fabs(factor[i] - expected_factor) / expected_factor);
+    } else {
+      EXPECT_EQ(factor[i], 0.0f) << "particle " << i;
+    }
+    bulk += neighbours >= 20;
+    lone += neighbours == 0;
+  }
+  EXPECT_GT(bulk, 20);  // the block has an inside
+  EXPECT_EQ(lone, 3);   // and the drops are alone
+  EXPECT_LT(worst_rho, 1e-5);
+  EXPECT_LT(worst_factor, 1e-4);
+}
+
+TEST(Dfsph, LoneDropNeverRisesAboveItsRelease) {
+  for (double cfl : {0.1, 0.4, 0.8}) {
+    for (double e : {0.0, 1.0}) {
+      Parameters p = dfsph_parameters();
+      p.set("sph.cfl_flow", cfl);
+      const BounceResult b = droplet_bounce(compute(), p, 0.25, e);
+      EXPECT_LE(b.highest_after_landing, 1.01 * b.release_height) << "cfl " << cfl << ", e " << e;
+      if (e == 1.0) {
+        EXPECT_GE(b.highest_after_landing, 0.99 * b.release_height) << "cfl " << cfl;
+      } else {
+        EXPECT_NEAR(b.highest_after_landing, b.contact_height, 0.02 * b.contact_height)
+            << "cfl " << cfl;
+      }
+    }
+  }
+}
+
+TEST(Dfsph, StepsWithTheFlowNotTheSoundSpeed) {
+  // The same drop under both solvers: dfsph's steps follow its speed, wcsph's the sound speed.
+  Parameters p = dfsph_parameters();
+  const BounceResult incompressible = droplet_bounce(compute(), p, 0.25, 0.0);
+  p.set("sph.solver", std::string("wcsph"));
+  const BounceResult weakly = droplet_bounce(compute(), p, 0.25, 0.0);
+  EXPECT_LT(4 * incompressible.steps, weakly.steps);
+}
+
+TEST(Dfsph, RunsAreBitwiseReproducible) {
+  const SphSettings s = SphSettings::from(dfsph_parameters(), 0.1, 2.0);
+  auto run = [&] {
+    SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);
+    solver.add(block_on_floor(5));
+    for (int k = 0; k < 15; ++k) solver.step();
+    return solver.particles().download();
+  };
+  const HostParticles a = run(), b = run();
+  ASSERT_EQ(a.size(), b.size());
+  for (int f : {kX, kY, kZ, kVx, kVy, kVz, kRho}) {
+    for (std::size_t i = 0; i < a.size(); ++i)
+      ASSERT_EQ(std::memcmp(&a.f[f][i], &b.f[f][i], sizeof(float)), 0) << "field " << f << " " << i;
+  }
+}
+
+}  // namespace
+}  // namespace runnel
