@@ -17,7 +17,8 @@ __kernel void rain_emit(__global float* x, __global float* y, __global float* z,
                         const uint first_id, const int region, const float a, const float b, const float c,
                         const float d, const float spawn_height, const float contact_radius,
                         const float surface_eps, const float speed, const float rho0,
-                        const float lifespan_mean, const float lifespan_jitter,
+                        const float lifespan_mean, const float lifespan_jitter, const float spread,
+                        const float gravity,
                         const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
                         const int tny, const float tcell, const __global float* cell_cdf, const int cells) {
   const uint k = get_global_id(0);
@@ -53,15 +54,18 @@ __kernel void rain_emit(__global float* x, __global float* y, __global float* z,
   const SurfacePoint s = terrain_surface(terrain_height, terrain_normal, tnx, tny, tcell, px, pz);
   const SurfacePoint contact = offset_surface(terrain_height, terrain_normal, tnx, tny, tcell, contact_radius, px, pz);
   const uint i = first_index + k;
+  // Spread over the step (spread = its length; 0: every drop at its end): drop k of the step's
+  // count fell since its time within the step, the k-th of count equal shares, for τ.
+  const float tau = spread * ((float)(count - k) - 0.5f) / (float)count;
   x[i] = px;
-  y[i] = fmax(s.height + spawn_height, contact.height + surface_eps);
+  y[i] = fmax(s.height + spawn_height - tau * (speed + 0.5f * gravity * tau), contact.height + surface_eps);
   z[i] = pz;
   vx[i] = 0.0f;
-  vy[i] = -speed;
+  vy[i] = -speed - gravity * tau;
   vz[i] = 0.0f;
   rho[i] = rho0;
   sediment[i] = 0;
-  age[i] = 0.0f;
+  age[i] = tau;
   lifespan[i] = lifespan_mean * (1.0f + lifespan_jitter * (2.0f * u3 - 1.0f));
   contacts[i] = 0;
   id[i] = first_id + k;

@@ -59,3 +59,43 @@ TEST(RainOracle, EmittedDropsMatchThePlainCppReferenceInEveryRegion) {
 
 }  // namespace
 }  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// dfsph's long steps: each drop falls from its own time within the step (the k-th of count equal
+// shares) to the step's end, under gravity; the oracle integrates the same fall in double.
+TEST(RainOracle, IncompressibleStepsSpreadTheDropsOverTheStep) {
+  const Heightmap rough = generate_terrain("diamond-square", 33, 29, 1.0, 4, {{"relief", 0.3}});
+  Parameters p;
+  p.set("sph.solver", std::string("dfsph"));
+  p.set("rain.rate", 20000.0);
+  p.set("rain.spawn_height", 3.0);  // above the contact surface everywhere
+  p.set("rain.speed", 1.5);
+  const SphSettings sph = SphSettings::from(p, 0.5, 5.0);
+  SphSolver solver(compute(), sph, rough, 40.0);
+  const RainSettings settings = RainSettings::from(p, solver.terrain(), sph.spacing, 5.0);
+  RainEmitter emitter(compute(), settings, 7, float(sph.rho0));
+  const double dt = 0.04;
+  const std::size_t count = emitter.emit(solver, dt);
+  ASSERT_EQ(count, 800u);
+  const HostParticles drops = solver.particles().download();
+  const auto reference = rain_reference::emit(settings, sph.contact_radius, sph.surface_eps, rough,
+                                              7, 0, count, dt, sph.gravity);
+  double worst_y = 0, worst_vy = 0, worst_age = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    worst_y = std::max(worst_y, std::fabs(drops.f[kY][k] - reference[k].y));
+    worst_vy = std::max(worst_vy, std::fabs(drops.f[kVy][k] - reference[k].vy));
+    worst_age = std::max(worst_age, std::fabs(drops.f[kAge][k] - reference[k].age));
+  }
+  EXPECT_LT(worst_y, 1e-4);
+  EXPECT_LT(worst_vy, 1e-5);
+  EXPECT_LT(worst_age, 1e-7);
+  // The first drop fell for almost the whole step, the last for almost none.
+  EXPECT_NEAR(reference.front().age, dt, dt / count);
+  EXPECT_NEAR(reference.back().age, 0.0, dt / count);
+  EXPECT_LT(drops.f[kVy].front(), -1.5f - 0.9f * float(sph.gravity * dt));
+}
+
+}  // namespace
+}  // namespace runnel

@@ -214,7 +214,11 @@ std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
       {"surface_eps", solver.settings().surface_eps},
       {"speed", settings_.speed},
       {"lifespan_mean", settings_.lifespan},
-      {"lifespan_jitter", settings_.lifespan_jitter}};
+      {"lifespan_jitter", settings_.lifespan_jitter},
+      // dfsph's steps are long (30–50 ms where wcsph's are 2–3): its drops fall from their own
+      // times within the step, not all from the spawn height at its end.
+      {"spread", solver.settings().incompressible() ? dt : 0.0},
+      {"gravity", solver.settings().gravity}};
   for (const auto& [name, value] : reals) k.set(name, static_cast<float>(value));
   k.launch(round_up_work(count));
   spawned_ += count;

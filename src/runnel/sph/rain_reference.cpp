@@ -14,7 +14,7 @@ constexpr std::uint64_t kRainStream = 0x7261696eULL;  // "rain", as cl/rain.cl
 
 std::vector<Drop> emit(const RainSettings& r, double contact_radius, double surface_eps,
                        const Heightmap& terrain, std::uint64_t seed, std::uint64_t first_counter,
-                       std::size_t count) {
+                       std::size_t count, double spread, double gravity) {
   const Heightmap contact = contact_surface(terrain, contact_radius);
   const double lx = (terrain.nx - 1) * terrain.cell, lz = (terrain.ny - 1) * terrain.cell;
   std::vector<Drop> drops;
@@ -37,9 +37,12 @@ std::vector<Drop> emit(const RainSettings& r, double contact_radius, double surf
     }
     x = std::clamp(x, 0.0, lx);
     z = std::clamp(z, 0.0, lz);
-    const double y = std::max(surface_height(terrain, x, z) + r.spawn_height,
-                              surface_height(contact, x, z) + surface_eps);
-    drops.push_back({x, y, z, r.lifespan * (1 + r.lifespan_jitter * (2 * u3 - 1))});
+    const double tau = spread * (static_cast<double>(count - k) - 0.5) / static_cast<double>(count);
+    const double y = std::max(
+        surface_height(terrain, x, z) + r.spawn_height - tau * (r.speed + 0.5 * gravity * tau),
+        surface_height(contact, x, z) + surface_eps);
+    drops.push_back({x, y, z, r.lifespan * (1 + r.lifespan_jitter * (2 * u3 - 1)),
+                     -r.speed - gravity * tau, tau});
   }
   return drops;
 }
