@@ -39,6 +39,38 @@ inline LoneTile particle_candidates(uint i, float3 pi, Grid grid, const __global
   return t;
 }
 
+// The density pass lists each particle's neighbours within the support (and the wall ghosts', the
+// image in the entry's top bits), up to DFSPH_SLOTS of them, in the order of the neighbourhood
+// walk: the solves' passes then visit those few instead of every particle of 27 cells (about 400 on
+// a tile of bulk water, 58 within the support). A particle with more (water squeezed together)
+// walks its cells as the density pass does. The candidates left out add exactly 0 (every kernel
+// factor is 0 at r² ≥ BEYOND_SUPPORT2), so both ways sum the same terms in the same order.
+#define DFSPH_SLOTS 96
+#define DFSPH_INDEX_MASK 0x0FFFFFFFu
+#define DFSPH_IMAGE_SHIFT 28
+
+// Visits particle i's neighbours and ghosts (the list, or the walk when it overflowed) with j the
+// sorted index and image_ the image, as LONE_CANDIDATES_BEGIN does; the argument is the body.
+#define DFSPH_NEIGHBOURS(...)                                                                       \
+  {                                                                                                \
+    const uint listed_ = neighbour_count[i];                                                       \
+    if (listed_ <= DFSPH_SLOTS) {                                                                  \
+      for (uint s_ = 0; s_ < listed_; ++s_) {                                                      \
+        const uint e_ = neighbours[s_ * n + i];                                                    \
+        const uint j = e_ & DFSPH_INDEX_MASK, image_ = e_ >> DFSPH_IMAGE_SHIFT;                    \
+        __VA_ARGS__                                                                                \
+      }                                                                                            \
+    } else {                                                                                       \
+      const Grid grid_ = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);                              \
+      const LoneTile t_ = particle_candidates(i, pi, grid_, cell_start, cell_end, domain_x, domain_z); \
+      LONE_CANDIDATES_BEGIN(t_)                                                                    \
+      if (image_ != 0 || j != i) {                                                                 \
+        __VA_ARGS__                                                                                \
+      }                                                                                            \
+      LONE_CANDIDATES_END                                                                          \
+    }                                                                                              \
+  }
+
 // The terrain's tangent plane under a particle: distance d along the unit normal n.
 typedef struct {
   float d;
@@ -60,7 +92,7 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
                             const __global uint* cell_end, const __global float* terrain_height,
                             const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
                             const float domain_x, const float domain_z, __global float* rho, __global float* factor,
-                            __global float* theta) {
+                            __global float* theta, __global uint* neighbours, __global uint* neighbour_count) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
@@ -68,10 +100,16 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
   float w_fluid = 0.0f, w_ghost = 0.0f, others = 0.0f, sq_fluid = 0.0f, sq_ghost = 0.0f;
   float3 g_fluid = (float3)(0.0f), g_ghost = (float3)(0.0f);
+  uint listed = 0;
   LONE_CANDIDATES_BEGIN(t)
   const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
   const float3 xij = pi - pj;
-  const float r = length(xij);
+  const float r2 = dot(xij, xij);
+  if (r2 < BEYOND_SUPPORT2 && (image_ != 0 || j != i)) {
+    if (listed < DFSPH_SLOTS) neighbours[listed * n + i] = j | (image_ << DFSPH_IMAGE_SHIFT);
+    ++listed;
+  }
+  const float r = sqrt(r2);
   const float w = wendland_w(r);
   const float3 grad = wendland_grad_factor(r) * xij;
   const float sq = dot(grad, grad);
@@ -93,6 +131,7 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   const float3 g = DFSPH_V0 * (g_fluid + g_ghost) - wall_integral(f.d) * f.n;
   const float3 g_pressure = g - wall_integral(f.d) * f.n;
   const float denominator = max(dot(g, g_pressure), 0.0f) + DFSPH_V0 * DFSPH_V0 * (sq_fluid + sq_ghost);
+  neighbour_count[i] = listed;
   rho[i] = SPH_RHO0 * rho_hat;
   factor[i] = denominator > 1e-6f / (SPH_H * SPH_H) ? 1.0f / denominator : 0.0f;
   theta[i] = th;
@@ -109,25 +148,24 @@ __kernel void dfsph_non_pressure(const __global float* x, const __global float* 
                                  const uint n, const float ox, const float oy,
                                  const float oz, const float inv_cell, const int gx, const int gy, const int gz,
                                  const __global uint* cell_start, const __global uint* cell_end,
-                                 const float domain_x, const float domain_z, __global float* ax, __global float* ay,
+                                 const float domain_x, const float domain_z, const __global uint* neighbours,
+                                 const __global uint* neighbour_count, __global float* ax, __global float* ay,
                                  __global float* az) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 vi = (float3)(vx[i], vy[i], vz[i]);
-  const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
   const float eta2 = 0.01f * SPH_H * SPH_H;
   float3 acc = (float3)(0.0f);
-  LONE_CANDIDATES_BEGIN(t)
-  const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
-  const float3 vj = image_velocity(image_, (float3)(vx[j], vy[j], vz[j]));
-  const float3 xij = pi - pj;
-  const float r2 = dot(xij, xij);
-  const float vdotx = dot(vi - vj, xij);
-  const float visc = -SPH_ALPHA_VISC * SPH_C0 * SPH_H * min(vdotx, 0.0f) / ((r2 + eta2) * SPH_RHO0);
-  acc += (-SPH_MASS * visc * wendland_grad_factor(sqrt(r2))) * xij;
-  LONE_CANDIDATES_END
+  DFSPH_NEIGHBOURS(
+    const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+    const float3 vj = image_velocity(image_, (float3)(vx[j], vy[j], vz[j]));
+    const float3 xij = pi - pj;
+    const float r2 = dot(xij, xij);
+    const float vdotx = dot(vi - vj, xij);
+    const float visc = -SPH_ALPHA_VISC * SPH_C0 * SPH_H * min(vdotx, 0.0f) / ((r2 + eta2) * SPH_RHO0);
+    acc += (-SPH_MASS * visc * wendland_grad_factor(sqrt(r2))) * xij;
+  )
   ax[i] = acc.x;
   ay[i] = acc.y - SPH_GRAVITY;
   az[i] = acc.z;

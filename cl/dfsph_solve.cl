@@ -39,26 +39,38 @@ __kernel void dfsph_kick(__global float* vx, __global float* vy, __global float*
   vz[i] += half_dt * az[i];
 }
 
+// The velocity the drift will move the particles at without pressure, u = v + a·dt/2 (its opening
+// half kick): the constant-density solve's source (into the spares the iterations later fill with
+// the pressure acceleration).
+__kernel void dfsph_drift_velocity(const __global float* vx, const __global float* vy, const __global float* vz,
+                                   const __global float* ax, const __global float* ay, const __global float* az,
+                                   const uint n, const float half_dt, __global float* ux, __global float* uy,
+                                   __global float* uz) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  ux[i] = vx[i] + half_dt * ax[i];
+  uy[i] = vy[i] + half_dt * ay[i];
+  uz[i] = vz[i] + half_dt * az[i];
+}
+
 // The pressure acceleration a_i of the current κ (above), into (apx, apy, apz).
 __kernel void dfsph_pressure_acceleration(
     const __global float* x, const __global float* y, const __global float* z, const __global float* kappa,
     const uint n, const float ox, const float oy, const float oz, const float inv_cell,
     const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
     const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
-    const float tcell, const float domain_x, const float domain_z, __global float* apx, __global float* apy,
-    __global float* apz) {
+    const float tcell, const float domain_x, const float domain_z, const __global uint* neighbours,
+    const __global uint* neighbour_count, __global float* apx, __global float* apy, __global float* apz) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float ki = kappa[i];
-  const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
   float3 acc = (float3)(0.0f);
-  LONE_CANDIDATES_BEGIN(t)
-  const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
-  const float3 xij = pi - pj;
-  acc += (-DFSPH_V0 * (ki + kappa[j]) * wendland_grad_factor(length(xij))) * xij;
-  LONE_CANDIDATES_END
+  DFSPH_NEIGHBOURS(
+    const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+    const float3 xij = pi - pj;
+    acc += (-DFSPH_V0 * (ki + kappa[j]) * wendland_grad_factor(length(xij))) * xij;
+  )
   const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
   acc += (2.0f * ki * wall_integral(f.d)) * f.n;
   apx[i] = acc.x;
@@ -66,9 +78,8 @@ __kernel void dfsph_pressure_acceleration(
   apz[i] = acc.z;
 }
 
-// Δ_i(u) (above) for velocities or accelerations u (plus a·half_dt: the constant-density solve's
-// source takes the velocity the drift will move the particles at, v + a·dt/2 with the non-pressure
-// accelerations a; otherwise half_dt is 0), then one of two updates of particle i:
+// Δ_i(u) (above) for velocities or accelerations u (the divergence-free solve's source takes v, the
+// constant-density solve's dfsph_drift_velocity), then one of two updates of particle i:
 //   source (iterate 0): the source s_i from u (density: 1 − ρ̂_i − dt Δ_i(u); divergence:
 //     −Δ_i(u)), and κ_i's warm start, the κ the last solve ended with (kept as κ·dt^k, so that it
 //     does not depend on the step): the projection lowers it again where it is too high;
@@ -78,28 +89,25 @@ __kernel void dfsph_pressure_acceleration(
 // below 0, or after an iteration pressure above 0) in quanta, `error_max` the largest error's bits.
 __kernel void dfsph_density_change(
     const __global float* x, const __global float* y, const __global float* z, const __global float* ux,
-    const __global float* uy, const __global float* uz, const __global float* ax, const __global float* ay,
-    const __global float* az, const float half_dt, const __global float* rho, const __global float* factor,
+    const __global float* uy, const __global float* uz, const __global float* rho, const __global float* factor,
     const __global float* theta, __global float* source, __global float* kappa, const uint n, const float ox,
     const float oy, const float oz, const float inv_cell, const int gx, const int gy, const int gz,
     const __global uint* cell_start, const __global uint* cell_end, const __global float* terrain_height,
     const __global float* terrain_normal, const int tnx, const int tny, const float tcell, const float domain_x,
     const float domain_z, const float dt, const float dt_k, const float error_scale, const uint divergence,
-    const uint iterate, volatile __global long* errors, volatile __global uint* error_max) {
+    const uint iterate, const __global uint* neighbours, const __global uint* neighbour_count,
+    volatile __global long* errors, volatile __global uint* error_max) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const float3 pi = (float3)(x[i], y[i], z[i]);
-  const float3 ui = (float3)(ux[i], uy[i], uz[i]) + half_dt * (float3)(ax[i], ay[i], az[i]);
-  const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
+  const float3 ui = (float3)(ux[i], uy[i], uz[i]);
   float sum = 0.0f;
-  LONE_CANDIDATES_BEGIN(t)
-  const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
-  const float3 uj =
-      image_velocity(image_, (float3)(ux[j], uy[j], uz[j]) + half_dt * (float3)(ax[j], ay[j], az[j]));
-  const float3 xij = pi - pj;
-  sum += dot(ui - uj, xij) * wendland_grad_factor(length(xij));
-  LONE_CANDIDATES_END
+  DFSPH_NEIGHBOURS(
+    const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+    const float3 uj = image_velocity(image_, (float3)(ux[j], uy[j], uz[j]));
+    const float3 xij = pi - pj;
+    sum += dot(ui - uj, xij) * wendland_grad_factor(length(xij));
+  )
   const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
   const float change = DFSPH_V0 * sum - wall_integral(f.d) * dot(ui, f.n);
   // The divergence-free solve leaves particles of a deficient neighbourhood alone.

@@ -3,6 +3,7 @@
 // bit, bad files are refused with one line, writes never leave a half-written file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
@@ -21,8 +22,9 @@ namespace {
 
 using test::compute;
 
-Parameters rainy() {
+Parameters rainy(const std::string& solver = "wcsph") {
   Parameters p;
+  p.set("sph.solver", solver);
   p.set("rain.rate", 3000.0);
   p.set("rain.lifespan", 0.5);
   p.set("thermal.interval", 0.02);
@@ -31,8 +33,8 @@ Parameters rainy() {
   return p;
 }
 
-std::unique_ptr<Simulation> fresh() {
-  return std::make_unique<Simulation>(compute(), rainy(),
+std::unique_ptr<Simulation> fresh(const std::string& solver = "wcsph") {
+  return std::make_unique<Simulation>(compute(), rainy(solver),
                                       generate_terrain("fbm", 41, 33, 1.0, 5, {{"relief", 0.3}}));
 }
 
@@ -91,19 +93,37 @@ TEST(Checkpoint, EveryDatasetRoundTrips) {
   EXPECT_EQ(p.generator_values(), sim->parameters().generator_values());
 }
 
-TEST(Checkpoint, ResumedRunEqualsAnUninterruptedOne) {
+// A run of `steps` steps, and the same run stopped halfway, checkpointed and resumed through the
+// Model interface (as runnel resume and the viewer do): the two end in the same state.
+void expect_exact_resume(const std::string& solver, int steps) {
   test::ScratchDir dir;
-  auto straight = fresh();
-  for (int k = 0; k < 240; ++k) straight->step();
-  auto first_half = fresh();
-  for (int k = 0; k < 120; ++k) first_half->step();
+  auto straight = fresh(solver);
+  for (int k = 0; k < steps; ++k) straight->step();
+  auto first_half = fresh(solver);
+  for (int k = 0; k < steps / 2; ++k) first_half->step();
   write_checkpoint(dir.path("half.h5"), first_half->checkpoint());
   first_half.reset();
-  // The model restores itself through the Model interface, as runnel resume and the viewer do.
-  auto model = make_model_from_checkpoint(compute(), read_checkpoint(dir.path("half.h5")));
-  for (int k = 0; k < 120; ++k) model->step();
+  const CheckpointData d = read_checkpoint(dir.path("half.h5"));
+  EXPECT_NE(d.parameters_toml.find(solver), std::string::npos);  // the file records its solver
+  if (solver ==
+      "dfsph") {  // and the pressures its solves start from (some water is under pressure)
+    ASSERT_EQ(d.kappa.size(), d.particles.size());
+    EXPECT_GT(std::count_if(d.kappa.begin(), d.kappa.end(), [](float k) { return k > 0; }), 0);
+  }
+  auto model = make_model_from_checkpoint(compute(), d);
+  for (int k = 0; k < steps - steps / 2; ++k) model->step();
   expect_same_state(*straight, static_cast<SphModel&>(*model).simulation());
   EXPECT_EQ(model->mass_balance().residual_quanta, 0);
+}
+
+TEST(Checkpoint, ResumedRunEqualsAnUninterruptedOne) {
+  expect_exact_resume("wcsph", 240);
+}
+
+// dfsph's warm start (the kept pressures) travels in the file: without it the resumed solves
+// would start cold and end elsewhere.
+TEST(Checkpoint, ResumedIncompressibleRunEqualsAnUninterruptedOne) {
+  expect_exact_resume("dfsph", 60);
 }
 
 // Expects read_checkpoint to refuse `file` with a one-line input error containing `fragment`.

@@ -23,7 +23,6 @@ Parameters dfsph_parameters() {
   Parameters p;
   p.set("sph.solver", std::string("dfsph"));
   p.set("sph.walls", false);
-  p.set("sph.dt_max", 0.05);  // the flow's step, not the default cap, decides
   return p;
 }
 

@@ -12,7 +12,8 @@ namespace runnel {
 namespace {
 
 // The store's spares during the solves (valid from measure_density() to the next sort).
-enum DfsphSpare : int { kFactor = 0, kTheta = 1, kSource = 2, kPressureAx = 3 };
+enum DfsphSpare : int { kFactor = 0, kTheta = 1, kSource = 2, kPressureAx = 3, kListed = 6 };
+constexpr std::size_t kSlots = 96;      // DFSPH_SLOTS of cl/dfsph_density.cl
 constexpr double kErrorQuantum = 1e-9;  // DFSPH_ERROR_QUANTUM of cl/dfsph_solve.cl
 
 }  // namespace
@@ -22,6 +23,7 @@ Dfsph::Dfsph(ComputeContext& compute, cl::Program& program, const SphSettings& s
   density_ = Kernel(compute, program, "dfsph_density");
   non_pressure_ = Kernel(compute, program, "dfsph_non_pressure");
   kick_ = Kernel(compute, program, "dfsph_kick");
+  drift_velocity_ = Kernel(compute, program, "dfsph_drift_velocity");
   pressure_acceleration_ = Kernel(compute, program, "dfsph_pressure_acceleration");
   density_change_ = Kernel(compute, program, "dfsph_density_change");
   finish_ = Kernel(compute, program, "dfsph_finish");
@@ -41,9 +43,15 @@ void Dfsph::bind_neighbourhood(Kernel& k, ParticleStore& store, const SpatialHas
 void Dfsph::measure_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain) {
   const std::size_t n = store.size();
   if (n == 0) return;
+  if (n > list_capacity_) {  // the lists grow with the particles, by the store's factor
+    list_capacity_ = std::max(n, list_capacity_ + list_capacity_ / 2);
+    neighbours_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
+                             list_capacity_ * kSlots * sizeof(cl_uint));
+  }
   bind_neighbourhood(density_, store, hash, terrain);
   store.bind(density_, {kRho});
   density_.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
+  density_.set("neighbours", neighbours_).set("neighbour_count", store.spare(kListed));
   density_.launch(round_up_work(n));
 }
 
@@ -53,6 +61,7 @@ void Dfsph::non_pressure_accelerations(ParticleStore& store, const SpatialHash& 
   if (n == 0) return;
   bind_neighbourhood(non_pressure_, store, hash, terrain);
   store.bind(non_pressure_, {kVx, kVy, kVz, kAx, kAy, kAz});
+  non_pressure_.set("neighbours", neighbours_).set("neighbour_count", store.spare(kListed));
   non_pressure_.launch(round_up_work(n));
 }
 
@@ -104,30 +113,37 @@ Dfsph::SolveResult Dfsph::solve(ParticleStore& store, const SpatialHash& hash,
   cl::Buffer& kappa = store.buffer(divergence ? kKappaV : kKappa);
 
   Kernel& change = density_change_;
-  bind_neighbourhood(change, store, hash, terrain);
+  Kernel& accel = pressure_acceleration_;
+  for (Kernel* k : {&change, &accel}) {
+    bind_neighbourhood(*k, store, hash, terrain);
+    k->set("neighbours", neighbours_).set("neighbour_count", store.spare(kListed));
+  }
   store.bind(change, {kRho});
   change.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
   change.set("source", store.spare(kSource)).set("kappa", kappa);
   change.set("dt", static_cast<float>(dt)).set("dt_k", static_cast<float>(dt_k));
   change.set("error_scale", static_cast<float>(divergence ? dt : 1.0));
   change.set("divergence", cl_uint{divergence});
-  change.set("ux", store.buffer(kVx)).set("uy", store.buffer(kVy)).set("uz", store.buffer(kVz));
-  store.bind(change, {kAx, kAy, kAz});
-  // The density's source takes the drift's velocity, v + a·dt/2 (the drift's opening half kick).
-  change.set("half_dt", static_cast<float>(divergence ? 0.0 : 0.5 * dt));
+  const char* change_in[3] = {"ux", "uy", "uz"};
+  if (divergence) {
+    change.set("ux", store.buffer(kVx)).set("uy", store.buffer(kVy)).set("uz", store.buffer(kVz));
+  } else {  // the drift's velocity without pressure, v + a·dt/2, in the spares of a(κ)
+    store.bind(drift_velocity_, {kVx, kVy, kVz, kAx, kAy, kAz});
+    for (int c = 0; c < 3; ++c) {
+      drift_velocity_.set(change_in[c], store.spare(kPressureAx + c));
+      change.set(change_in[c], store.spare(kPressureAx + c));
+    }
+    drift_velocity_.set("half_dt", static_cast<float>(0.5 * dt)).launch(round_up_work(n));
+  }
   std::tie(r.mean_error, r.worst_error) = density_change(store, /*iterate=*/false);
-  change.set("half_dt", 0.0f);
   if (r.mean_error <= tolerance) {
     // No pressure needed: none kept for the next step's warm start either.
     compute_.queue().enqueueFillBuffer(kappa, 0.0f, 0, n * sizeof(float));
     return r;
   }
 
-  Kernel& accel = pressure_acceleration_;
-  bind_neighbourhood(accel, store, hash, terrain);
   accel.set("kappa", kappa);
   const char* accel_out[3] = {"apx", "apy", "apz"};
-  const char* change_in[3] = {"ux", "uy", "uz"};
   for (int c = 0; c < 3; ++c) {
     accel.set(accel_out[c], store.spare(kPressureAx + c));
     change.set(change_in[c], store.spare(kPressureAx + c));

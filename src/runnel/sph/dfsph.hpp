@@ -67,8 +67,13 @@ class Dfsph {
 
   ComputeContext& compute_;
   SphSettings settings_;
-  Kernel density_, non_pressure_, kick_, pressure_acceleration_, density_change_, finish_;
+  Kernel density_, non_pressure_, kick_, drift_velocity_, pressure_acceleration_, density_change_,
+      finish_;
   cl::Buffer errors_, error_max_;
+  // Each particle's neighbours within the support, slot-major (cl/dfsph_density.cl), for the
+  // solves.
+  cl::Buffer neighbours_;
+  std::size_t list_capacity_ = 0;
   DfsphStats stats_;
   double density_dt_ = 0, divergence_dt_ = 0;  // the steps of the last solves (κ is kept × dt^k)
   bool cautioned_ = false;

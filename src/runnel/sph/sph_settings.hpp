@@ -7,6 +7,9 @@
 namespace runnel {
 
 struct SphSettings;
+// sph.dt_max = 0 resolves to this: 0.01 s for wcsph (never binding at its acoustic steps), 0.05 s
+// for dfsph (whose flow CFL step would otherwise grow without bound where the water is slow).
+double default_dt_max(bool incompressible);
 // The radius (m) over which a particle's water is counted on the terrain and its erosion spread
 // (cl/footprint.cl): at least the kernel's support 2h and 2 cells, at most 8 cells.
 double footprint_radius(const SphSettings& s, double terrain_cell);

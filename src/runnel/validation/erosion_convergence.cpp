@@ -21,6 +21,7 @@
 #include "runnel/core/text.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/sph_model.hpp"
+#include "runnel/sph/sph_settings.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/validation/validation.hpp"
 
@@ -117,8 +118,17 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
     Parameters params;
   };
   std::vector<Variant> variants = {{"base", base}};
+  // Half the time step: wcsph's acoustic CFL factor; dfsph's flow CFL factor and its cap (the
+  // default scenario's dfsph steps are mostly the cap's).
   Parameters half_cfl = base;
-  half_cfl.set("sph.cfl", 0.5 * base.real("sph.cfl"), "validate");
+  if (base.text("sph.solver") == "dfsph") {
+    half_cfl.set("sph.cfl_flow", 0.5 * base.real("sph.cfl_flow"), "validate");
+    const double dt_max =
+        base.real("sph.dt_max") > 0 ? base.real("sph.dt_max") : default_dt_max(true);
+    half_cfl.set("sph.dt_max", 0.5 * dt_max, "validate");
+  } else {
+    half_cfl.set("sph.cfl", 0.5 * base.real("sph.cfl"), "validate");
+  }
   variants.push_back({"half_cfl", half_cfl});
   Parameters half_spacing = base;
   half_spacing.set("sph.spacing", 0.5 * spacing, "validate");
