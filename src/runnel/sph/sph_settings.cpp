@@ -25,7 +25,7 @@ const SettingsTable<SphSettings> kSphTable = {
       {"sph.alpha_visc", "0.02", "1", 0, 10, {}, "Monaghan artificial viscosity α", &SphSettings::alpha_visc, "SPH_ALPHA_VISC"},
       {"sph.delta", "0.1", "1", 0, 1, {}, "δ-SPH density diffusion coefficient (Molteni & Colagrossi 2009)", &SphSettings::delta, "SPH_DELTA"},
       {"sph.cfl", "0.25", "1", 0.01, 0.5, {}, "wcsph's time step factor: dt = cfl · min(h/(c0 + |v|max), sqrt(h/|a|max))", &SphSettings::cfl},
-      {"sph.cfl_flow", "0.4", "1", 0.01, 1, {}, "dfsph's time step factor: dt = cfl_flow · min(dx/|v|max, sqrt(dx/|a|max)), |a| the non-pressure accelerations", &SphSettings::cfl_flow},
+      {"sph.cfl_flow", "0.4", "1", 0.01, 1, {}, "dfsph's time step factor: dt = cfl_flow · min(dx/|v|max, ½ sqrt(dx/|a|max)), |a| the non-pressure accelerations", &SphSettings::cfl_flow},
       {"sph.dfsph_density_error", "0.05", "%", 1e-4, 10, {}, "dfsph: the constant-density solve iterates until the mean compression of the particles under pressure is below this share of ρ0", &SphSettings::dfsph_density_error},
       {"sph.dfsph_divergence_error", "0.5", "%", 1e-3, 100, {}, "dfsph: the divergence-free solve iterates until the mean rate of compression, over one step, is below this share of ρ0", &SphSettings::dfsph_divergence_error},
       {"sph.dfsph_max_iterations", "100", "1", 1, 10000, {}, "dfsph: iterations of each pressure solve at most; a solve that reaches it goes on with the error it has, and the run says so on stderr", &SphSettings::dfsph_max_iterations},
