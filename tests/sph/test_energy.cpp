@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: MIT
 // Energy at the boundary: a block of water that has settled in a tank with a terrain floor only
-// ever loses mechanical energy (kinetic + gravitational + elastic). With the density integrated a
+// ever loses mechanical energy (kinetic + gravitational + elastic); with the incompressible solver
+// it loses energy over a second. With the density integrated a
 // half step behind the positions, or a wall force without its continuity partner, such a block
 // gains energy every oscillation until it boils over.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/validation/tank.hpp"
@@ -74,6 +78,62 @@ TEST(SphEnergy, SettledBlockInATankOnlyLosesEnergy) {
   // (docs/sph.md: measured 3.2e-6 J against 1.8e-6 J); a boundary that pumps gains orders more.
   EXPECT_LT(worst_gain, 10.0 * worst_bound) << "worst gain " << worst_gain << " J, round-off "
                                             << worst_bound << " J, E " << start.total << " J";
+}
+
+}  // namespace
+}  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// dfsph's water is incompressible: E = Σ m (½|v|² + g y), v the velocity at the step's end.
+double incompressible_energy(SphSolver& solver) {
+  const SphSettings& s = solver.settings();
+  const HostParticles p = solver.particles().download();
+  double e = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double v2 = double(p.f[kVx][i]) * p.f[kVx][i] + double(p.f[kVy][i]) * p.f[kVy][i] +
+                      double(p.f[kVz][i]) * p.f[kVz][i];
+    e += s.mass() * (0.5 * v2 + s.gravity * p.f[kY][i]);
+  }
+  return e;
+}
+
+// The incompressible solver's settled block loses energy over a second, but not in every step:
+// the solves stop at a tolerance, and what they leave acts as small pressure impulses (measured:
+// about half the steps gain, the worst by 0.4 % of the block's energy above its resting level;
+// printed, and in docs/validation.md). Its energy must still fall over the second.
+TEST(SphEnergy, IncompressibleSettledBlockLosesEnergyOverASecond) {
+  Parameters params;
+  params.set("sph.walls", true);
+  params.set("sph.solver", std::string("dfsph"));
+  const double height = 0.2, dx = height / 8, width = 8 * dx;
+  const SphSettings s = SphSettings::from(params, dx, std::sqrt(9.81 * height));
+  SphSolver solver(compute(), s, flat_floor(16, 16, 0.5 * dx), 2 * height);
+  solver.add(uniform_block(s, width, height, width));
+  while (solver.time() < 1.0) solver.step();
+  const double start = incompressible_energy(solver);
+  double previous = start, worst_gain = 0, kinetic_end = 0;
+  long long steps = 0, gains = 0;
+  while (solver.time() < 2.0) {
+    solver.step();
+    const double e = incompressible_energy(solver);
+    worst_gain = std::max(worst_gain, e - previous);
+    gains += e > previous;
+    previous = e;
+    ++steps;
+  }
+  const HostParticles p = solver.particles().download();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    kinetic_end += 0.5 * s.mass() *
+                   (double(p.f[kVx][i]) * p.f[kVx][i] + double(p.f[kVy][i]) * p.f[kVy][i] +
+                    double(p.f[kVz][i]) * p.f[kVz][i]);
+  std::printf(
+      "measured: %lld steps, %lld gained energy, the worst by %g J; E %g -> %g J, kinetic "
+      "energy at the end %g J\n",
+      steps, gains, worst_gain, start, previous, kinetic_end);
+  EXPECT_GT(steps, 50);
+  EXPECT_LT(previous, start) << "energy must be dissipated";
 }
 
 }  // namespace

@@ -32,6 +32,8 @@ SphSettings droplet_settings(const Parameters& base, double cfl, double restitut
                              double manning_n, double reference_speed) {
   Parameters p = base;
   p.set("sph.cfl", cfl, "validate");
+  // dfsph's flow CFL in the same proportion to its default (0.4) as cfl to wcsph's (0.25).
+  p.set("sph.cfl_flow", cfl * 0.4 / 0.25, "validate");
   p.set("sph.restitution", restitution, "validate");
   if (!base.was_set("sph.manning_n")) p.set("sph.manning_n", manning_n, "validate");
   return SphSettings::from(p, kSpacing, reference_speed);
