@@ -27,16 +27,16 @@
 
 #define DFSPH_V0 DFSPH_VOLUME
 
-// Particle i's candidates: its own cell's neighbourhood and wall images, as a lone tile of one.
-inline LoneTile particle_candidates(uint i, float3 pi, Grid grid, const __global uint* cell_start,
-                                    const __global uint* cell_end, float domain_x, float domain_z) {
-  LoneTile t;
-  t.first = i;
-  t.last = i + 1;
+// Particle i's candidates: its own cell's neighbourhood and wall images, as a lone tile of one
+// (through a pointer: a struct returned by value made Oclgrind 21.10 refuse the kernel, on an LLVM
+// intrinsic its inlining leaves).
+inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uint* cell_start,
+                                const __global uint* cell_end, float domain_x, float domain_z, LoneTile* t) {
+  t->first = i;
+  t->last = i + 1;
   const int3 cell = cell_of(pi, grid);
-  t.nb = cell_neighbourhood(cell, grid, cell_start, cell_end);
-  t.images = tile_images(cell, grid, domain_x, domain_z);
-  return t;
+  t->nb = cell_neighbourhood(cell, grid, cell_start, cell_end);
+  t->images = tile_images(cell, grid, domain_x, domain_z);
 }
 
 // The density pass lists each particle's neighbours within the support (and the wall ghosts', the
@@ -62,7 +62,8 @@ inline LoneTile particle_candidates(uint i, float3 pi, Grid grid, const __global
       }                                                                                            \
     } else {                                                                                       \
       const Grid grid_ = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);                              \
-      const LoneTile t_ = particle_candidates(i, pi, grid_, cell_start, cell_end, domain_x, domain_z); \
+      LoneTile t_;                                                                                 \
+      particle_candidates(i, pi, grid_, cell_start, cell_end, domain_x, domain_z, &t_);            \
       LONE_CANDIDATES_BEGIN(t_)                                                                    \
       if (image_ != 0 || j != i) {                                                                 \
         __VA_ARGS__                                                                                \
@@ -97,7 +98,8 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const float3 pi = (float3)(x[i], y[i], z[i]);
-  const LoneTile t = particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z);
+  LoneTile t;
+  particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z, &t);
   float w_fluid = 0.0f, w_ghost = 0.0f, others = 0.0f, sq_fluid = 0.0f, sq_ghost = 0.0f;
   float3 g_fluid = (float3)(0.0f), g_ghost = (float3)(0.0f);
   uint listed = 0;

@@ -134,6 +134,9 @@ for n in 1000000 4000000 16000000 100000; do
 done
 step sph_4000000_tile32 120 "$runnel" bench sph --particles "$(scaled 4000000)" --steps 20 --tile 32 \
   --device "$device"
+# The incompressible solver on the same block (its simulated seconds per wall second beside wcsph's).
+step sph_1000000_dfsph 120 "$runnel" bench sph --particles "$(scaled 1000000)" --steps 20 --device "$device" \
+  --set sph.solver=dfsph
 
 # 4. Grid models at 4096².
 size=$(scaled 4096)
@@ -168,6 +171,8 @@ PY
 step default_30s 90 bash -c "$(declare -f default_run); runnel=$runnel device=$device default_run --sim-time $(scaled 30)"
 step default_30s_exchange_every_step 90 bash -c "$(declare -f default_run); runnel=$runnel device=$device \
   default_run --sim-time $(scaled 30) --set erosion.exchange_interval=0"
+step default_30s_dfsph 90 bash -c "$(declare -f default_run); runnel=$runnel device=$device \
+  default_run --sim-time $(scaled 30) --set sph.solver=dfsph"
 
 # 6. The test suite, its OpenCL tests on the GPU (the CLI picks the first GPU by itself). The Python
 # package's tests need its virtual environment (scripts/setup-python.sh, from PyPI): without one
@@ -191,6 +196,8 @@ step tests 200 bash -c "$(declare -f run_tests); build=$build device=$device out
 
 # 7. The whole default run.
 step default_run 300 bash -c "$(declare -f default_run); runnel=$runnel device=$device default_run"
+step default_run_dfsph 120 bash -c "$(declare -f default_run); runnel=$runnel device=$device default_run \
+  --set sph.solver=dfsph"
 
 # 8. The viewer at 1280x800 (issue 21): with the GPU's own OpenGL when there is a display; otherwise
 # under Xvfb, where the simulation runs on the GPU's OpenCL but the drawing is Mesa's software

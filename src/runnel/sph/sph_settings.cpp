@@ -27,7 +27,7 @@ const SettingsTable<SphSettings> kSphTable = {
       {"sph.cfl", "0.25", "1", 0.01, 0.5, {}, "wcsph's time step factor: dt = cfl · min(h/(c0 + |v|max), sqrt(h/|a|max))", &SphSettings::cfl},
       {"sph.cfl_flow", "0.4", "1", 0.01, 1, {}, "dfsph's time step factor: dt = cfl_flow · min(dx/|v|max, ½ sqrt(dx/|a|max)), |a| the non-pressure accelerations", &SphSettings::cfl_flow},
       {"sph.dfsph_density_error", "0.05", "%", 1e-4, 10, {}, "dfsph: the constant-density solve iterates until the mean compression of the particles under pressure is below this share of ρ0", &SphSettings::dfsph_density_error},
-      {"sph.dfsph_divergence_error", "0.5", "%", 1e-3, 100, {}, "dfsph: the divergence-free solve iterates until the mean rate of compression, over one step, is below this share of ρ0", &SphSettings::dfsph_divergence_error},
+      {"sph.dfsph_divergence_error", "0.1", "%", 1e-3, 100, {}, "dfsph: the divergence-free solve iterates until the mean rate of compression, over one step, is below this share of ρ0", &SphSettings::dfsph_divergence_error},
       {"sph.dfsph_max_iterations", "100", "1", 1, 10000, {}, "dfsph: iterations of each pressure solve at most; a solve that reaches it goes on with the error it has, and the run says so on stderr", &SphSettings::dfsph_max_iterations},
       {"sph.dt_min", "1e-7", "s", 1e-12, 1, {}, "smallest time step: reaching it stops the run as unstable", &SphSettings::dt_min},
       {"sph.dt_max", "0", "s", 0, 10, {}, "largest time step; 0: 0.01 s for wcsph, 0.05 s for dfsph (whose step the flow sets: 0.4 dx/|v|max is 33 ms at 12 m/s on 1 m particles)", &SphSettings::dt_max},
