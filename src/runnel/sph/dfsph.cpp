@@ -74,28 +74,27 @@ void Dfsph::half_kick(ParticleStore& store, double dt) {
 
 void Dfsph::solve_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
                           double dt) {
-  const SolveResult r = solve(store, hash, terrain, dt, /*divergence=*/false);
-  density_dt_ = dt;
-  ++stats_.density_solves;
-  stats_.density_iterations += static_cast<std::uint64_t>(r.iterations);
-  stats_.last_density_error = r.mean_error;
-  stats_.worst_density_error = r.worst_error;
-  if (r.capped) {
-    ++stats_.density_capped;
-    caution("constant-density", r, settings_.dfsph_density_error);
-  }
+  solve_and_record(store, hash, terrain, dt, /*divergence=*/false);
 }
 
 void Dfsph::solve_divergence(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
                              double dt) {
-  const SolveResult r = solve(store, hash, terrain, dt, /*divergence=*/true);
-  divergence_dt_ = dt;
-  ++stats_.divergence_solves;
-  stats_.divergence_iterations += static_cast<std::uint64_t>(r.iterations);
-  stats_.last_divergence_error = r.mean_error;
+  solve_and_record(store, hash, terrain, dt, /*divergence=*/true);
+}
+
+void Dfsph::solve_and_record(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
+                             double dt, bool divergence) {
+  const SolveResult r = solve(store, hash, terrain, dt, divergence);
+  (divergence ? divergence_dt_ : density_dt_) = dt;
+  SolveStats& s = divergence ? stats_.divergence : stats_.density;
+  ++s.solves;
+  s.iterations += static_cast<std::uint64_t>(r.iterations);
+  s.last_error = r.mean_error;
+  s.worst_error = r.worst_error;
   if (r.capped) {
-    ++stats_.divergence_capped;
-    caution("divergence-free", r, settings_.dfsph_divergence_error);
+    ++s.capped;
+    caution(divergence ? "divergence-free" : "constant-density", r,
+            divergence ? settings_.dfsph_divergence_error : settings_.dfsph_density_error);
   }
 }
 
@@ -205,20 +204,19 @@ std::vector<float> Dfsph::pressure(ParticleStore& store) const {
 }
 
 JsonObject Dfsph::json() const {
-  const DfsphStats& s = stats_;
-  auto mean = [](std::uint64_t iterations, std::uint64_t solves) {
-    return solves > 0 ? static_cast<double>(iterations) / static_cast<double>(solves) : 0.0;
-  };
-  return JsonObject()
-      .add("solver", "dfsph")
-      .add("density_solves", static_cast<long long>(s.density_solves))
-      .add("density_iterations_mean", mean(s.density_iterations, s.density_solves))
-      .add("density_solves_capped", static_cast<long long>(s.density_capped))
-      .add("divergence_solves", static_cast<long long>(s.divergence_solves))
-      .add("divergence_iterations_mean", mean(s.divergence_iterations, s.divergence_solves))
-      .add("divergence_solves_capped", static_cast<long long>(s.divergence_capped))
-      .add("last_density_error", s.last_density_error)
-      .add("last_divergence_error", s.last_divergence_error);
+  JsonObject o;
+  o.add("solver", "dfsph");
+  for (const auto& [name, s] :
+       {std::pair{"density", &stats_.density}, std::pair{"divergence", &stats_.divergence}}) {
+    const std::string key(name);
+    const double mean =
+        s->solves > 0 ? static_cast<double>(s->iterations) / static_cast<double>(s->solves) : 0.0;
+    o.add(key + "_solves", static_cast<long long>(s->solves))
+        .add(key + "_iterations_mean", mean)
+        .add(key + "_solves_capped", static_cast<long long>(s->capped))
+        .add("last_" + key + "_error", s->last_error);
+  }
+  return o;
 }
 
 }  // namespace runnel

@@ -13,13 +13,15 @@
 
 namespace runnel {
 
-// What the pressure solves of a run have done so far (dfsph): iterations, and the solves that
-// stopped at sph.dfsph_max_iterations with their error still above the tolerance.
+// What one of the pressure solves has done so far in a run: solves, iterations, the solves that
+// stopped at sph.dfsph_max_iterations with their error still above the tolerance, and the last
+// solve's mean and worst error (fractions of ρ0).
+struct SolveStats {
+  std::uint64_t solves = 0, iterations = 0, capped = 0;
+  double last_error = 0, worst_error = 0;
+};
 struct DfsphStats {
-  std::uint64_t density_solves = 0, density_iterations = 0, density_capped = 0;
-  std::uint64_t divergence_solves = 0, divergence_iterations = 0, divergence_capped = 0;
-  double last_density_error = 0, last_divergence_error = 0;  // mean, fraction of ρ0
-  double worst_density_error = 0;  // the largest particle's at the end of the last density solve
+  SolveStats density, divergence;
 };
 
 // Host code of cl/dfsph_density.cl and cl/dfsph_solve.cl: the incompressible solver's passes over
@@ -63,6 +65,9 @@ class Dfsph {
   std::pair<double, double> density_change(ParticleStore& store, bool iterate);
   void bind_neighbourhood(Kernel& k, ParticleStore& store, const SpatialHash& hash,
                           DeviceTerrain& terrain);
+  // Runs one solve and books it: its step (κ is kept × dt^k), its stats, a caution when capped.
+  void solve_and_record(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
+                        double dt, bool divergence);
   void caution(const char* solve, const SolveResult& r, double tolerance);
 
   ComputeContext& compute_;
