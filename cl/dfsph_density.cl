@@ -15,7 +15,7 @@
 // plane's is closed form, sph_kernel.cl), and ∇Γ = −G(d) n. The tank walls' mirror ghosts
 // (sph_boundary.cl) count like neighbours. The boundary is always complete: with a summation
 // density the solves' clamp at ρ0 does what θ does for the continuity density of the weakly
-// compressible passes, since a drop resting on the ground (ρ̂ = V0 W(0) + Γ(dx/2) = 0.46 at
+// compressible passes, since a drop resting on the ground (ρ̂ = V0 W(0) + Γ(dx/2) = 0.45 at
 // h = 1.2 dx) and a single sheet of water (about 0.85) stay below 1 and feel no pressure, while
 // water two particles deep is completed in full. (Scaling the boundary by θ < 1 leaves the bottom
 // layer's own pressure pushing it into the ground.) θ, the Shepard sum of the others against a
