@@ -23,26 +23,16 @@
 // the order), from which the host decides whether to iterate again.
 // Compile-time constants (host -D): SPH_H, SPH_MASS, SPH_RHO0, SPH_WALLS.
 
-#define DFSPH_ERROR_QUANTUM 1e-9f
+#define DFSPH_ERROR_QUANTUM 1e-9f  // of the dimensionless density error, in the fixed-point sums
 // Jacobi's relaxation, as IISPH's (Ihmsen et al. 2014): with the full step (1) the iteration
 // diverges on a water column, the diagonal being only part of what κ_i changes.
-#define DFSPH_RELAXATION 0.5f  // of the dimensionless density error, in the fixed-point sums
+#define DFSPH_RELAXATION 0.5f
 
-// v += a·dt/2 with the non-pressure accelerations of dfsph_non_pressure: the step's closing half
-// kick (its opening one is the drift's, integrate.cl).
-__kernel void dfsph_kick(__global float* vx, __global float* vy, __global float* vz, const __global float* ax,
-                         const __global float* ay, const __global float* az, const uint n, const float half_dt) {
-  const uint i = get_global_id(0);
-  if (i >= n) return;
-  vx[i] += half_dt * ax[i];
-  vy[i] += half_dt * ay[i];
-  vz[i] += half_dt * az[i];
-}
-
-// The velocity the drift will move the particles at without pressure, u = v + a·dt/2 (its opening
-// half kick): the constant-density solve's source (into the spares the iterations later fill with
-// the pressure acceleration).
-__kernel void dfsph_drift_velocity(const __global float* vx, const __global float* vy, const __global float* vz,
+// u = v + a·dt/2 with the non-pressure accelerations of dfsph_non_pressure: into v itself, the
+// step's closing half kick (its opening one is the drift's, integrate.cl); into the spares the
+// iterations later fill with the pressure acceleration, the velocity the drift will move the
+// particles at without pressure, the constant-density solve's source.
+__kernel void dfsph_half_kick(const __global float* vx, const __global float* vy, const __global float* vz,
                                    const __global float* ax, const __global float* ay, const __global float* az,
                                    const uint n, const float half_dt, __global float* ux, __global float* uy,
                                    __global float* uz) {
@@ -79,7 +69,7 @@ __kernel void dfsph_pressure_acceleration(
 }
 
 // Δ_i(u) (above) for velocities or accelerations u (the divergence-free solve's source takes v, the
-// constant-density solve's dfsph_drift_velocity), then one of two updates of particle i:
+// constant-density solve's the drift velocity of dfsph_half_kick), then one of two updates of particle i:
 //   source (iterate 0): the source s_i from u (density: 1 − ρ̂_i − dt Δ_i(u); divergence:
 //     −Δ_i(u)), and κ_i's warm start, the κ the last solve ended with (kept as κ·dt^k, so that it
 //     does not depend on the step): the projection lowers it again where it is too high;

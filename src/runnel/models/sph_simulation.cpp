@@ -191,8 +191,9 @@ void Simulation::restore(const CheckpointData& d) {
   store.upload_field(kDepth, d.depth);
   if (solver_->settings().incompressible()) {
     // A checkpoint of the other solver has none: the solves then start cold.
-    store.upload_field(kKappa, d.kappa.empty() ? std::vector<float>(d.depth.size()) : d.kappa);
-    store.upload_field(kKappaV, d.kappa_v.empty() ? std::vector<float>(d.depth.size()) : d.kappa_v);
+    const std::vector<float> cold(d.particles.size(), 0.0f);
+    store.upload_field(kKappa, d.kappa.empty() ? cold : d.kappa);
+    store.upload_field(kKappaV, d.kappa_v.empty() ? cold : d.kappa_v);
   }
   store.set_next_id(d.next_id);
   solver_->restore_clock(d.time, d.dt, d.steps);

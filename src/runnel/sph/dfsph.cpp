@@ -2,6 +2,7 @@
 #include "runnel/sph/dfsph.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstring>
 #include <tuple>
@@ -22,8 +23,7 @@ Dfsph::Dfsph(ComputeContext& compute, cl::Program& program, const SphSettings& s
     : compute_(compute), settings_(settings) {
   density_ = Kernel(compute, program, "dfsph_density");
   non_pressure_ = Kernel(compute, program, "dfsph_non_pressure");
-  kick_ = Kernel(compute, program, "dfsph_kick");
-  drift_velocity_ = Kernel(compute, program, "dfsph_drift_velocity");
+  half_kick_ = Kernel(compute, program, "dfsph_half_kick");
   pressure_acceleration_ = Kernel(compute, program, "dfsph_pressure_acceleration");
   density_change_ = Kernel(compute, program, "dfsph_density_change");
   finish_ = Kernel(compute, program, "dfsph_finish");
@@ -36,8 +36,7 @@ void Dfsph::bind_neighbourhood(Kernel& k, ParticleStore& store, const SpatialHas
   store.bind(k, {kX, kY, kZ});
   hash.bind_cells(k);
   if (k.has("terrain_height")) terrain.bind(k);
-  k.set("domain_x", static_cast<float>(terrain.extent_x()));
-  k.set("domain_z", static_cast<float>(terrain.extent_z()));
+  terrain.bind_extent(k);
 }
 
 void Dfsph::measure_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain) {
@@ -68,8 +67,13 @@ void Dfsph::non_pressure_accelerations(ParticleStore& store, const SpatialHash& 
 void Dfsph::half_kick(ParticleStore& store, double dt) {
   const std::size_t n = store.size();
   if (n == 0) return;
-  store.bind(kick_, {kVx, kVy, kVz, kAx, kAy, kAz});
-  kick_.set("half_dt", static_cast<float>(0.5 * dt)).launch(round_up_work(n));
+  launch_half_kick(store, dt, {&store.buffer(kVx), &store.buffer(kVy), &store.buffer(kVz)});
+}
+
+void Dfsph::launch_half_kick(ParticleStore& store, double dt, std::array<cl::Buffer*, 3> u) {
+  store.bind(half_kick_, {kVx, kVy, kVz, kAx, kAy, kAz});
+  half_kick_.set("ux", *u[0]).set("uy", *u[1]).set("uz", *u[2]);
+  half_kick_.set("half_dt", static_cast<float>(0.5 * dt)).launch(round_up_work(store.size()));
 }
 
 void Dfsph::solve_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
@@ -127,12 +131,10 @@ Dfsph::SolveResult Dfsph::solve(ParticleStore& store, const SpatialHash& hash,
   if (divergence) {
     change.set("ux", store.buffer(kVx)).set("uy", store.buffer(kVy)).set("uz", store.buffer(kVz));
   } else {  // the drift's velocity without pressure, v + a·dt/2, in the spares of a(κ)
-    store.bind(drift_velocity_, {kVx, kVy, kVz, kAx, kAy, kAz});
-    for (int c = 0; c < 3; ++c) {
-      drift_velocity_.set(change_in[c], store.spare(kPressureAx + c));
-      change.set(change_in[c], store.spare(kPressureAx + c));
-    }
-    drift_velocity_.set("half_dt", static_cast<float>(0.5 * dt)).launch(round_up_work(n));
+    launch_half_kick(
+        store, dt,
+        {&store.spare(kPressureAx), &store.spare(kPressureAx + 1), &store.spare(kPressureAx + 2)});
+    for (int c = 0; c < 3; ++c) change.set(change_in[c], store.spare(kPressureAx + c));
   }
   std::tie(r.mean_error, r.worst_error) = density_change(store, /*iterate=*/false);
   if (r.mean_error <= tolerance) {

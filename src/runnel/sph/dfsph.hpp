@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <array>
 #include <cstdint>
 #include <utility>
 
@@ -65,6 +66,8 @@ class Dfsph {
   std::pair<double, double> density_change(ParticleStore& store, bool iterate);
   void bind_neighbourhood(Kernel& k, ParticleStore& store, const SpatialHash& hash,
                           DeviceTerrain& terrain);
+  // u = v + a·dt/2 into the three buffers u (the velocity itself, or a solve's spares).
+  void launch_half_kick(ParticleStore& store, double dt, std::array<cl::Buffer*, 3> u);
   // Runs one solve and books it: its step (κ is kept × dt^k), its stats, a caution when capped.
   void solve_and_record(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
                         double dt, bool divergence);
@@ -72,8 +75,7 @@ class Dfsph {
 
   ComputeContext& compute_;
   SphSettings settings_;
-  Kernel density_, non_pressure_, kick_, drift_velocity_, pressure_acceleration_, density_change_,
-      finish_;
+  Kernel density_, non_pressure_, half_kick_, pressure_acceleration_, density_change_, finish_;
   cl::Buffer errors_, error_max_;
   // Each particle's neighbours within the support, slot-major (cl/dfsph_density.cl), for the
   // solves.

@@ -236,7 +236,7 @@ void SphSolver::drift_and_collide() {
   bind_continuity_inputs(store_, k);
   launch_bed_friction_factors(store_, friction_factors_, k);
   terrain_.bind_contact(k);
-  bind_extent(k);
+  terrain_.bind_extent(k);
   k.set("dt", static_cast<float>(dt_)).set("counters", counters_buffer_);
   k.launch(round_up_work(n));
 }
@@ -265,13 +265,7 @@ void SphSolver::project_to_surface() {
 // The terrain boundary and the domain's extent (walls): what both neighbour passes see.
 void SphSolver::bind_domain(Kernel& k) {
   terrain_.bind(k);
-  bind_extent(k);
-}
-
-// The domain's extent (outflow, walls).
-void SphSolver::bind_extent(Kernel& k) {
-  k.set("domain_x", static_cast<float>(terrain_.extent_x()));
-  k.set("domain_z", static_cast<float>(terrain_.extent_z()));
+  terrain_.bind_extent(k);
 }
 
 void bind_continuity_inputs(ParticleStore& store, Kernel& k) {

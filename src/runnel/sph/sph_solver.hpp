@@ -110,7 +110,6 @@ class SphSolver {
   void sort_particles();
   void drop_dead_particles();
   void bind_domain(Kernel& k);
-  void bind_extent(Kernel& k);
   void integrate_density();
   void compute_forces();
   // The step statistics (and, with closing_kick, v += a·dt/2 before them) and the next dt.

@@ -180,6 +180,11 @@ void DeviceTerrain::bind(Kernel& k) {
   bind_mesh(k);
 }
 
+void DeviceTerrain::bind_extent(Kernel& k) const {
+  k.set("domain_x", static_cast<float>(extent_x()));
+  k.set("domain_z", static_cast<float>(extent_z()));
+}
+
 void DeviceTerrain::bind_mesh(Kernel& k) {
   k.set("terrain_normal", normal()).set("tnx", nx_).set("tny", ny_).set("tcell", cell_);
 }

@@ -59,6 +59,8 @@ class DeviceTerrain {
   void bind_contact(Kernel& kernel);
   // terrain_normal, tnx, tny, tcell: what every sampler of the mesh takes beside its heights.
   void bind_mesh(Kernel& kernel);
+  // Sets `domain_x`, `domain_z`: the extent the outflow and the tank walls are at (m).
+  void bind_extent(Kernel& kernel) const;
   cl::Buffer& height() { return height_; }
   cl::Buffer& normal();
   cl::Buffer& delta() {
