@@ -11,7 +11,7 @@ namespace runnel::cli {
 
 void add_bench_command(CLI::App& app) {
   struct Options {
-    std::string which, device, trace;
+    std::string which, device, trace, scene = "block";
     long long particles = 100000;
     int size = 1024;
     int steps = 20;
@@ -22,7 +22,7 @@ void add_bench_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "bench",
       "Measure throughput and print JSON with per-kernel times from OpenCL "
-      "profiling events. sph: a block of N particles settling in a tank; droplet: "
+      "profiling events. sph: N particles in a tank (--scene block or sheet); droplet: "
       "batches of Beyer droplets on a size x size terrain (--steps batches); generate: the "
       "noise generators at size x size vertices (vertices per second)");
   cmd->add_option("model", opt->which,
@@ -38,6 +38,11 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--tile", opt->tile,
                   "sph: particles of a cell one work-group of the neighbour passes takes; 1 gives "
                   "every particle its own work-item; 0: the device's choice (a CPU 32, a GPU 1)")
+      ->capture_default_str();
+  cmd->add_option("--scene", opt->scene,
+                  "sph: block (a block settling in a tank, the pressure solves' hardest case) or "
+                  "sheet (a film two particles deep running down a 10 % slope, like most of a storm)")
+      ->check(CLI::IsMember({"block", "sheet"}))
       ->capture_default_str();
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
@@ -65,7 +70,8 @@ void add_bench_command(CLI::App& app) {
                 << "\n";
       return;
     }
-    std::cout << benchmark_sph(compute, opt->particles, opt->steps, params, opt->tile).str()
+    std::cout << benchmark_sph(compute, opt->particles, opt->steps, params, opt->tile, opt->scene)
+                     .str()
               << "\n";
   });
 }

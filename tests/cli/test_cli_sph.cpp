@@ -102,6 +102,28 @@ TEST(CliSph, BenchPrintsThroughputAndKernelTimes) {
   EXPECT_NE(r.out.find("\"radix_scatter\""), std::string::npos);
 }
 
+TEST(CliSph, BenchSheetOnASlopeIsTheSolvesEasyCase) {
+  // A film two particles deep needs fewer pressure iterations than a 16-deep settling block: the
+  // benchmark pair brackets a storm's water. The sheet must also run downhill (time advances).
+  const std::vector<std::string> dfsph{"--set", "sph.solver=dfsph"};
+  auto bench = [&](const char* scene) {
+    std::vector<std::string> args{"bench", "sph", "--particles", "4000", "--steps", "4", "--scene",
+                                  scene};
+    args.insert(args.end(), dfsph.begin(), dfsph.end());
+    return run_cli(args);
+  };
+  const auto sheet = bench("sheet"), block = bench("block");
+  ASSERT_EQ(sheet.exit_code, 0) << sheet.err;
+  ASSERT_EQ(block.exit_code, 0) << block.err;
+  EXPECT_NE(sheet.out.find("\"scene\": \"sheet\""), std::string::npos) << sheet.out;
+  EXPECT_NEAR(json_number(sheet.out, "particles"), 4000.0, 200.0);
+  EXPECT_GT(json_number(sheet.out, "simulated_seconds_per_wall_second"), 0.0);
+  EXPECT_LT(json_number(sheet.out, "density_iterations_mean"),
+            json_number(block.out, "density_iterations_mean"))
+      << sheet.out << "\n" << block.out;
+  EXPECT_EQ(run_cli({"bench", "sph", "--scene", "lake"}).exit_code, 2);
+}
+
 TEST(CliSph, BenchDropletPrintsItsThroughput) {
   const auto r = run_cli({"bench", "droplet", "--size", "129", "--steps", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;

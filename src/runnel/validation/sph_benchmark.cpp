@@ -9,20 +9,56 @@
 
 namespace runnel {
 
+namespace {
+
+// A thin sheet two particles deep on a plane falling 10 % towards +x, in a closed tank: the shape
+// of most of a storm's water (a film running downhill), where the pressure solves end at once.
+constexpr double kSheetSlope = 0.1;
+constexpr int kSheetLayers = 2;
+
+Heightmap sloped_floor(int cells, double cell) {
+  Heightmap floor = flat_floor(cells, cells, cell);
+  for (int j = 0; j <= cells; ++j)
+    for (int i = 0; i <= cells; ++i)
+      floor.at(i, j) = static_cast<float>(kSheetSlope * (cells - i) * cell);
+  return floor;
+}
+
+HostParticles sheet_on_slope(const SphSettings& s, int side) {
+  const double dx = s.spacing;
+  HostParticles p;
+  for (int k = 0; k < side; ++k)
+    for (int layer = 0; layer < kSheetLayers; ++layer)
+      for (int i = 0; i < side; ++i) {
+        const double x = (i + 0.5) * dx;
+        const double y = kSheetSlope * (side * dx - x) + (layer + 0.5) * dx;
+        p.push(static_cast<float>(x), static_cast<float>(y), static_cast<float>((k + 0.5) * dx), 0,
+               0, 0, static_cast<float>(s.rho0), 1e30f);
+      }
+  return p;
+}
+
+}  // namespace
+
 JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps,
-                         const Parameters& params_in, unsigned tile) {
-  // A block twice as wide as it is high, filling the tank's floor: the water is 1 m deep.
-  const int high = std::max(2, static_cast<int>(std::lround(std::cbrt(particles / 4.0))));
-  const int wide =
-      std::max(2, static_cast<int>(std::lround(std::sqrt(static_cast<double>(particles) / high))));
-  const double depth = 1.0, dx = depth / high;
+                         const Parameters& params_in, unsigned tile, const std::string& scene) {
   Parameters params = params_in;
   params.set("sph.walls", true, "bench");
+  const bool sheet = scene == "sheet";
+  // block: twice as wide as it is high, filling the tank's floor, the water 1 m deep.
+  // sheet: kSheetLayers particles of 5 cm deep on a square slope.
+  const int high = sheet ? kSheetLayers
+                         : std::max(2, static_cast<int>(std::lround(std::cbrt(particles / 4.0))));
+  const int wide =
+      std::max(2, static_cast<int>(std::lround(std::sqrt(static_cast<double>(particles) / high))));
+  const double dx = sheet ? 0.05 : 1.0 / high, depth = high * dx;
   const SphSettings s =
-      SphSettings::from(params, dx, std::sqrt(params.real("sph.gravity") * depth));
-  SphSolver solver(compute, s, flat_floor(1, 1, wide * dx), 1.5 * depth);
+      SphSettings::from(params, dx, std::sqrt(params.real("sph.gravity") * (sheet ? 1.0 : depth)));
+  const double side = wide * dx;
+  SphSolver solver(compute, s, sheet ? sloped_floor(wide, dx) : flat_floor(1, 1, side),
+                   sheet ? kSheetSlope * side + 1.0 : 1.5 * depth);
   if (tile > 0) solver.hash().set_tile(tile);
-  solver.add(hydrostatic_block(s, wide * dx, depth, wide * dx));
+  solver.add(sheet ? sheet_on_slope(s, wide) : hydrostatic_block(s, side, depth, side));
   const long long n = static_cast<long long>(solver.particles().size());
 
   for (int k = 0; k < 3; ++k) solver.step();  // warm-up: kernel builds, first allocations
@@ -47,6 +83,7 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
   }
   JsonObject out;
   out.add("benchmark", "sph")
+      .add("scene", sheet ? "sheet" : "block")
       .add("device", compute.info().name)
       .add("particles", n)
       .add("steps", steps)

@@ -8,11 +8,13 @@
 
 namespace runnel {
 
-// `runnel bench sph`: a block of N particles settling under gravity in a closed tank, timed over
-// S steps after a warm-up, with per-kernel times from OpenCL profiling events. `tile`: the
-// neighbour passes' tile (SpatialHash), 0 for the device's.
+// `runnel bench sph`: N particles in a closed tank, timed over S steps after a warm-up, with
+// per-kernel times from OpenCL profiling events. scene "block": a block settling under gravity
+// (the pressure solves' hardest case); "sheet": a film two particles deep running down a 10 %
+// slope. `tile`: the neighbour passes' tile (SpatialHash), 0 for the device's.
 JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps,
-                         const Parameters& params, unsigned tile = 0);
+                         const Parameters& params, unsigned tile = 0,
+                         const std::string& scene = "block");
 
 // `runnel bench droplet|pipe|olsen|thermal`: `steps` steps of a registered model on an fBm
 // terrain of size × size vertices after one warm-up step; cell_steps_per_second (or
