@@ -158,9 +158,33 @@ void set_model_field(PyModel& self, const std::string& name, py::array_t<float, 
   throw input_error("field " + name + ": not a settable field of the " + m.info().name + " model");
 }
 
+void check_cell(const char* what, double cell) {
+  if (!(cell >= kMinCell && cell <= kMaxCell))
+    throw input_error(std::string(what) + ": " + format_number(cell) + " m is not a cell size (" +
+                      format_number(kMinCell) + " to " + format_number(kMaxCell) + " m)");
+}
+
+// A grid coordinate: finite and within the readers' bound (docs/robustness.md).
+double checked_origin(const char* what, double value) {
+  if (!(std::fabs(value) <= kMaxAbsOrigin))
+    throw input_error(std::string(what) + ": " + format_number(value) +
+                      " is not a finite coordinate within 1e12 m");
+  return value;
+}
+
+// A Python number that must be finite and at least zero (a duration, a count of steps).
+double checked_duration(const char* what, double value) {
+  if (!(std::isfinite(value) && value >= 0))
+    throw input_error(std::string(what) + ": " + format_number(value) +
+                      " is not a finite, non-negative number");
+  return value;
+}
+
 Heightmap terrain_from(py::array_t<float, py::array::c_style | py::array::forcecast> heights,
                        double cell) {
   if (heights.ndim() != 2) throw input_error("heights: a 2-D array (rows, columns) is needed");
+  check_terrain_size("heights", heights.shape(1), heights.shape(0));
+  check_cell("cell", cell);
   Heightmap t(static_cast<int>(heights.shape(1)), static_cast<int>(heights.shape(0)), cell);
   std::copy(heights.data(), heights.data() + heights.size(), t.h.begin());
   check_terrain_values("heights", t);
@@ -190,9 +214,18 @@ PYBIND11_MODULE(_runnel, m) {
       .def(py::init(&terrain_from), py::arg("heights"), py::arg("cell") = 1.0)
       .def_readonly("nx", &Heightmap::nx)
       .def_readonly("ny", &Heightmap::ny)
-      .def_readwrite("cell", &Heightmap::cell)
-      .def_readwrite("origin_x", &Heightmap::origin_x)
-      .def_readwrite("origin_z", &Heightmap::origin_z)
+      .def_property(
+          "cell", [](const Heightmap& t) { return t.cell; },
+          [](Heightmap& t, double cell) {
+            check_cell("cell", cell);
+            t.cell = cell;
+          })
+      .def_property(
+          "origin_x", [](const Heightmap& t) { return t.origin_x; },
+          [](Heightmap& t, double x) { t.origin_x = checked_origin("origin_x", x); })
+      .def_property(
+          "origin_z", [](const Heightmap& t) { return t.origin_z; },
+          [](Heightmap& t, double z) { t.origin_z = checked_origin("origin_z", z); })
       .def_property(
           "crs_wkt", [](const Heightmap& t) { return t.georef.crs_wkt; },
           [](Heightmap& t, const std::string& wkt) { t.georef.crs_wkt = wkt; })
@@ -245,6 +278,13 @@ PYBIND11_MODULE(_runnel, m) {
   m.def(
       "terrain_metrics",
       [](const Heightmap& initial, const Heightmap& final_terrain) {
+        if (initial.nx != final_terrain.nx || initial.ny != final_terrain.ny ||
+            initial.cell != final_terrain.cell)
+          throw input_error("final: " + std::to_string(final_terrain.nx) + " x " +
+                            std::to_string(final_terrain.ny) + " vertices of " +
+                            format_number(final_terrain.cell) + " m, not the initial terrain's " +
+                            std::to_string(initial.nx) + " x " + std::to_string(initial.ny) +
+                            " of " + format_number(initial.cell) + " m");
         py::dict d;
         const auto area = metrics::flow_accumulation(final_terrain);
         for (const auto& [k, v] : metrics::terrain_metric_values(initial, final_terrain, area))
@@ -285,7 +325,10 @@ PYBIND11_MODULE(_runnel, m) {
       .def("save_checkpoint",
            [](PyModel& self, const std::string& path) { write_checkpoint(path, self.get().checkpoint()); })
       .def("step", [](PyModel& self) { return self.get().step(); }, "One step; returns its length")
-      .def("advance", [](PyModel& self, double dt) { self.get().advance(dt); }, py::arg("dt"),
+      .def(
+          "advance",
+          [](PyModel& self, double dt) { self.get().advance(checked_duration("dt", dt)); },
+          py::arg("dt"),
            "Advances the clock by dt (s, or iterations)")
       .def(
           "run",

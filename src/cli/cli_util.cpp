@@ -6,6 +6,8 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/scenario.hpp"
+#include "runnel/sim/output_folder.hpp"
 
 namespace runnel::cli {
 
@@ -65,11 +67,20 @@ void OutputFlags::apply(RunOptions& options) const {
   options.overwrite = overwrite;
 }
 
-void refuse_same_file(const std::string& input, const std::string& output) {
-  std::error_code ec;
-  const bool same =
-      std::filesystem::exists(output, ec) && std::filesystem::equivalent(input, output, ec);
-  if (same) throw input_error(output + ": is the input file; write the output to another file");
+std::vector<NamedPath> scenario_inputs(const Parameters& params, const std::string& scenario) {
+  std::vector<NamedPath> inputs;
+  if (!scenario.empty()) inputs.push_back({"scenario file", scenario});
+  for (auto& [key, path] : input_files(params)) inputs.push_back({key, path});
+  return inputs;
+}
+
+void check_run_outputs(const std::vector<NamedPath>& inputs, const std::string& out,
+                       const std::string& trace) {
+  std::vector<NamedPath> outputs;
+  if (!trace.empty()) outputs.push_back({"--trace", trace});
+  for (const std::string& name : run_output_names())
+    outputs.push_back({"--out", (std::filesystem::path(out) / name).string()});
+  check_output_paths(inputs, outputs);
 }
 
 HeightRange parse_range(const std::string& text, const std::string& flag) {

@@ -58,7 +58,10 @@ void add_bench_command(CLI::App& app) {
     Parameters params;
     apply_overrides(params, opt->sets);
     ComputeContext compute(opt->device);
-    if (!opt->trace.empty()) compute.profiler().trace_to(opt->trace);
+    if (!opt->trace.empty()) {
+      check_output_paths({}, {{"--trace", opt->trace}});
+      compute.profiler().trace_to(opt->trace);
+    }
     if (opt->which == "generate") {
       if (opt->size < 16 || opt->size > 16384) throw input_error("--size: must be in 16..16384");
       std::cout << benchmark_generators(compute, opt->size, opt->steps).str() << "\n";

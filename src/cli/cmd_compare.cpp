@@ -60,6 +60,12 @@ void add_compare_command(CLI::App& app) {
     options.out_dir = opt->out;
     options.quiet = opt->quiet;
     options.scenario_name = opt->scenario.empty() ? "built-in defaults" : opt->scenario;
+    const std::vector<NamedPath> inputs = scenario_inputs(params, opt->scenario);
+    for (const std::string& model : options.models)
+      check_run_outputs(inputs, (std::filesystem::path(opt->out) / model).string(), "");
+    check_output_paths(inputs, {{"--out", opt->out + "/metrics.csv"},
+                                {"--out", opt->out + "/compare.png"},
+                                {"--out", opt->out + "/report.md"}});
     const Heightmap terrain = load_terrain(params);
     ComputeContext compute(opt->device);
     const auto results = compare::run_compare(compute, params, terrain, options);

@@ -59,6 +59,7 @@ void add_export_command(CLI::App& app) {
     if (!opt->range.empty() && opt->format != "png")
       throw input_error("--range: only a png export has a height range (--format " + opt->format +
                         ")");
+    check_output_paths({{"checkpoint", opt->file}}, {{"-o", opt->output}});
     const CheckpointData data = read_checkpoint(opt->file);
     if (opt->format == "ply") {
       write_particles_ply(opt->output, data);

@@ -136,6 +136,9 @@ void add_generate_command(CLI::App& app) {
         compute = std::make_unique<ComputeContext>(opt->device);
       terrain = generate_terrain(opt->name, nx, ny, opt->cell, opt->seed, values, compute.get());
     }
+    std::vector<NamedPath> inputs = scenario_inputs(params, opt->scenario);
+    inputs.push_back({"--graph", opt->graph});
+    check_output_paths(inputs, {{"-o", opt->output}, {"--picture", opt->picture}});
     if (!params.layers().empty()) {
       // The strata on the terrain as the run sees it: heights rounded to the quantum.
       const double q = params.real("erosion.height_quantum");

@@ -32,6 +32,7 @@ void add_resume_command(CLI::App& app) {
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
   add_output_flags(*cmd, opt->output);
   cmd->callback([opt] {
+    check_run_outputs({{"checkpoint", opt->file}}, opt->out, "");
     const CheckpointData data = read_checkpoint(opt->file);
     ComputeContext compute(opt->device);
     const std::unique_ptr<Model> model = make_model_from_checkpoint(compute, data, opt->file);

@@ -83,6 +83,7 @@ void add_run_command(CLI::App& app) {
     if (opt->sim_time >= 0 && clock == ModelClock::kYears)  // the flag wins over the scenario
       params.set("run.sim_years", opt->sim_time, "--sim-time");
     require_run_length(params, clock);
+    check_run_outputs(scenario_inputs(params, opt->scenario), opt->out, opt->trace);
     const Heightmap terrain = load_terrain(params);
     ComputeContext compute(opt->device);
     RunOptions options = run_options_from(params, clock);

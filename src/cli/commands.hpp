@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "runnel/core/parameters.hpp"
+#include "runnel/io/output_paths.hpp"
 #include "runnel/sim/run.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
@@ -41,9 +43,14 @@ CLI::Validator at_least(double min);
 // A cell size in metres: finite, within 1e-6 .. 1e6 m (terrain.cell's range).
 CLI::Validator cell_size();
 
-// Refuses to write `output` over `input` (the same file by another name included): the input
-// would be gone if the conversion failed half-way, and is gone anyway once replaced.
-void refuse_same_file(const std::string& input, const std::string& output);
+// The files the parameters name (terrain, graph, masks, uplift, layer thicknesses) and the
+// scenario file itself, as inputs no output may replace.
+std::vector<NamedPath> scenario_inputs(const Parameters& params, const std::string& scenario = "");
+
+// Refuses, before anything runs, a run whose outputs (every file runnel writes into `out`, and
+// `trace`) would replace one of `inputs` or one another, or a device, FIFO or folder.
+void check_run_outputs(const std::vector<NamedPath>& inputs, const std::string& out,
+                       const std::string& trace);
 
 // "MIN:MAX" → a height range; throws an input error naming `flag`.
 HeightRange parse_range(const std::string& text, const std::string& flag);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <variant>
 
+#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/layers.hpp"
 
@@ -83,8 +84,14 @@ std::string toml_text(const ParamValue& value) {
 
 }  // namespace
 
+// The parameters that name a file, resolved against the scenario's folder.
+constexpr const char* kFileKeys[] = {"terrain.file",       "terrain.graph",
+                                     "ground.hardness_mask", "ground.rain_mask",
+                                     "ground.frozen_mask",   "stream_power.uplift_file"};
+
 Parameters parse_scenario(const std::string& text, const std::string& origin,
                           const std::string& base_dir) {
+  check_toml_key_depth(text, origin);
   toml::table table;
   try {
     table = toml::parse(text, origin);
@@ -97,8 +104,7 @@ Parameters parse_scenario(const std::string& text, const std::string& origin,
   Parameters params;
   flatten(table, "", params, origin);
   if (const toml::node* layers = table.get("layers")) read_layers(*layers, params, origin);
-  for (const char* key : {"terrain.file", "terrain.graph", "ground.hardness_mask",
-                          "ground.rain_mask", "ground.frozen_mask", "stream_power.uplift_file"}) {
+  for (const char* key : kFileKeys) {
     if (params.was_set(key)) params.set(key, resolved(params.text(key), base_dir), origin);
   }
   for (std::size_t l = 0; l < params.layers().size(); ++l) {
@@ -110,15 +116,21 @@ Parameters parse_scenario(const std::string& text, const std::string& origin,
   return params;
 }
 
+std::vector<std::pair<std::string, std::string>> input_files(const Parameters& params) {
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const char* key : kFileKeys)
+    if (params.was_set(key) && !params.text(key).empty()) files.emplace_back(key, params.text(key));
+  for (std::size_t l = 0; l < params.layers().size(); ++l) {
+    const LayerValues& layer = params.layers()[l];
+    if (layer.count("thickness_file"))
+      files.emplace_back("layer thickness_file", layer_text(layer, "thickness_file"));
+  }
+  return files;
+}
+
 Parameters load_scenario(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw input_error(path + ": no such scenario file");
-  std::ifstream in(path);
-  if (!in) throw input_error(path + ": cannot open for reading");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_scenario(buffer.str(), path, std::filesystem::path(path).parent_path().string());
+  return parse_scenario(read_text_input(path, "scenario file"), path,
+                        std::filesystem::path(path).parent_path().string());
 }
 
 void apply_overrides(Parameters& params, const std::vector<std::string>& assignments) {

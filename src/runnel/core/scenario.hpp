@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "runnel/core/parameters.hpp"
@@ -14,6 +15,10 @@ Parameters load_scenario(const std::string& path);
 // Same, from TOML text (tests; `origin` names the text in errors).
 Parameters parse_scenario(const std::string& toml_text, const std::string& origin,
                           const std::string& base_dir = "");
+
+// Every file the parameters name (terrain, graph, masks, uplift, layer thicknesses) as
+// (parameter, path): the inputs an output must never replace.
+std::vector<std::pair<std::string, std::string>> input_files(const Parameters& params);
 
 // Applies `--set key=value` overrides in order.
 void apply_overrides(Parameters& params, const std::vector<std::string>& assignments);

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
 
@@ -75,12 +76,11 @@ void write_session_log(const std::string& path, const SessionLog& log) {
 }
 
 SessionLog read_session_log(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw input_error(path + ": cannot read the session log");
+  const std::string text = read_text_input(path, "session log");
   const auto fail = [&](const std::string& what) { return input_error(path + ": " + what); };
   nlohmann::json root;
   try {
-    root = nlohmann::json::parse(in);
+    root = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw fail(std::string("not JSON (") + e.what() + ")");
   }

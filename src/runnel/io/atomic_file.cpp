@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "runnel/core/error.hpp"
+#include "runnel/io/output_paths.hpp"
 
 namespace runnel {
 namespace {
@@ -56,6 +57,7 @@ void write_path_atomically(const std::string& path,
   if (!fs::is_directory(dir, ec)) {
     throw input_error(path + ": output directory '" + dir.string() + "' does not exist");
   }
+  refuse_special_output(path);  // a rename would replace a device node or a FIFO
   std::string hidden_name(".");
   hidden_name.append(target.filename().string()).append(".tmpXXXXXX");
   std::string tmp_name = (dir / hidden_name).string();

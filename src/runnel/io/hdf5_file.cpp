@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
 
 namespace runnel {
@@ -102,8 +103,7 @@ H5Handle::~H5Handle() {
 
 H5File H5File::open_read(const std::string& path) {
   silence_hdf5();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw input_error(path + ": no such file");
+  require_regular_input(path, "HDF5 file");
   if (H5Fis_hdf5(path.c_str()) <= 0) throw input_error(path + ": not an HDF5 file (or truncated)");
   check_local_heaps(path);
   H5File f;
@@ -246,6 +246,9 @@ bool H5File::exists(const std::string& name) const {
   return H5Lexists(file_.get(), name.c_str(), H5P_DEFAULT) > 0;
 }
 
+// zlib's largest compression ratio (1032:1, for a long run of one byte) with a margin.
+constexpr double kMaxDeflateRatio = 1100.0;
+
 // A dataset whose header HDF5 cannot parse (a chunk dimension of 0, say) is named as damaged, not
 // missing: whether libhdf5 1.10 refuses such a header or divides by it depends on what the process
 // read before, so the message must not depend on which happened.
@@ -287,8 +290,15 @@ std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsi
       throw input_error(path_ + ": dataset " + name + " is " + dims_text(d) + ", too large");
     total *= v;
   }
-  std::vector<T> out(total);
   const H5Handle set = open_dataset(name);
+  // The bytes the file really stores for the dataset bound what it can hold: deflate packs at
+  // most about 1032 to 1. A small damaged file claiming gigabytes is refused before allocating.
+  const double stored = static_cast<double>(H5Dget_storage_size(set.get()));
+  if (static_cast<double>(total) * sizeof(T) > kMaxDeflateRatio * stored + (1 << 20))
+    throw input_error(path_ + ": dataset " + name + " is " + dims_text(d) + " but the file stores " +
+                      std::to_string(static_cast<long long>(stored)) +
+                      " bytes of it (the file is damaged)");
+  std::vector<T> out(total);
   if (total > 0 && H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
     throw input_error(path_ + ": cannot read dataset " + name + " (corrupt or truncated)");
   }

@@ -252,6 +252,16 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
   });
 }
 
+std::string run_identity(const std::string& parameters_toml, const Heightmap& initial_terrain) {
+  Digest id;
+  id.add(run_identity(parameters_toml))
+      .add(initial_terrain.nx)
+      .add(initial_terrain.ny)
+      .add(initial_terrain.cell)
+      .add(initial_terrain.h);
+  return id.hex();
+}
+
 std::string run_identity(const std::string& parameters_toml) {
   Digest id;
   std::istringstream lines(parameters_toml);
@@ -373,8 +383,12 @@ CheckpointData read_checkpoint_contents(const std::string& path) {
   d.counters = {c[0], c[1], c[2], c[3], c[4], c[5]};
   read_model_state(f, path, grid, d);
   check_invariants(path, d);
-  // Files from before the digest (schema 3 as first written) cannot be verified this way.
-  if (f.has_attribute("/", "digest") && f.read_string_attribute("/", "digest") != digest_of(d)) {
+  // A file that cannot be verified is not resumed: without the digest an edited velocity, seed
+  // or model label would be taken as the run's own.
+  if (!f.has_attribute("/", "digest"))
+    throw input_error(path + ": has no digest, so its data cannot be verified (a checkpoint of an "
+                             "older runnel, or edited by another program)");
+  if (f.read_string_attribute("/", "digest") != digest_of(d)) {
     throw input_error(path + ": the data do not match the file's digest (the file is damaged)");
   }
   return d;

@@ -39,6 +39,10 @@ double GridModel::step() {
   time_ += dt;
   if (global_rain_) rain_time_ += dt;
   ++steps_;
+  // A model whose step reads nothing back never waits for the device, and an OpenCL queue keeps
+  // every command it was given until someone waits: a coupling loop of millions of steps (Python,
+  // BMI) would grow it until memory ran out. Waiting now and then bounds it at little cost.
+  if (steps_ % kStepsBetweenWaits == 0) compute_.queue().finish();
   return dt;
 }
 

@@ -62,6 +62,8 @@ class GridModel : public Model {
  protected:
   // One step of the numerics; returns its length in clock units.
   virtual double take_step() = 0;
+  // How many steps may be queued on the device before step() waits for them.
+  static constexpr std::uint64_t kStepsBetweenWaits = 64;
   // m³ of water standing on the terrain (surface_water__depth × cell²).
   double water_volume();
   // Integer counters an exact restart needs, by name.

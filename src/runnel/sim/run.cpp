@@ -21,6 +21,7 @@
 #include "runnel/io/progress.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/sim/output_folder.hpp"
 #include "runnel/terrain/height_steps.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
@@ -128,14 +129,13 @@ class RollingCheckpoints {
 
 RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& options) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(options.out_dir, ec);
-  if (ec || !fs::is_directory(options.out_dir)) {
-    throw input_error("--out " + options.out_dir + ": cannot create the output folder");
-  }
   if (options.particles_every > 0 && model.info().name != "sph") {
     throw input_error("--particles-every: the " + model.info().name + " model has no particles");
   }
+  const OutputFolder folder(
+      options.out_dir,
+      run_identity(parameters_toml(model.parameters()), model.initial_terrain()),
+      options.overwrite);
   const fs::path out(options.out_dir);
   RollingCheckpoints checkpoints(out, model, options.keep_checkpoints, options.overwrite);
   if (!options.quiet) {

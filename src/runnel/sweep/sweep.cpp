@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "runnel/core/input_file.hpp"
 #include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
@@ -145,11 +146,11 @@ std::vector<std::string> sweep_metric_names() {
 SweepSpec read_sweep(const std::string& path) {
   SweepSpec spec;
   spec.path = path;
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw input_error(path + ": no such sweep file");
+  const std::string text = read_text_input(path, "sweep file");
+  check_toml_key_depth(text, path);
   toml::table table;
   try {
-    table = toml::parse_file(path);
+    table = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw input_error(path + ":" + std::to_string(e.source().begin.line) +
                       ": TOML syntax error: " + std::string(e.description()));

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "runnel/core/error.hpp"
@@ -26,6 +25,23 @@ T byteswap_value(T v) {
   std::reverse(b, b + sizeof(T));
   std::memcpy(&v, b, sizeof(T));
   return v;
+}
+
+// NumPy's own reader refuses longer headers (np.load's max_header_size); its writer pads to 64.
+constexpr std::uint32_t kMaxHeaderBytes = 10000;
+
+// The text after `'key':` in the header's dict literal (spaces skipped), for the caller to read
+// its value from: a plain scan, so no header, however long or odd, can exhaust the stack.
+std::string header_value(const std::string& header, const std::string& key,
+                         const std::string& path) {
+  const std::string quoted_key = "'" + key + "'";
+  std::size_t at = header.find(quoted_key);
+  if (at == std::string::npos) throw input_error(path + ": .npy header has no '" + key + "'");
+  at = header.find_first_not_of(" \t", at + quoted_key.size());
+  if (at == std::string::npos || header[at] != ':')
+    throw input_error(path + ": .npy header's '" + key + "' has no value");
+  at = header.find_first_not_of(" \t", at + 1);
+  return at == std::string::npos ? std::string() : header.substr(at);
 }
 
 }  // namespace
@@ -56,9 +72,12 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
   } else {
     throw input_error(path + ": unsupported .npy format version " + std::to_string(major));
   }
-  if (!in || header_len > 65536 || header_start + header_len > file_size) {
+  if (!in || header_start + header_len > file_size)
     throw input_error(path + ": truncated .npy header");
-  }
+  if (header_len > kMaxHeaderBytes)
+    throw input_error(path + ": .npy header of " + std::to_string(header_len) +
+                      " bytes, more than the " + std::to_string(kMaxHeaderBytes) +
+                      " NumPy itself reads");
   std::string header(header_len, '\0');
   in.read(header.data(), header_len);
 
@@ -67,30 +86,33 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
   const auto last = header.find_last_not_of(" \t\n\0");
   if (first == std::string::npos || header[first] != '{' || header[last] != '}')
     throw input_error(path + ": .npy header is not a complete {...} dictionary");
-  std::smatch m;
-  static const std::regex descr_re(R"('descr'\s*:\s*('[^']*'|\[))");
-  static const std::regex float_re(R"('([<>|=])f(4|8)')");
-  static const std::regex order_re(R"('fortran_order'\s*:\s*(True|False)\s*[,}])");
-  static const std::regex shape_re(R"('shape'\s*:\s*\(([^()]*)\))");
-  if (!std::regex_search(header, m, descr_re))
-    throw input_error(path + ": .npy header has no 'descr'");
-  const std::string descr = m[1].str();
-  if (descr == "[")
+  const std::string descr = header_value(header, "descr", path);
+  if (descr.starts_with("["))
     throw input_error(path + ": .npy dtype is structured (fields), not float32 or float64");
-  if (!std::regex_match(descr, m, float_re)) {
-    throw input_error(path + ": .npy dtype " + quoted(descr.substr(1, descr.size() - 2)) +
+  // '<f4', '>f8', '|f4' or '=f8': a byte order and a float's size.
+  const bool is_float = descr.size() >= 5 && descr[0] == '\'' && descr[4] == '\'' &&
+                        std::string_view("<>|=").find(descr[1]) != std::string_view::npos &&
+                        descr[2] == 'f' && (descr[3] == '4' || descr[3] == '8');
+  if (!is_float) {
+    const auto close = descr.find('\'', 1);
+    throw input_error(path + ": .npy dtype " +
+                      quoted(descr.substr(1, close == std::string::npos ? 40 : close - 1)) +
                       " is not float32 or float64");
   }
-  const char byte_order = m[1].str()[0];
-  const int item_size = m[2].str() == "4" ? 4 : 8;
-  if (!std::regex_search(header, m, order_re))
-    throw input_error(path + ": .npy header has no 'fortran_order'");
-  const bool fortran = m[1].str() == "True";
-  if (!std::regex_search(header, m, shape_re))
+  const char byte_order = descr[1];
+  const int item_size = descr[3] == '4' ? 4 : 8;
+  const std::string order = header_value(header, "fortran_order", path);
+  const bool fortran = order.starts_with("True");
+  if (!fortran && !order.starts_with("False"))
+    throw input_error(path + ": .npy 'fortran_order' is neither True nor False");
+  const std::string shape_text = header_value(header, "shape", path);
+  const auto shape_end = shape_text.find(')');
+  if (!shape_text.starts_with("(") || shape_end == std::string::npos ||
+      shape_text.find('(', 1) < shape_end)
     throw input_error(path + ": .npy header has no flat 'shape' tuple");
   // Exactly two whole non-negative numbers, "(rows, columns)" with an optional trailing comma.
   std::vector<long long> shape;
-  std::stringstream dims(m[1].str());
+  std::stringstream dims(shape_text.substr(1, shape_end - 1));
   for (std::string item; std::getline(dims, item, ',');) {
     const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
     if (b == std::string::npos) continue;  // the trailing comma of a 1-tuple

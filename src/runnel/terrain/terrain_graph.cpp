@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/terrain/filters.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -239,6 +240,7 @@ Heightmap evaluate_terrain_graph_text(const std::string& toml_text, const std::s
                                       const std::string& base_dir, ComputeContext* compute) {
   toml::table root;
   try {
+    check_toml_key_depth(toml_text, origin);
     root = toml::parse(toml_text, origin);
   } catch (const toml::parse_error& e) {
     throw input_error(origin + ":" + std::to_string(e.source().begin.line) +
@@ -253,11 +255,7 @@ Heightmap evaluate_terrain_graph_text(const std::string& toml_text, const std::s
 }
 
 Heightmap evaluate_terrain_graph(const std::string& path, ComputeContext* compute) {
-  std::ifstream in(path);
-  if (!in) throw input_error(path + ": cannot open the terrain graph");
-  std::stringstream text;
-  text << in.rdbuf();
-  return evaluate_terrain_graph_text(text.str(), path,
+  return evaluate_terrain_graph_text(read_text_input(path, "terrain graph"), path,
                                      std::filesystem::path(path).parent_path().string(), compute);
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
 
 namespace runnel {
@@ -27,10 +28,7 @@ TerrainFormat terrain_format_from_path(const std::string& path) {
 
 Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
   const TerrainFormat format = terrain_format_from_path(path);
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw input_error(path + ": no such file");
-  if (std::filesystem::is_directory(path, ec))
-    throw input_error(path + ": is a directory, not a terrain file");
+  require_regular_input(path, "terrain file");
   Heightmap terrain;
   switch (format) {
     case TerrainFormat::kAsc:

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sim/output_folder.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+
+namespace runnel {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kLockName = ".runnel.lock";
+constexpr const char* kRunMarker = ".runnel-run";
+
+std::string read_marker(const fs::path& file) {
+  std::ifstream in(file);
+  std::string id;
+  std::getline(in, id);
+  return id;
+}
+
+// The earlier run's files present in the folder: runnel's own output names and checkpoints only;
+// nothing else in the folder is ever touched.
+std::vector<fs::path> earlier_outputs(const fs::path& dir) {
+  std::vector<fs::path> found;
+  std::error_code ec;
+  for (const std::string& name : run_output_names())
+    if (fs::exists(dir / name, ec)) found.push_back(dir / name);
+  for (const auto& e : fs::directory_iterator(dir / "checkpoints", ec)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind("step_", 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
+  }
+  return found;
+}
+
+}  // namespace
+
+const std::vector<std::string>& run_output_names() {
+  static const std::vector<std::string> names = {
+      "final.h5",          "height_initial.png", "height_final.png",  "erosion.png",
+      "final.asc",         "final.npy",          "final.tif",         "erosion.tif",
+      "drainage_area.npy", "metrics.json",       "series.h5",         "series.h5.partial",
+      "series.xmf",        "geology.png",        "exposed_layer.tif", "exposed_layer.npy",
+      "sediment_thickness.tif"};
+  return names;
+}
+
+OutputFolder::OutputFolder(const std::string& dir_text, const std::string& run_id,
+                           bool overwrite) {
+  const fs::path dir(dir_text);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir, ec))
+    throw input_error("--out " + dir_text + ": cannot create the output folder");
+
+  const std::string lock_path = (dir / kLockName).string();
+  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0) {
+    throw input_error("--out " + dir_text + ": cannot write into the output folder (" +
+                      std::strerror(errno) + ")");
+  }
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    throw input_error("--out " + dir_text +
+                      ": another runnel run is writing into this folder; wait for it to end or "
+                      "choose another --out");
+  }
+  try {
+    // A folder that lets the lock be opened may still refuse new files (a full quota, a
+    // read-only bind mount of a folder that had the lock): create one as the outputs will be.
+    write_text_atomically((dir / kRunMarker).string() + ".probe", "");
+    fs::remove(dir / (std::string(kRunMarker) + ".probe"), ec);
+
+    const std::string earlier = read_marker(dir / kRunMarker);
+    const std::vector<fs::path> outputs = earlier_outputs(dir);
+    if (earlier != run_id && !outputs.empty()) {
+      if (!overwrite)
+        throw input_error("--out " + dir_text + ": holds the outputs of another run (" +
+                          outputs.front().filename().string() +
+                          "); choose another --out, or --overwrite to replace them");
+      for (const fs::path& p : outputs) fs::remove(p, ec);
+    }
+    write_text_atomically((dir / kRunMarker).string(), run_id + "\n");
+  } catch (...) {
+    ::close(lock_fd_);
+    throw;
+  }
+}
+
+OutputFolder::~OutputFolder() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // closing releases the flock
+}
+
+}  // namespace runnel

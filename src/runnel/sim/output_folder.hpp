@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+#include <string>
+#include <vector>
+
+namespace runnel {
+
+// The names of every file a run writes into its --out folder (beside checkpoints/step_*.h5).
+const std::vector<std::string>& run_output_names();
+
+// The --out folder of one run, held for as long as the run writes into it:
+// - locked (an flock on DIR/.runnel.lock): a second run into the same folder is refused while
+//   this one lives, so two runs cannot leave a mix of their files;
+// - proven writable before the first step (a probe file is created and removed), so a read-only
+//   folder is refused at once, not after the whole run;
+// - holding only this run's outputs: DIR/.runnel-run names the run (its parameters and its
+//   terrain's content); outputs of another run in the folder are refused, or removed with
+//   `overwrite`. A resume of the same run, or the same run again, replaces its own files.
+class OutputFolder {
+ public:
+  OutputFolder(const std::string& dir, const std::string& run_id, bool overwrite);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+ private:
+  int lock_fd_ = -1;
+};
+
+}  // namespace runnel
