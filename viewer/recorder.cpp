@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/text.hpp"
 
 namespace runnel::viewer {
 
@@ -97,7 +98,8 @@ FrameRecorder::FrameRecorder(const std::string& path, double fps) : path_(path),
 
 FrameRecorder::~FrameRecorder() {
   if (pipe_ && pclose(pipe_) != 0)
-    std::fprintf(stderr, "runnel-viewer: ffmpeg failed to write %s\n", path_.c_str());
+    std::fprintf(stderr, "runnel-viewer: ffmpeg failed to write %s\n",
+                 terminal_safe(path_).c_str());
 }
 
 void FrameRecorder::add(const RgbImage& frame) {

@@ -25,6 +25,20 @@ CLI::Validator at_least(double min) {
       "");
 }
 
+CLI::Validator whole_in(long long min, long long max) {
+  const std::string rule =
+      "must be a whole number from " + std::to_string(min) + " to " + std::to_string(max);
+  return CLI::Validator(
+      [min, max, rule](std::string& text) -> std::string {
+        long long v = 0;
+        const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || p != text.data() + text.size() || v < min || v > max)
+          return rule + " (got " + text + ")";
+        return "";
+      },
+      "");
+}
+
 CLI::Validator cell_size() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
@@ -42,19 +56,19 @@ void add_output_flags(CLI::App& cmd, OutputFlags& flags) {
          "--checkpoint-every", flags.checkpoint_every,
          "write DIR/checkpoints/step_XXXXXXXX.h5 every N steps; 0 (the default): none (final.h5 "
          "is always written)")
-      ->check(at_least(0));
+      ->check(whole_in(0, kMaxSteps));
   cmd.add_option("--keep-checkpoints", flags.keep_checkpoints, "keep the newest K checkpoints")
-      ->check(at_least(1))
+      ->check(whole_in(1, 1000000))
       ->capture_default_str();
   cmd.add_option("--series-every", flags.series_every,
                  "append the heightmap to DIR/series.h5 every N steps (series.xmf indexes it for "
                  "ParaView); 0 (the default): no series")
-      ->check(at_least(0));
+      ->check(whole_in(0, kMaxSteps));
   cmd.add_option(
          "--particles-every", flags.particles_every,
          "SPH: snapshot the particles (position, velocity, density, sediment, age, id) into "
          "DIR/series.h5 every N steps; 0 (the default): none")
-      ->check(at_least(0));
+      ->check(whole_in(0, kMaxSteps));
   cmd.add_flag("--overwrite", flags.overwrite,
                "replace checkpoints of another run found in DIR/checkpoints (refused otherwise)");
 }

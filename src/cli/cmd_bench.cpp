@@ -39,9 +39,10 @@ void add_bench_command(CLI::App& app) {
                   "sph: particles of a cell one work-group of the neighbour passes takes; 1 gives "
                   "every particle its own work-item; 0: the device's choice (a CPU 32, a GPU 1)")
       ->capture_default_str();
-  cmd->add_option("--scene", opt->scene,
-                  "sph: block (a block settling in a tank, the pressure solves' hardest case) or "
-                  "sheet (a film two particles deep running down a 10 % slope, like most of a storm)")
+  cmd->add_option(
+         "--scene", opt->scene,
+         "sph: block (a block settling in a tank, the pressure solves' hardest case) or "
+         "sheet (a film two particles deep running down a 10 % slope, like most of a storm)")
       ->check(CLI::IsMember({"block", "sheet"}))
       ->capture_default_str();
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
@@ -73,9 +74,9 @@ void add_bench_command(CLI::App& app) {
                 << "\n";
       return;
     }
-    std::cout << benchmark_sph(compute, opt->particles, opt->steps, params, opt->tile, opt->scene)
-                     .str()
-              << "\n";
+    std::cout
+        << benchmark_sph(compute, opt->particles, opt->steps, params, opt->tile, opt->scene).str()
+        << "\n";
   });
 }
 

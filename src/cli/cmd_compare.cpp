@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "runnel/compare/compare.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 
@@ -69,7 +70,7 @@ void add_compare_command(CLI::App& app) {
     const Heightmap terrain = load_terrain(params);
     ComputeContext compute(opt->device);
     const auto results = compare::run_compare(compute, params, terrain, options);
-    std::cout << opt->out << "/report.md: " << results.size()
+    std::cout << terminal_safe(opt->out) << "/report.md: " << results.size()
               << " models; metrics.csv, compare.png\n";
     for (const auto& r : results) {
       std::cout << "  " << r.model << ": eroded " << r.balance.eroded << " m^3, mass balance "

@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/text.hpp"
 
 namespace runnel::cli {
 
@@ -51,8 +52,8 @@ void add_convert_command(CLI::App& app) {
     const Heightmap terrain = read_terrain(opt->input, read);
     write_terrain(opt->output, terrain, write);
     std::fprintf(stderr, "runnel: %s -> %s (%d x %d vertices, cell %g m, heights %.3f..%.3f m)\n",
-                 opt->input.c_str(), opt->output.c_str(), terrain.nx, terrain.ny, terrain.cell,
-                 terrain.min_height(), terrain.max_height());
+                 terminal_safe(opt->input).c_str(), terminal_safe(opt->output).c_str(), terrain.nx,
+                 terrain.ny, terrain.cell, terrain.min_height(), terrain.max_height());
   });
 }
 

@@ -5,6 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/sim/series.hpp"
@@ -63,8 +64,9 @@ void add_export_command(CLI::App& app) {
     const CheckpointData data = read_checkpoint(opt->file);
     if (opt->format == "ply") {
       write_particles_ply(opt->output, data);
-      std::fprintf(stderr, "runnel: wrote %s (%zu particles, step %llu)\n", opt->output.c_str(),
-                   data.particles.size(), static_cast<unsigned long long>(data.steps));
+      std::fprintf(stderr, "runnel: wrote %s (%zu particles, step %llu)\n",
+                   terminal_safe(opt->output).c_str(), data.particles.size(),
+                   static_cast<unsigned long long>(data.steps));
       return;
     }
     if (opt->format == "obj") {
@@ -79,8 +81,9 @@ void add_export_command(CLI::App& app) {
       if (!opt->range.empty()) write.png_range = parse_range(opt->range, "--range");
       write_terrain(opt->output, data.terrain, write);
     }
-    std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, step %llu)\n", opt->output.c_str(),
-                 data.terrain.nx, data.terrain.ny, static_cast<unsigned long long>(data.steps));
+    std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, step %llu)\n",
+                 terminal_safe(opt->output).c_str(), data.terrain.nx, data.terrain.ny,
+                 static_cast<unsigned long long>(data.steps));
   });
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/ground/ground_outputs.hpp"
 #include "runnel/ground/strata.hpp"
 #include "runnel/io/images.hpp"
@@ -74,7 +76,9 @@ void add_generate_command(CLI::App& app) {
   cmd->add_option("--cell", opt->cell, "cell size (vertex spacing) in metres")
       ->check(cell_size())
       ->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "random seed")->check(at_least(0))->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "random seed")
+      ->check(whole_in(0, std::numeric_limits<std::int64_t>::max()))
+      ->capture_default_str();
   cmd->add_option("--set", opt->sets, "generator parameter key=value (repeatable)");
   cmd->add_option("-o,--output", opt->output,
                   "output file (.asc, .png, .npy, .tif); with a layered --scenario also one "
@@ -146,7 +150,7 @@ void add_generate_command(CLI::App& app) {
       for (std::size_t k = 0; k < fixed.size(); ++k) fixed[k] = std::llround(terrain.h[k] / q);
       for (const std::string& f :
            write_layered_terrain(opt->output, terrain, build_strata(params, terrain, fixed, q), q))
-        std::fprintf(stderr, "runnel: wrote %s\n", f.c_str());
+        std::fprintf(stderr, "runnel: wrote %s\n", terminal_safe(f).c_str());
       return;
     }
     if (std::filesystem::path(opt->output).extension() == ".h5")
@@ -162,8 +166,8 @@ void add_generate_command(CLI::App& app) {
       write_png_rgb(opt->picture,
                     terrain_picture(terrain, terrain.min_height(), terrain.max_height()));
     std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, cell %g m, heights %.3f..%.3f m)\n",
-                 opt->output.c_str(), terrain.nx, terrain.ny, terrain.cell, terrain.min_height(),
-                 terrain.max_height());
+                 terminal_safe(opt->output).c_str(), terrain.nx, terrain.ny, terrain.cell,
+                 terrain.min_height(), terrain.max_height());
   });
 }
 

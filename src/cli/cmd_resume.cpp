@@ -4,6 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
@@ -24,7 +25,7 @@ void add_resume_command(CLI::App& app) {
                          "result equals an uninterrupted run bit for bit");
   cmd->add_option("checkpoint", opt->file, "checkpoint file (final.h5 or checkpoints/step_*.h5)")
       ->required();
-  cmd->add_option("--steps", opt->steps, "steps to add")->required()->check(at_least(1));
+  cmd->add_option("--steps", opt->steps, "steps to add")->required()->check(whole_in(1, kMaxSteps));
   cmd->add_option("--out", opt->out, "output folder (created)")->capture_default_str();
   cmd->add_option("--device", opt->device,
                   "OpenCL device (see 'runnel devices'); the same device as the "
@@ -42,8 +43,8 @@ void add_resume_command(CLI::App& app) {
     options.quiet = opt->quiet;
     opt->output.apply(options);
     const RunSummary s = run_model(compute, *model, options);
-    std::cout << opt->out << "/metrics.json: resumed at step " << data.steps << ", now " << s.steps
-              << " steps, mass balance " << s.balance.residual << " m^3\n";
+    std::cout << terminal_safe(opt->out) << "/metrics.json: resumed at step " << data.steps
+              << ", now " << s.steps << " steps, mass balance " << s.balance.residual << " m^3\n";
   });
 }
 

@@ -2,10 +2,12 @@
 // runnel run: rain on a terrain, SPH flow, erosion and deposition; pictures, terrain and metrics
 // out.
 #include <iostream>
+#include <limits>
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
 #include "runnel/terrain/terrain_source.hpp"
@@ -43,14 +45,15 @@ void add_run_command(CLI::App& app) {
          "erosion model (run.model): sph, droplet, pipe, olsen, thermal or stream-power; see "
          "docs/models.md")
       ->check(CLI::IsMember(model_names()));
-  auto* steps =
-      cmd->add_option("--steps", opt->steps, "number of steps (run.steps)")->check(at_least(1));
+  auto* steps = cmd->add_option("--steps", opt->steps, "number of steps (run.steps)")
+                    ->check(whole_in(1, kMaxSteps));
   cmd->add_option("--sim-time", opt->sim_time,
                   "simulated seconds (run.sim_time); years for a model whose clock is years "
                   "(stream-power: run.sim_years)")
       ->excludes(steps)
       ->check(at_least(1e-9));
-  cmd->add_option("--seed", opt->seed, "random seed of the rain (run.seed)")->check(at_least(0));
+  cmd->add_option("--seed", opt->seed, "random seed of the rain (run.seed)")
+      ->check(whole_in(0, std::numeric_limits<std::int64_t>::max()));
   cmd->add_option("--out", opt->out, "output folder (created)")->capture_default_str();
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
@@ -94,7 +97,7 @@ void add_run_command(CLI::App& app) {
     const std::unique_ptr<Model> model = make_model(compute, params, terrain);
     if (!opt->trace.empty()) compute.profiler().trace_to(opt->trace);
     const RunSummary s = run_model(compute, *model, options);
-    std::cout << opt->out << "/metrics.json: " << s.steps << " steps, mass balance "
+    std::cout << terminal_safe(opt->out) << "/metrics.json: " << s.steps << " steps, mass balance "
               << s.balance.residual << " m^3 (relative " << s.balance.relative << ")\n";
   });
 }

@@ -22,6 +22,7 @@
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/sweep/sweep.hpp"
 
@@ -162,9 +163,9 @@ void add_sweep_command(CLI::App& app) {
       ->required();
   cmd->add_option("--out", opt->out, "the sweep's folder (created)")->capture_default_str();
   cmd->add_option("-j,--jobs", opt->jobs, "worker processes (default: one per core)")
-      ->check(at_least(1));
+      ->check(whole_in(1, 4096));
   cmd->add_option("--member", opt->member, "run only this member (0-based): one SLURM array task")
-      ->check(at_least(0));
+      ->check(whole_in(0, 100000000));
   cmd->add_flag("--extend", opt->extend,
                 "accept a changed sweep file that keeps every begun member");
   cmd->add_flag("--force", opt->force, "run more members than the sweep's max_members");
@@ -180,31 +181,38 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
   cmd->callback([opt] {
     const SweepSpec spec = read_sweep(opt->file);
-    const std::vector<SweepMember> members = expand_sweep(spec);
-    if (static_cast<long long>(members.size()) > spec.max_members && !opt->force) {
-      throw input_error(opt->file + ": " + std::to_string(members.size()) +
+    // Counted before anything is expanded: a sweep of 10^5 members is refused at once.
+    const long long count = sweep_member_count(spec);
+    if (count > spec.max_members && !opt->force) {
+      throw input_error(opt->file + ": " +
+                        (count > kMaxSweepMembers ? "more than " + std::to_string(kMaxSweepMembers)
+                                                  : std::to_string(count)) +
                         " members, more than max_members = " + std::to_string(spec.max_members) +
                         " (--force to run them anyway)");
     }
+    const std::vector<SweepMember> members = expand_sweep(spec);
     if (opt->member >= static_cast<long long>(members.size())) {
       throw input_error("--member " + std::to_string(opt->member) +
                         ": the sweep has members 0 to " + std::to_string(members.size() - 1));
     }
     if (launched_by_mpi() && opt->member < 0 && !opt->slurm && !opt->collect && !opt->report) {
       const int failed = run_mpi(*opt, spec, members);
-      std::cout << opt->out << "/results.csv: " << members.size() - failed << " of "
+      std::cout << terminal_safe(opt->out) << "/results.csv: " << members.size() - failed << " of "
                 << members.size() << " members done\n";
       if (failed > 0) throw runtime_error("sweep: " + std::to_string(failed) + " members failed");
       return;
     }
+    // The script is composed (and its names checked) before the folder is claimed.
+    const std::string script_text =
+        opt->slurm ? slurm_script(spec, members, opt->out,
+                                  fs::read_symlink("/proc/self/exe").string(), opt->time_limit)
+                   : std::string();
     claim_sweep_folder(opt->out, members, opt->extend);
     if (opt->slurm) {
       const fs::path script = fs::path(opt->out) / "sweep.slurm";
-      write_text_atomically(
-          script.string(),
-          slurm_script(spec, members, opt->out, fs::read_symlink("/proc/self/exe").string(),
-                       opt->time_limit));
-      std::cout << script.string() << ": sbatch it to run the " << members.size() << " members\n";
+      write_text_atomically(script.string(), script_text);
+      std::cout << terminal_safe(script.string()) << ": sbatch it to run the " << members.size()
+                << " members\n";
       return;
     }
     if (opt->collect || opt->report) {
@@ -224,8 +232,8 @@ void add_sweep_command(CLI::App& app) {
     if (opt->jobs == 0)
       opt->jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const int failed = run_workers(*opt, spec, members);
-    std::cout << opt->out << "/results.csv: " << members.size() - failed << " of " << members.size()
-              << " members done\n";
+    std::cout << terminal_safe(opt->out) << "/results.csv: " << members.size() - failed << " of "
+              << members.size() << " members done\n";
     if (failed > 0) {
       throw runtime_error("sweep: " + std::to_string(failed) + " members failed (messages in " +
                           opt->out + "/manifest.csv); run the command again to retry them");

@@ -40,6 +40,10 @@ void add_output_flags(CLI::App& cmd, OutputFlags& flags);
 // that states the rule and echoes the value: "--steps: must be at least 1 (got -3)". (CLI11's own
 // range checks print "not in range 0.000000 to 1797…".)
 CLI::Validator at_least(double min);
+// A whole number of steps, a seed, a count: within [min, max], refused beyond (CLI11 would clamp
+// 1e30 to the largest 64-bit integer and run forever).
+CLI::Validator whole_in(long long min, long long max);
+inline constexpr long long kMaxSteps = 1000000000000LL;  // run.steps' own bound
 // A cell size in metres: finite, within 1e-6 .. 1e6 m (terrain.cell's range).
 CLI::Validator cell_size();
 

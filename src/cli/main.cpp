@@ -1,13 +1,36 @@
 // SPDX-License-Identifier: MIT
 // runnel: the command line. Exit codes: 0 ok, 1 runtime failure, 2 usage or input error.
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include "cli/commands.hpp"
 #include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/core/version.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int fail(const std::string& message, runnel::ExitCode code) {
+  std::cerr << "runnel: " << runnel::terminal_safe(message) << "\n";
+  return static_cast<int>(code);
+}
+
+// What was printed must have reached its destination: `runnel params > /dev/full` is a failure.
+int finish_output(int code) {
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    const int e = errno;
+    std::cerr << "runnel: cannot write the standard output (" << std::strerror(e) << ")\n";
+    return code == 0 ? static_cast<int>(runnel::ExitCode::kRuntime) : code;
+  }
+  return code;
+}
+
+int run(int argc, char** argv) {
   CLI::App app{
       "runnel: SPH particle hydraulic erosion of terrain heightmaps, with comparison models.\n"
       "Every subcommand has --help. Exit codes: 0 ok, 1 runtime failure, 2 usage or input error."};
@@ -35,21 +58,27 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "runnel: " << e.what() << " (see 'runnel --help')\n";
-    return static_cast<int>(runnel::ExitCode::kUsage);
+    return fail(std::string(e.what()) + " (see 'runnel --help')", runnel::ExitCode::kUsage);
   } catch (const runnel::Error& e) {
-    std::cerr << "runnel: " << e.what() << "\n";
-    return static_cast<int>(e.code());
+    return fail(e.what(), e.code());
   } catch (const cl::Error& e) {
-    std::cerr << "runnel: OpenCL error in " << e.what() << ": " << runnel::cl_error_name(e.err())
-              << " (" << e.err() << ")\n";
-    return static_cast<int>(runnel::ExitCode::kRuntime);
+    return fail(std::string("OpenCL error in ") + e.what() + ": " + runnel::cl_error_name(e.err()) +
+                    " (" + std::to_string(e.err()) + ")",
+                runnel::ExitCode::kRuntime);
   } catch (const std::bad_alloc&) {
-    std::cerr << "runnel: out of memory\n";
-    return static_cast<int>(runnel::ExitCode::kRuntime);
+    return fail("out of memory", runnel::ExitCode::kRuntime);
   } catch (const std::exception& e) {
-    std::cerr << "runnel: " << e.what() << "\n";
-    return static_cast<int>(runnel::ExitCode::kRuntime);
+    return fail(e.what(), runnel::ExitCode::kRuntime);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A closed pipe or a file-size limit must be a write error runnel reports (exit 1), not a
+  // signal that kills it half-way through an output.
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);
+  return finish_output(run(argc, argv));
 }

@@ -107,8 +107,8 @@ TEST(CliSph, BenchSheetOnASlopeIsTheSolvesEasyCase) {
   // benchmark pair brackets a storm's water. The sheet must also run downhill (time advances).
   const std::vector<std::string> dfsph{"--set", "sph.solver=dfsph"};
   auto bench = [&](const char* scene) {
-    std::vector<std::string> args{"bench", "sph", "--particles", "4000", "--steps", "4", "--scene",
-                                  scene};
+    std::vector<std::string> args{"bench",   "sph", "--particles", "4000",
+                                  "--steps", "4",   "--scene",     scene};
     args.insert(args.end(), dfsph.begin(), dfsph.end());
     return run_cli(args);
   };
@@ -120,7 +120,8 @@ TEST(CliSph, BenchSheetOnASlopeIsTheSolvesEasyCase) {
   EXPECT_GT(json_number(sheet.out, "simulated_seconds_per_wall_second"), 0.0);
   EXPECT_LT(json_number(sheet.out, "density_iterations_mean"),
             json_number(block.out, "density_iterations_mean"))
-      << sheet.out << "\n" << block.out;
+      << sheet.out << "\n"
+      << block.out;
   EXPECT_EQ(run_cli({"bench", "sph", "--scene", "lake"}).exit_code, 2);
 }
 

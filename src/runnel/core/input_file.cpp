@@ -46,7 +46,8 @@ std::string read_text_input(const std::string& path, std::string_view what,
   const std::streamoff size = in.tellg();
   if (size < 0 || static_cast<std::uintmax_t>(size) > max_bytes)
     throw input_error(path + ": the " + std::string(what) + " has " + std::to_string(size) +
-                      " bytes, more than the " + std::to_string(max_bytes) + " such a file may have");
+                      " bytes, more than the " + std::to_string(max_bytes) +
+                      " such a file may have");
   in.seekg(0);
   std::string text(static_cast<std::size_t>(size), '\0');
   if (!in.read(text.data(), size))

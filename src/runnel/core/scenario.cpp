@@ -10,8 +10,8 @@
 #include <sstream>
 #include <variant>
 
-#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/input_file.hpp"
 #include "runnel/core/layers.hpp"
 
 namespace runnel {
@@ -85,7 +85,7 @@ std::string toml_text(const ParamValue& value) {
 }  // namespace
 
 // The parameters that name a file, resolved against the scenario's folder.
-constexpr const char* kFileKeys[] = {"terrain.file",       "terrain.graph",
+constexpr const char* kFileKeys[] = {"terrain.file",         "terrain.graph",
                                      "ground.hardness_mask", "ground.rain_mask",
                                      "ground.frozen_mask",   "stream_power.uplift_file"};
 

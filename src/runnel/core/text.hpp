@@ -43,4 +43,26 @@ inline std::string quoted(std::string_view text) {
   return out + "'";
 }
 
+// A whole message made safe for a terminal: control bytes (escape sequences, newlines, carriage
+// returns) and UTF-8's C1 controls written as \xNN; other UTF-8 text (≥, m³) kept. Every line
+// runnel prints to stderr goes through here, whatever text of a file or a flag it quotes.
+inline std::string terminal_safe(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const auto c = static_cast<unsigned char>(text[k]);
+    const bool c1 = c == 0xc2 && k + 1 < text.size() &&
+                    static_cast<unsigned char>(text[k + 1]) >= 0x80 &&
+                    static_cast<unsigned char>(text[k + 1]) <= 0x9f;
+    if (c < 0x20 || c == 0x7f || c1) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
 }  // namespace runnel

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/input_file.hpp"
 #include "runnel/io/atomic_file.hpp"
 
 namespace runnel {

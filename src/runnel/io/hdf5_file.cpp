@@ -7,8 +7,8 @@
 
 #include <filesystem>
 
-#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/input_file.hpp"
 
 namespace runnel {
 namespace {
@@ -295,8 +295,8 @@ std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsi
   // most about 1032 to 1. A small damaged file claiming gigabytes is refused before allocating.
   const double stored = static_cast<double>(H5Dget_storage_size(set.get()));
   if (static_cast<double>(total) * sizeof(T) > kMaxDeflateRatio * stored + (1 << 20))
-    throw input_error(path_ + ": dataset " + name + " is " + dims_text(d) + " but the file stores " +
-                      std::to_string(static_cast<long long>(stored)) +
+    throw input_error(path_ + ": dataset " + name + " is " + dims_text(d) +
+                      " but the file stores " + std::to_string(static_cast<long long>(stored)) +
                       " bytes of it (the file is damaged)");
   std::vector<T> out(total);
   if (total > 0 && H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {

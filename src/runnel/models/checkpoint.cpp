@@ -112,6 +112,8 @@ std::string digest_of(const CheckpointData& d) {
   // Only when present, so files of the weakly compressible solver verify as before.
   if (!d.kappa.empty() || !d.kappa_v.empty()) g.add(d.kappa).add(d.kappa_v);
   g.add(d.time).add(d.dt).add(d.steps).add(d.rain_spawned).add(d.rain_carry).add(d.seed);
+  // Only when some rain was held back, so files without the count verify as before.
+  if (d.rain_held_back > 0) g.add(d.rain_held_back);
   const SphCounters& c = d.counters;
   for (long long v : {c.surface_projections, c.outflow_particles, c.collisions, c.outflow_sediment,
                       c.evaporated_particles, c.lost_sediment})
@@ -130,6 +132,7 @@ void check_invariants(const std::string& path, const CheckpointData& d) {
   if (!(d.time >= 0) || d.steps > (std::uint64_t{1} << 62))
     refuse("/state time or steps out of range");
   if (d.rain_spawned > (std::uint64_t{1} << 62)) refuse("/state@rain_spawned is negative");
+  if (d.rain_held_back > (std::uint64_t{1} << 62)) refuse("/state@rain_held_back is negative");
   if (!(d.rain_carry >= 0 && d.rain_carry < 1)) refuse("/state@rain_carry is not in [0, 1)");
   if (d.seed < 0) refuse("/state@seed is negative");
   const SphCounters& c = d.counters;
@@ -222,6 +225,7 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.attribute("/state", "steps", static_cast<std::int64_t>(d.steps));
     f.attribute("/state", "rain_spawned", static_cast<std::int64_t>(d.rain_spawned));
     f.attribute("/state", "rain_carry", d.rain_carry);
+    f.attribute("/state", "rain_held_back", static_cast<std::int64_t>(d.rain_held_back));
     f.attribute("/state", "seed", d.seed);
     const SphCounters& c = d.counters;
     f.write("/state/counters",
@@ -378,6 +382,8 @@ CheckpointData read_checkpoint_contents(const std::string& path) {
   d.steps = static_cast<std::uint64_t>(steps);
   d.rain_spawned = static_cast<std::uint64_t>(spawned);
   d.rain_carry = f.read_double_attribute("/state", "rain_carry");
+  if (f.has_attribute("/state", "rain_held_back"))
+    d.rain_held_back = static_cast<std::uint64_t>(f.read_int_attribute("/state", "rain_held_back"));
   d.seed = f.read_int_attribute("/state", "seed");
   const auto c = f.read_int64("/state/counters", {6});
   d.counters = {c[0], c[1], c[2], c[3], c[4], c[5]};
@@ -386,8 +392,9 @@ CheckpointData read_checkpoint_contents(const std::string& path) {
   // A file that cannot be verified is not resumed: without the digest an edited velocity, seed
   // or model label would be taken as the run's own.
   if (!f.has_attribute("/", "digest"))
-    throw input_error(path + ": has no digest, so its data cannot be verified (a checkpoint of an "
-                             "older runnel, or edited by another program)");
+    throw input_error(path +
+                      ": has no digest, so its data cannot be verified (a checkpoint of an "
+                      "older runnel, or edited by another program)");
   if (f.read_string_attribute("/", "digest") != digest_of(d)) {
     throw input_error(path + ": the data do not match the file's digest (the file is damaged)");
   }

@@ -39,6 +39,7 @@ struct CheckpointData {
   std::uint64_t steps = 0;
   std::uint64_t rain_spawned = 0;
   double rain_carry = 0;
+  std::uint64_t rain_held_back = 0;  // drops rain.max_particles kept from falling
   std::int64_t seed = 0;
   SphCounters counters;
   // Grid models (model != "sph"): their vertex fields and named integer counters.

@@ -124,8 +124,14 @@ double SphModel::rain_volume() {
 JsonObject SphModel::diagnostics() {
   const SphCounters c = sim_->counters();
   const WaterResolution w = water_resolution();
+  const double volume = std::pow(sim_->solver().settings().spacing, 3);
+  const auto spawned = static_cast<double>(sim_->rain().spawned());
+  const auto held_back = static_cast<double>(sim_->rain().held_back());
   return JsonObject()
       .add("particles_spawned", static_cast<long long>(sim_->rain().spawned()))
+      .add("particles_held_back", static_cast<long long>(sim_->rain().held_back()))
+      .add("rain_requested_volume", (spawned + held_back) * volume)
+      .add("rain_delivered_volume", spawned * volume)
       .add("particles_alive", static_cast<long long>(sim_->particles()))
       .add("particles_evaporated", c.evaporated_particles)
       .add("particles_outflow", c.outflow_particles)
@@ -162,9 +168,56 @@ std::vector<std::pair<std::string, double>> SphModel::summary_values() {
           {names[2], w.median_particles_per_footprint}};
 }
 
+std::string SphModel::rain_caution() {
+  const RainEmitter& rain = sim_->rain();
+  if (rain.held_back() == 0) return {};
+  const RainSettings& r = rain.settings();
+  const double requested = static_cast<double>(rain.spawned() + rain.held_back());
+  const double storm = std::ceil(r.rate * r.lifespan * (1.0 + r.lifespan_jitter)) + 1.0;
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "rain.max_particles = %lld held back %.0f of the %.0f drops the rain asked for "
+                "(%.1f %% of its water; metrics.json: rain_requested_volume, "
+                "rain_delivered_volume); rain.max_particles = %.0f (the rate times the longest "
+                "lifespan) would deliver it all%s",
+                static_cast<long long>(r.max_particles), static_cast<double>(rain.held_back()),
+                requested, 100.0 * static_cast<double>(rain.held_back()) / requested, storm,
+                r.budget_follows_storm ? ", but does not fit in the device's memory" : "");
+  return line;
+}
+
+std::string SphModel::scale_caution() const {
+  const double dx = particle_spacing();
+  const Heightmap& t = sim_->initial_terrain();
+  const double relief = static_cast<double>(t.max_height() - t.min_height());
+  const double per_minute = scenario_rain_.enabled ? scenario_rain_.rate * 60.0 : 0.0;
+  char line[400];
+  if (scenario_rain_.enabled && per_minute < kFewestDropsPerMinute) {
+    // The rate in drops scales as dx⁻³: the spacing at which the storm gives the fewest.
+    const double fix = dx * std::cbrt(std::max(per_minute, 1e-12) / kFewestDropsPerMinute);
+    std::snprintf(line, sizeof line,
+                  "the rain is %.3g drops a minute of %.3g m³ each at sph.spacing = %.3g m, too "
+                  "few to form a flow that can erode; set sph.spacing to %.3g m or less",
+                  per_minute, dx * dx * dx, dx, fix);
+    return line;
+  }
+  if (relief > 0 && dx > kMostSpacingPerRelief * relief) {
+    std::snprintf(line, sizeof line,
+                  "particles of %.3g m are larger than the terrain's relief of %.3g m allows (a "
+                  "quarter of it): the water cannot follow its slopes; set sph.spacing to %.3g m "
+                  "or less",
+                  dx, relief, kMostSpacingPerRelief * relief);
+    return line;
+  }
+  return {};
+}
+
 std::string SphModel::caution() {
+  std::string rain = rain_caution();
+  if (const std::string scale = scale_caution(); !scale.empty())
+    rain = rain.empty() ? scale : rain + "; " + scale;
   const WaterResolution w = water_resolution();
-  if (w.unresolved_share <= kUnresolvedShareWarning) return {};
+  if (w.unresolved_share <= kUnresolvedShareWarning) return rain;
   char line[320];
   std::snprintf(line, sizeof line,
                 "%.0f %% of the particles on the bed are drops on their own (even the widest "
@@ -172,7 +225,7 @@ std::string SphModel::caution() {
                 "on the particle size. Halve sph.spacing to check, or rain longer "
                 "(docs/erosion.md, \"Films\")",
                 100.0 * w.unresolved_share, kFilmNeighbours);
-  return line;
+  return rain.empty() ? std::string(line) : rain + "; " + line;
 }
 
 std::string SphModel::status() {

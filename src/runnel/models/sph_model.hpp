@@ -30,6 +30,13 @@ class SphModel final : public Model {
   void restore(const CheckpointData& data) override;
   JsonObject diagnostics() override;
   std::string caution() override;
+  // The drops rain.max_particles held back, as a caution ("" when none were).
+  std::string rain_caution();
+  // A terrain whose scale the particle spacing cannot resolve: fewer than
+  // kFewestDropsPerMinute drops a minute of rain, or particles larger than a quarter of the relief.
+  std::string scale_caution() const;
+  static constexpr double kFewestDropsPerMinute = 36;
+  static constexpr double kMostSpacingPerRelief = 0.25;
   std::vector<std::pair<std::string, double>> summary_values() override;
   std::string status() override;
   double step_work() override { return static_cast<double>(sim_->particles()); }

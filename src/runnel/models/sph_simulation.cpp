@@ -65,8 +65,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
     initial_.h[k] =
         static_cast<float>(static_cast<double>(initial_fixed_[k]) * erosion.height_quantum);
   }
-  const RainSettings rain =
-      RainSettings::from(params, solver_->terrain(), spacing, reference_speed_);
+  RainSettings rain = RainSettings::from(params, solver_->terrain(), spacing, reference_speed_);
   rain_mask_ = RainMask(params, terrain.nx, terrain.ny);
   rain_ = std::make_unique<RainEmitter>(
       compute, rain, static_cast<std::uint64_t>(params.integer("run.seed")),
@@ -85,15 +84,25 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   // hash grid's cell ranges. Refused now, with the figures, rather than failing when the rain has
   // filled the store.
   const double vertices = static_cast<double>(terrain.size());
+  const double fixed_bytes = vertices * (36 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
+                             8.0 * static_cast<double>(solver_->hash().grid().cell_count());
+  const double particle_bytes = 1.5 * static_cast<double>(ParticleStore::bytes_per_particle() + 4);
+  const double available = static_cast<double>(compute.info().global_memory);
+  // A budget that follows the storm stays within the device's memory (the drops beyond are held
+  // back, counted and cautioned about); a budget the user set is refused if it does not fit.
+  if (rain.budget_follows_storm && available > 0) {
+    const double fit = std::floor((available - fixed_bytes) / particle_bytes);
+    if (fit >= 1 && static_cast<double>(rain.max_particles) > fit) {
+      rain.max_particles = static_cast<std::int64_t>(fit);
+      rain_->settings() = rain;
+    }
+  }
   // No more particles live at once than the budget, nor than the rain spawns over the longest
   // lifespan (the budget may be set far above what the rain can fill).
   const double most_alive =
       std::min(static_cast<double>(rain.max_particles),
                std::ceil(rain.rate * rain.lifespan * (1.0 + rain.lifespan_jitter)) + 1.0);
-  device_bytes_ = 1.5 * most_alive * static_cast<double>(ParticleStore::bytes_per_particle() + 4) +
-                  vertices * (36 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
-                  8.0 * static_cast<double>(solver_->hash().grid().cell_count());
-  const double available = static_cast<double>(compute.info().global_memory);
+  device_bytes_ = most_alive * particle_bytes + fixed_bytes;
   if (available > 0 && device_bytes_ > available) {
     throw input_error("rain.max_particles: the run needs " + format_number(device_bytes_ / 1e6) +
                       " MB of device memory (" + format_number(most_alive) +
@@ -166,6 +175,7 @@ CheckpointData Simulation::checkpoint() {
   d.steps = solver_->steps();
   d.rain_spawned = rain_->spawned();
   d.rain_carry = rain_->carry();
+  d.rain_held_back = rain_->held_back();
   d.seed = params_.integer("run.seed");
   d.counters = solver_->counters();
   if (ground_) d.fields = ground_->fields();
@@ -198,7 +208,7 @@ void Simulation::restore(const CheckpointData& d) {
   store.set_next_id(d.next_id);
   solver_->restore_clock(d.time, d.dt, d.steps);
   solver_->restore_counters(d.counters);
-  rain_->restore(d.rain_spawned, d.rain_carry);
+  rain_->restore(d.rain_spawned, d.rain_carry, d.rain_held_back);
   if (ground_) ground_->restore(d.fields);
   rain_mask_.restore(d.fields);
   if (rain_mask_.present()) rain_->set_weights(rain_mask_.weights(), initial_.nx);

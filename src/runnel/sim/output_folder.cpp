@@ -46,17 +46,27 @@ std::vector<fs::path> earlier_outputs(const fs::path& dir) {
 }  // namespace
 
 const std::vector<std::string>& run_output_names() {
-  static const std::vector<std::string> names = {
-      "final.h5",          "height_initial.png", "height_final.png",  "erosion.png",
-      "final.asc",         "final.npy",          "final.tif",         "erosion.tif",
-      "drainage_area.npy", "metrics.json",       "series.h5",         "series.h5.partial",
-      "series.xmf",        "geology.png",        "exposed_layer.tif", "exposed_layer.npy",
-      "sediment_thickness.tif"};
+  static const std::vector<std::string> names = {"final.h5",
+                                                 "height_initial.png",
+                                                 "height_final.png",
+                                                 "erosion.png",
+                                                 "final.asc",
+                                                 "final.npy",
+                                                 "final.tif",
+                                                 "erosion.tif",
+                                                 "drainage_area.npy",
+                                                 "metrics.json",
+                                                 "series.h5",
+                                                 "series.h5.partial",
+                                                 "series.xmf",
+                                                 "geology.png",
+                                                 "exposed_layer.tif",
+                                                 "exposed_layer.npy",
+                                                 "sediment_thickness.tif"};
   return names;
 }
 
-OutputFolder::OutputFolder(const std::string& dir_text, const std::string& run_id,
-                           bool overwrite) {
+OutputFolder::OutputFolder(const std::string& dir_text, const std::string& run_id, bool overwrite) {
   const fs::path dir(dir_text);
   std::error_code ec;
   fs::create_directories(dir, ec);

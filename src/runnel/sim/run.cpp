@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/sim/run.hpp"
+#include "runnel/core/text.hpp"
 
 #include "runnel/sim/series.hpp"
 
@@ -133,8 +134,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
     throw input_error("--particles-every: the " + model.info().name + " model has no particles");
   }
   const OutputFolder folder(
-      options.out_dir,
-      run_identity(parameters_toml(model.parameters()), model.initial_terrain()),
+      options.out_dir, run_identity(parameters_toml(model.parameters()), model.initial_terrain()),
       options.overwrite);
   const fs::path out(options.out_dir);
   RollingCheckpoints checkpoints(out, model, options.keep_checkpoints, options.overwrite);
@@ -150,7 +150,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   static std::string last_caution;
   if (const std::string caution = steps.caution(); !caution.empty() && caution != last_caution) {
     last_caution = caution;
-    std::fprintf(stderr, "runnel: caution: %s\n", caution.c_str());
+    std::fprintf(stderr, "runnel: caution: %s\n", terminal_safe(caution).c_str());
   }
   const auto start = std::chrono::steady_clock::now();
   compute.profiler().reset();
@@ -300,7 +300,8 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   progress.finish(buf);
   s.caution = model.caution();
   s.model_values = model.summary_values();
-  if (!s.caution.empty()) std::fprintf(stderr, "runnel: caution: %s\n", s.caution.c_str());
+  if (!s.caution.empty())
+    std::fprintf(stderr, "runnel: caution: %s\n", terminal_safe(s.caution).c_str());
   return s;
 }
 

@@ -28,7 +28,7 @@ const SettingsTable<RainSettings> kRainTable = {
       {"rain.intensity", "0", "mm/h", 0, 1e9, {}, "rain intensity over the region (converted through the particle volume dx³); used when rain.rate is 0", &RainSettings::intensity_mm_h},
       {"rain.spawn_height", "0", "m", 0, 1e6, {}, "height above the terrain where drops appear; 0: 1 dx", &RainSettings::spawn_height},
       {"rain.speed", "0", "m/s", 0, 1e4, {}, "initial downward speed of a drop", &RainSettings::speed},
-      {"rain.max_particles", "20000", "particles", 0, 1e8, {}, "particle budget: the emitter never lets more particles live at once", &RainSettings::max_particles},
+      {"rain.max_particles", "0", "particles", 0, 1e8, {}, "particle budget: the emitter never lets more particles live at once (drops it holds back are counted, reported in metrics.json and cautioned about); 0: follow the storm (rain.rate or rain.intensity times the longest lifespan, within the device's memory), or 20000 when neither is given", &RainSettings::max_particles},
       {"rain.lifespan", "0", "s", 0, 1e9, {}, "mean lifespan of a drop before it evaporates; 0: the time to cross the terrain at a tenth of the reference speed (water under bed friction runs slower than a free fall)", &RainSettings::lifespan},
       {"rain.lifespan_jitter", "0.25", "1", 0, 0.99, {}, "lifespans are uniform in mean·(1 ± jitter)", &RainSettings::lifespan_jitter},
       {"rain.enabled", "true", "", 0, 0, {}, "rain on or off", &RainSettings::enabled},
@@ -78,11 +78,19 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
   // water under bed friction runs several times slower than a free fall over the relief.
   if (!(r.lifespan > 0)) r.lifespan = 10.0 * std::max(lx, lz) / reference_speed;
   const double volume = spacing * spacing * spacing;
+  const bool storm_given = r.rate > 0 || r.intensity_mm_h > 0;
+  if (r.max_particles == 0 && !storm_given) r.max_particles = kDefaultRainBudget;
   if (!(r.rate > 0)) {
     r.rate = r.intensity_mm_h > 0 ? r.intensity_mm_h / 1000.0 / 3600.0 * r.area / volume
                                   : static_cast<double>(r.max_particles) / r.lifespan;
   }
   r.intensity_mm_h = r.rate * volume / r.area * 1000.0 * 3600.0;
+  if (r.max_particles == 0) {
+    // No more drops can live at once than fall during the longest lifespan.
+    r.budget_follows_storm = true;
+    r.max_particles = static_cast<std::int64_t>(
+        std::min(1e8, std::ceil(r.rate * r.lifespan * (1.0 + r.lifespan_jitter)) + 1.0));
+  }
   return r;
 }
 
@@ -109,6 +117,7 @@ JsonObject RainSettings::json() const {
       .add("spawn_height_m", spawn_height)
       .add("speed_m_per_s", speed)
       .add("max_particles", max_particles)
+      .add("budget_follows_storm", budget_follows_storm)
       .add("lifespan_s", lifespan)
       .add("lifespan_jitter", lifespan_jitter)
       .add("enabled", enabled);
@@ -191,6 +200,7 @@ std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
       std::max(0LL, settings_.max_particles - static_cast<long long>(store.size()));
   const std::size_t count =
       static_cast<std::size_t>(std::min<double>(whole, static_cast<double>(room)));
+  held_back_ += static_cast<std::uint64_t>(whole) - count;
   if (count == 0) return 0;
   const cl_uint first_id = store.next_id();
   const std::size_t first = store.extend(count);

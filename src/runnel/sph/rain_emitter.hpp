@@ -24,6 +24,9 @@ struct RainSettings {
   double spawn_height;    // m
   double speed;           // m/s
   std::int64_t max_particles;
+  // rain.max_particles was 0: the budget follows the storm (rate × the longest lifespan), so no
+  // drop of a storm given by rain.rate or rain.intensity is held back.
+  bool budget_follows_storm = false;
   double lifespan;  // s
   double lifespan_jitter;
   bool enabled;
@@ -42,6 +45,10 @@ struct RainSettings {
   // with that rain.intensity (the viewer's brush).
   void rain_on_disc(double x, double z, double radius, double intensity, double spacing);
 };
+
+// The particle budget when neither the storm nor the budget is given: the rain is then
+// budget / lifespan particles a second.
+inline constexpr std::int64_t kDefaultRainBudget = 20000;
 
 // The cumulative share of the rain through each cell of a terrain nx × ny (cells row-major,
 // (nx − 1)·(ny − 1) of them), from the vertex weights: a cell weighs the mean of its corners. The
@@ -65,16 +72,20 @@ class RainEmitter {
   std::size_t emit(SphSolver& solver, double dt);
 
   RainSettings& settings() { return settings_; }
+  const RainSettings& settings() const { return settings_; }
   // A new rain mask (same size; runnel-viewer paints it): the drawing distribution and the mask
   // rain's rate follow. The settings change only while they rain by the mask; masked_rain() is
   // the mask's rain whatever the settings are now.
   void set_weights(const std::vector<float>& rain_weights, int nx);
   const RainSettings& masked_rain() const { return masked_; }
   std::uint64_t spawned() const { return spawned_; }
+  // Drops the rain asked for that rain.max_particles kept from falling (the store was full).
+  std::uint64_t held_back() const { return held_back_; }
   double carry() const { return carry_; }
-  void restore(std::uint64_t spawned, double carry) {
+  void restore(std::uint64_t spawned, double carry, std::uint64_t held_back) {
     spawned_ = spawned;
     carry_ = carry;
+    held_back_ = held_back;
   }
 
  private:
@@ -87,6 +98,7 @@ class RainEmitter {
   cl::Buffer cell_cdf_;  // the rain mask's cumulative share per cell (one 1 without a mask)
   int cells_ = 1;
   std::uint64_t spawned_ = 0;
+  std::uint64_t held_back_ = 0;
   double carry_ = 0.0;
 };
 

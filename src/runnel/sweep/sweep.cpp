@@ -3,6 +3,7 @@
 
 #include <toml++/toml.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,10 +12,11 @@
 #include <map>
 #include <sstream>
 
-#include "runnel/core/input_file.hpp"
 #include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/input_file.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/plot.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
@@ -217,11 +219,23 @@ SweepSpec read_sweep(const std::string& path) {
   return spec;
 }
 
-std::vector<SweepMember> expand_sweep(const SweepSpec& spec) {
-  std::size_t count = spec.zip ? spec.axes.front().values.size() : 1;
-  if (!spec.zip) {
-    for (const SweepAxis& a : spec.axes) count *= a.values.size();
+long long sweep_member_count(const SweepSpec& spec) {
+  if (spec.zip) return std::min<long long>(spec.axes.front().values.size(), kMaxSweepMembers + 1);
+  long long count = 1;
+  for (const SweepAxis& a : spec.axes) {
+    const auto n = static_cast<long long>(a.values.size());
+    if (n == 0) return 0;
+    count = count > (kMaxSweepMembers + 1) / n ? kMaxSweepMembers + 1 : count * n;
   }
+  return std::min(count, kMaxSweepMembers + 1);
+}
+
+std::vector<SweepMember> expand_sweep(const SweepSpec& spec) {
+  const long long total = sweep_member_count(spec);
+  if (total > kMaxSweepMembers)
+    throw input_error(spec.path + ": more than " + std::to_string(kMaxSweepMembers) +
+                      " members; split the sweep");
+  const auto count = static_cast<std::size_t>(total);
   std::vector<SweepMember> members(count);
   for (std::size_t m = 0; m < count; ++m) {
     SweepMember& member = members[m];
@@ -446,28 +460,70 @@ std::vector<std::string> write_sweep_report(const SweepSpec& spec,
   return written;
 }
 
+namespace {
+
+// A word for bash: in single quotes, each ' written as '\''. Nothing inside is expanded.
+std::string shell_word(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// A value on an #SBATCH line, which sbatch reads itself (no shell): in double quotes, with '%'
+// doubled (sbatch's file-name patterns). Text sbatch cannot carry there is refused.
+std::string sbatch_value(const std::string& text, const std::string& what) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    if (c < 0x20 || c == 0x7f || c == '"' || c == '\\')
+      throw input_error(what + " " + runnel::quoted(text) +
+                        ": a control byte, a double quote or a backslash cannot go into an "
+                        "#SBATCH line; choose a plainer name");
+    out += c == '%' ? std::string("%%") : std::string(1, static_cast<char>(c));
+  }
+  return out + "\"";
+}
+
+// SLURM's time formats: minutes, MM:SS, HH:MM:SS, D-HH, D-HH:MM, D-HH:MM:SS.
+void check_slurm_time(const std::string& time_limit) {
+  const bool plain = !time_limit.empty() && time_limit.size() <= 16 &&
+                     time_limit.find_first_not_of("0123456789:-") == std::string::npos &&
+                     std::isdigit(static_cast<unsigned char>(time_limit.front())) &&
+                     std::isdigit(static_cast<unsigned char>(time_limit.back()));
+  if (!plain)
+    throw input_error("--time " + runnel::quoted(time_limit) +
+                      ": not a SLURM time (minutes, HH:MM:SS or D-HH:MM:SS)");
+}
+
+}  // namespace
+
 std::string slurm_script(const SweepSpec& spec, const std::vector<SweepMember>& members,
                          const std::string& out, const std::string& runnel_binary,
                          const std::string& time_limit) {
+  check_slurm_time(time_limit);
   const std::string sweep = fs::absolute(spec.path).string(), folder = fs::absolute(out).string();
+  const std::string log = sbatch_value(folder + "/slurm-%A_%a.out", "--out");
+  // The comments show names as a terminal would (control bytes as \xNN): a newline in a name
+  // must not end a comment line and start a command.
   std::ostringstream s;
   s << "#!/bin/bash\n"
-    << "# runnel sweep " << spec.path << ": " << members.size() << " members, one per array task.\n"
-    << "# Submit with: sbatch " << (fs::path(folder) / "sweep.slurm").string() << "\n"
+    << "# runnel sweep " << terminal_safe(spec.path) << ": " << members.size()
+    << " members, one per array task.\n"
+    << "# Submit with: sbatch " << shell_word(terminal_safe(folder + "/sweep.slurm")) << "\n"
     << "# A task whose member is done exits at once, so resubmitting (or a requeue after the time\n"
     << "# limit or a node failure) only redoes unfinished members, from their newest checkpoint "
        "when\n"
-    << "# the sweep sets checkpoint_every. Afterwards: runnel sweep " << spec.path << " --out "
-    << out << " --collect\n"
+    << "# the sweep sets checkpoint_every. Afterwards: runnel sweep "
+    << shell_word(terminal_safe(spec.path)) << " --out " << shell_word(terminal_safe(out))
+    << " --collect\n"
     << "#SBATCH --job-name=runnel-sweep\n"
     << "#SBATCH --array=0-" << members.size() - 1 << "\n"
     << "#SBATCH --time=" << time_limit << "\n"
     << "#SBATCH --ntasks=1\n"
     << "#SBATCH --requeue\n"
-    << "#SBATCH --output=" << folder << "/slurm-%A_%a.out\n"
+    << "#SBATCH --output=" << log << "\n"
     << "set -euo pipefail\n"
-    << "exec " << fs::absolute(runnel_binary).string() << " sweep " << sweep << " --out " << folder
-    << " --member \"$SLURM_ARRAY_TASK_ID\" --quiet\n";
+    << "exec " << shell_word(fs::absolute(runnel_binary).string()) << " sweep " << shell_word(sweep)
+    << " --out " << shell_word(folder) << " --member \"$SLURM_ARRAY_TASK_ID\" --quiet\n";
   return s.str();
 }
 

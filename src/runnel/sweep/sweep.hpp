@@ -39,6 +39,11 @@ std::vector<std::string> sweep_metric_names();
 // errors naming the file and the problem.
 SweepSpec read_sweep(const std::string& path);
 std::vector<SweepMember> expand_sweep(const SweepSpec& spec);
+
+// The number of members, computed from the axes without expanding them (a grid of ten axes of a
+// thousand values is 10^30 members): at most kMaxSweepMembers + 1, which stands for "more".
+inline constexpr long long kMaxSweepMembers = 1000000;
+long long sweep_member_count(const SweepSpec& spec);
 // Identifies the expanded sweep (every member's resolved scenario, in order): a folder holds one.
 std::string sweep_id(const std::vector<SweepMember>& members);
 // Makes `out` this sweep's folder: created if missing, its sweep.id written. Another sweep's folder

@@ -11,8 +11,8 @@
 #include <map>
 #include <sstream>
 
-#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/input_file.hpp"
 #include "runnel/terrain/filters.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_io.hpp"

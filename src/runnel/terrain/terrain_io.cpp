@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/terrain/terrain_io.hpp"
+#include "runnel/core/text.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,8 +8,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include "runnel/core/input_file.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/input_file.hpp"
 
 namespace runnel {
 
@@ -136,7 +137,7 @@ void apply_nodata_policy(const std::string& path, Heightmap& terrain, long long 
                       " NODATA cells (fill them with --nodata fill)");
   }
   if (fill_holes(terrain) < 0) throw input_error(path + ": every cell is NODATA");
-  std::cerr << "runnel: " << path << ": filled " << holes
+  std::cerr << "runnel: " << terminal_safe(path) << ": filled " << holes
             << " NODATA cells from their neighbours\n";
 }
 
@@ -184,7 +185,7 @@ std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
                                       const std::string& what) {
   const Heightmap r = read_terrain(path);
   if (r.nx == nx && r.ny == ny) return r.h;
-  std::cerr << "warning: " << what << " " << path << ": " << r.nx << " x " << r.ny
+  std::cerr << "warning: " << what << " " << terminal_safe(path) << ": " << r.nx << " x " << r.ny
             << " vertices resampled bilinearly to the terrain's " << nx << " x " << ny << "\n";
   std::vector<float> out(static_cast<std::size_t>(nx) * ny);
   for (int j = 0; j < ny; ++j) {

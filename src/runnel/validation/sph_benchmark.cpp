@@ -47,8 +47,8 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
   const bool sheet = scene == "sheet";
   // block: twice as wide as it is high, filling the tank's floor, the water 1 m deep.
   // sheet: kSheetLayers particles of 5 cm deep on a square slope.
-  const int high = sheet ? kSheetLayers
-                         : std::max(2, static_cast<int>(std::lround(std::cbrt(particles / 4.0))));
+  const int high =
+      sheet ? kSheetLayers : std::max(2, static_cast<int>(std::lround(std::cbrt(particles / 4.0))));
   const int wide =
       std::max(2, static_cast<int>(std::lround(std::sqrt(static_cast<double>(particles) / high))));
   const double dx = sheet ? 0.05 : 1.0 / high, depth = high * dx;
