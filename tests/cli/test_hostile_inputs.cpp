@@ -50,7 +50,7 @@ TEST(HostileInputs, BadFlagValuesAreRefusedNotIgnored) {
       {"--range"}, "generate --range for npy");
   // CLI11's own wording ("not in range 0.000000 to 1797…") is gone.
   const auto r = run_cli({"run", "--keep-checkpoints", "0", "--out", dir.path("a")});
-  expect_refused(r, {"--keep-checkpoints", "at least 1"}, "--keep-checkpoints 0");
+  expect_refused(r, {"--keep-checkpoints", "from 1 to"}, "--keep-checkpoints 0");
   EXPECT_EQ(r.err.find("1797"), std::string::npos) << r.err;
 }
 

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "runnel/core/error.hpp"
+#include "runnel/io/hdf5_file.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/models/sph_model.hpp"
@@ -239,6 +240,40 @@ TEST(DamagedCheckpoint, ALocalHeapWhoseFreeListLoopsIsRefused) {
     EXPECT_NE(std::string(e.what()).find("free list loops"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(read_checkpoint(path)) << "the undamaged file still reads";
+}
+
+}  // namespace
+}  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// A file of a few kilobytes whose dataset header claims a gigabyte (chunked, no chunk written):
+// refused from the bytes the file stores, before a gigabyte is allocated.
+TEST(DamagedCheckpoint, ADatasetClaimingMoreThanTheFileStoresIsRefusedBeforeAllocating) {
+  test::ScratchDir dir;
+  const std::string path = dir.path("claim.h5");
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t dims[1] = {hsize_t{1} << 28}, chunk[1] = {1 << 16};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t props = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(props, 1, chunk);
+  const hid_t set =
+      H5Dcreate2(file, "/x", H5T_NATIVE_FLOAT, space, H5P_DEFAULT, props, H5P_DEFAULT);
+  ASSERT_GE(set, 0);
+  H5Dclose(set);
+  H5Pclose(props);
+  H5Sclose(space);
+  H5Fclose(file);
+  ASSERT_LT(std::filesystem::file_size(path), 100000u);
+  const H5File f = H5File::open_read(path);
+  try {
+    f.read_float("/x", {});
+    FAIL() << "a gigabyte claimed by a small file was read";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kUsage);
+    EXPECT_NE(std::string(e.what()).find("the file stores"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "runnel/core/error.hpp"
+#include "runnel/models/memory_check.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
@@ -93,6 +95,54 @@ TEST_P(DeviceBytes, TheMemoryFigureCoversWhatTheModelTakes) {
 
 INSTANTIATE_TEST_SUITE_P(GridModels, DeviceBytes,
                          ::testing::Values("droplet", "pipe", "olsen", "thermal"));
+
+// The bound a model is checked against before it allocates anything (a terrain too large for the
+// machine is refused there, since PoCL aborts on a failed allocation) must cover the model's
+// buffers as it counts them itself, with and without layers. (SPH's figure is mostly its particles
+// and its hash grid, which grow with the rain and the relief, not with the vertices: the SPH model
+// checks that whole figure against the device itself, once its grid is known.)
+class MemoryBound : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(MemoryBound, TheUpFrontBoundCoversTheModelsBuffers) {
+  const int side = 129;
+  const double vertices = static_cast<double>(side) * side;
+  const Heightmap terrain = generate_terrain("fbm", side, side, 1.0, 3, {{"relief", 0.3}});
+  Parameters flat = parameters(GetParam());
+  const auto plain = make_model(compute(), flat, terrain);
+  const double bound = plain->info().device_bytes_per_vertex;
+  EXPECT_LE(plain->device_bytes(), memory_need(vertices, bound, false, 0).device_bytes)
+      << plain->device_bytes() / vertices << " bytes a vertex";
+  Parameters layered = flat;
+  layered.add_layer({{"name", std::string("soil")}, {"thickness", 2.0}}, "test");
+  layered.add_layer({{"name", std::string("rock")}, {"thickness", 50.0}}, "test");
+  const auto with_layers = make_model(compute(), layered, terrain);
+  EXPECT_LE(with_layers->device_bytes(), memory_need(vertices, bound, true, 2).device_bytes)
+      << with_layers->device_bytes() / vertices << " bytes a vertex with two layers";
+}
+
+INSTANTIATE_TEST_SUITE_P(GridModels, MemoryBound,
+                         ::testing::Values("droplet", "pipe", "olsen", "thermal", "stream-power",
+                                           "sph"),
+                         [](const auto& info) { return test::param_name(info.param); });
+
+TEST(MemoryBound, ATerrainTooLargeForTheDeviceIsRefusedWithItsSizes) {
+  const DeviceInfo& device = compute().info();
+  ASSERT_GT(device.global_memory, 0u);
+  // Twice the device's memory in vertices: refused before any allocation, exit code 1.
+  const double vertices = 2.0 * static_cast<double>(device.global_memory) / 64.0;
+  try {
+    require_memory(compute(), memory_need(vertices, 64.0, false, 0),
+                   "the thermal model on a huge terrain");
+    FAIL() << "not refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kRuntime);
+    EXPECT_NE(std::string(e.what()).find("GB"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("the thermal model on a huge terrain"), std::string::npos)
+        << e.what();
+  }
+  // A small terrain passes.
+  EXPECT_NO_THROW(require_memory(compute(), memory_need(1e4, 64.0, false, 0), "a small terrain"));
+}
 
 }  // namespace
 }  // namespace runnel

@@ -66,7 +66,8 @@ const ModelInfo& DropletModel::model_info() {
                               ModelClock::kIterations,
                               true,
                               {{kTopographicElevation, FieldIntent::kInOut}},
-                              {}};
+                              {},
+                              40};
   return info;
 }
 

@@ -39,6 +39,10 @@ struct ModelInfo {
   // The model's own end-of-run figures, in the order summary_values() gives them: metrics that
   // `runnel sweep` can collect (an empty field for a member of another model).
   std::vector<std::string> summary_names;
+  // An upper bound of the device memory the model takes a terrain vertex, without a ground
+  // (memory_check.hpp adds the ground's): checked before any buffer exists, since an OpenCL
+  // implementation may abort on a failed allocation. A test holds each model to it.
+  double device_bytes_per_vertex = 128;
 };
 
 // One erosion model on one terrain. Every model advances the same way (`advance(dt)`, Landlab's

@@ -44,7 +44,8 @@ const ModelInfo& OlsenModel::model_info() {
       {{kTopographicElevation, FieldIntent::kInOut},
        {kSurfaceWaterDepth, FieldIntent::kOut},
        {kSedimentSuspended, FieldIntent::kOut}},
-      {}};
+      {},
+      96};
   return info;
 }
 

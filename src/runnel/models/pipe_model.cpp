@@ -74,7 +74,8 @@ const ModelInfo& PipeModel::model_info() {
        {kSurfaceWaterOutflux, FieldIntent::kOut},
        {kSurfaceWaterVelocity, FieldIntent::kOut},
        {kSedimentSuspended, FieldIntent::kOut}},
-      {}};
+      {},
+      120};
   return info;
 }
 

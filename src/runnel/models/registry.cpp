@@ -3,7 +3,9 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/scenario.hpp"
+#include "runnel/ground/ground_settings.hpp"
 #include "runnel/models/droplet_model.hpp"
+#include "runnel/models/memory_check.hpp"
 #include "runnel/models/olsen_model.hpp"
 #include "runnel/models/pipe_model.hpp"
 #include "runnel/models/sph_model.hpp"
@@ -44,15 +46,34 @@ const ModelEntry& model_entry(const std::string& name) {
   throw input_error("model '" + name + "' is unknown; the models are " + known);
 }
 
+namespace {
+
+// Refused before the first buffer: PoCL aborts the process when an allocation fails.
+void require_memory_for(const ComputeContext& compute, const Parameters& params,
+                        const Heightmap& terrain) {
+  const std::string model = params.text("run.model");
+  require_memory(compute,
+                 memory_need(static_cast<double>(terrain.size()),
+                             model_entry(model).info().device_bytes_per_vertex, has_ground(params),
+                             static_cast<int>(params.layers().size())),
+                 "the " + model + " model on " + std::to_string(terrain.nx) + " x " +
+                     std::to_string(terrain.ny) + " vertices");
+}
+
+}  // namespace
+
 std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& params,
                                   const Heightmap& terrain) {
-  return model_entry(params.text("run.model")).make(compute, params, terrain);
+  const ModelEntry& entry = model_entry(params.text("run.model"));
+  require_memory_for(compute, params, terrain);
+  return entry.make(compute, params, terrain);
 }
 
 std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute, const CheckpointData& d,
                                                   const std::string& origin) {
   Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
   params.set("run.model", d.model);
+  require_memory_for(compute, params, d.terrain);
   std::unique_ptr<Model> model = model_entry(d.model).make(compute, params, d.initial_terrain());
   model->restore(d);
   const MassBalance m = model->mass_balance();

@@ -27,8 +27,8 @@ const ModelInfo& SphModel::model_info() {
        {"particle__lifespan", FieldIntent::kOut},
        {"particle__contacts", FieldIntent::kOut},
        {"particle__id", FieldIntent::kOut}},
-      {"film_share", "unresolved_share",
-       "median_particles_per_footprint"}};  // water_resolution.hpp
+      {"film_share", "unresolved_share", "median_particles_per_footprint"},
+      96};  // water_resolution.hpp
   return info;
 }
 

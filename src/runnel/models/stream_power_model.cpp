@@ -51,7 +51,8 @@ const ModelInfo& StreamPowerModel::model_info() {
       ModelClock::kYears,
       false,
       {{kTopographicElevation, FieldIntent::kInOut}},
-      {}};
+      {},
+      40};
   return info;
 }
 

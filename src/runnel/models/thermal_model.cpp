@@ -13,7 +13,8 @@ const ModelInfo& ThermalModel::model_info() {
       ModelClock::kIterations,
       false,
       {{kTopographicElevation, FieldIntent::kInOut}},
-      {}};
+      {},
+      72};
   return info;
 }
 
