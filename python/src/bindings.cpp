@@ -172,11 +172,12 @@ double checked_origin(const char* what, double value) {
   return value;
 }
 
-// A Python number that must be finite and at least zero (a duration, a count of steps).
+// A duration in the model's clock units (s, iterations or years): finite, at least zero, and at
+// most run.steps' bound of 1e12, beyond which advance() would run for ever instead of failing.
 double checked_duration(const char* what, double value) {
-  if (!(std::isfinite(value) && value >= 0))
+  if (!(std::isfinite(value) && value >= 0 && value <= 1e12))
     throw input_error(std::string(what) + ": " + format_number(value) +
-                      " is not a finite, non-negative number");
+                      " is not a duration from 0 to 1e12 (the model's clock units)");
   return value;
 }
 

@@ -14,7 +14,7 @@ def flat():
     return runnel.Terrain(np.zeros((9, 9), dtype=np.float32), cell=1.0)
 
 
-@pytest.mark.parametrize("dt", [float("nan"), float("inf"), -1.0])
+@pytest.mark.parametrize("dt", [float("nan"), float("inf"), -1.0, 1e13])
 def test_advance_refuses_a_duration_that_is_not_one(flat, dt):
     model = runnel.Model("thermal", flat)
     with pytest.raises(runnel.InputError, match="dt"):
