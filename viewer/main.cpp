@@ -1,15 +1,21 @@
 // SPDX-License-Identifier: MIT
 // runnel-viewer: watch the terrain erode and paint rain with the mouse.
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 
 #include "app.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/input_file.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/interactive/session_log.hpp"
 #include "runnel/models/registry.hpp"
 
 int main(int argc, char** argv) {
+  // A closed pipe or a file-size limit while recording or saving is a write error, not a signal.
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);
   runnel::viewer::ViewerOptions o;
   std::string size = "1280x800";
   CLI::App app{
@@ -70,8 +76,7 @@ int main(int argc, char** argv) {
     }
     o.rain = !no_rain;
     // Files and names are checked before a window opens: a bad one is refused without a display.
-    if (!o.input.empty() && !std::filesystem::exists(o.input))
-      throw runnel::input_error(o.input + ": no such file");
+    if (!o.input.empty()) runnel::require_regular_input(o.input, "input");
     if (!o.replay.empty()) runnel::read_session_log(o.replay);
     if (!o.model.empty()) runnel::model_entry(o.model);
     o.overlay = overlay == "erosion" ? 1 : overlay == "water" ? 2 : overlay == "speed" ? 3 : 0;
@@ -79,16 +84,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "runnel-viewer: " << e.what() << "\n";
+    std::cerr << "runnel-viewer: " << runnel::terminal_safe(e.what()) << "\n";
     return 2;
   } catch (const std::invalid_argument&) {
-    std::cerr << "runnel-viewer: --size " << size << ": expected WxH\n";
+    std::cerr << "runnel-viewer: --size " << runnel::terminal_safe(size) << ": expected WxH\n";
     return 2;
   } catch (const runnel::Error& e) {
-    std::cerr << "runnel-viewer: " << e.what() << "\n";
+    std::cerr << "runnel-viewer: " << runnel::terminal_safe(e.what()) << "\n";
     return static_cast<int>(e.code());
   } catch (const std::exception& e) {
-    std::cerr << "runnel-viewer: " << e.what() << "\n";
+    std::cerr << "runnel-viewer: " << runnel::terminal_safe(e.what()) << "\n";
     return 1;
   }
 }
