@@ -113,7 +113,7 @@ TEST(Viewer, BadFlagsAreRefusedBeforeAWindowOpens) {
       {{"--replay", dir.path("missing.json")}, "missing.json: cannot read the session log"},
       {{"--replay", dir.path("bad.json")}, "bad.json: missing or mistyped entry"},
       {{"--model", "nope"}, "model 'nope' is unknown"},
-      {{dir.path("nothing.toml")}, "nothing.toml: no such file"},
+      {{dir.path("nothing.toml")}, "nothing.toml: cannot read the input (no such file)"},
       {{"--screenshot-scale", "20"}, "--screenshot-scale"},
   };
   for (const auto& [args, expected] : cases) {
