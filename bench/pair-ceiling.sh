@@ -6,8 +6,8 @@
 # and runs `runnel bench sph` on each, alternating. N = all is the tree as it is; 200 stands for
 # rows sorted along x (about half the candidates), 64 for a perfect neighbour filter (~58
 # neighbours padded to the vector width), 0 for the passes' walks, copies and boundary terms and the
-# rest of the step alone. Not part of the test suite; docs/performance.md, "How far the two SPH
-# goals are", gives its figures.
+# rest of the step alone. Not part of the test suite; docs/performance.md, "What limits `wcsph`,
+# measured", gives its figures.
 #
 #   bash bench/pair-ceiling.sh [PARTICLES] [ROUNDS] [CAPS]   (defaults: 100000, 2, "all 200 64 0")
 #

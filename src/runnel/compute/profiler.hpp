@@ -16,7 +16,7 @@ namespace runnel {
 // It also measures the device's waits: on an in-order queue, the time between one launch's end
 // and the next one's start is time the device sat idle, waiting for the host to enqueue (after a
 // blocking read, say) or to wake it. With many short kernels a step, those waits can cost as much
-// as the kernels (docs/performance.md, "Waits between kernels"); they are booked to the kernel
+// as the kernels (docs/performance.md, "Where the time goes"); they are booked to the kernel
 // that waited, so the host code before it is the place to look.
 class KernelProfiler {
  public:
