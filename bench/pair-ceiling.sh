@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# How fast the SPH benchmark could be with fewer candidates in its pair loop (issue 15): builds
+# How fast the SPH benchmark could be with fewer candidates in its pair loop: builds
 # throwaway copies of this tree whose two tiled neighbour passes evaluate only the first N
 # candidates of each tile's list (their results are wrong: timing only), everything else unchanged,
 # and runs `runnel bench sph` on each, alternating. N = all is the tree as it is; 200 stands for

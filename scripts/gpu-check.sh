@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# One prepared run on a machine with a GPU (issue 15): lists the OpenCL devices, runs `runnel bench
+# One prepared run on a machine with a GPU: lists the OpenCL devices, runs `runnel bench
 # sph` at 1 M, 4 M, 16 M (and 100 k) particles, the grid benchmarks at 4096² and the noise generators at 4097², a
 # 30-s and a whole default run, the test suite with its OpenCL tests on the GPU, and the viewer's
 # frame rate where a display is there. Each step has its own time limit and the whole run a budget
@@ -145,7 +145,7 @@ for model in pipe olsen thermal droplet; do
   step "${model}_${size}" 60 "$runnel" bench "$model" --size "$size" --steps 10 --device "$device"
 done
 
-# 4b. The noise generators at 4097² (issue 19): the same bytes as on the CPU, vertices per second.
+# 4b. The noise generators at 4097²: the same bytes as on the CPU, vertices per second.
 gsize=$(scaled 4097)
 [ "$gsize" -lt 64 ] && gsize=64
 step "generate_${gsize}" 60 "$runnel" bench generate --size "$gsize" --steps 2 --device "$device"
@@ -199,7 +199,7 @@ step default_run 300 bash -c "$(declare -f default_run); runnel=$runnel device=$
 step default_run_dfsph 120 bash -c "$(declare -f default_run); runnel=$runnel device=$device default_run \
   --set sph.solver=dfsph"
 
-# 8. The viewer at 1280x800 (issue 21): with the GPU's own OpenGL when there is a display; otherwise
+# 8. The viewer at 1280x800: with the GPU's own OpenGL when there is a display; otherwise
 # under Xvfb, where the simulation runs on the GPU's OpenCL but the drawing is Mesa's software
 # rasteriser (the entry says which). 20,000 particles from a short run of the default scenario.
 viewer_fps() {

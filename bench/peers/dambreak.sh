@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The dam break in another code (issue 11): PySPH's own dam-break example, an instant release of a
+# The dam break in another code: PySPH's own dam-break example, an instant release of a
 # column L wide and 2L high in a 4L tank (dam_break_2d: 2-D weakly compressible SPH after
 # Gomez-Gesteira et al. 2010, dx = L/33, the example's own settings), scored against Koshizuka &
 # Oka (1996) by the same measure as `runnel validate dambreak`, beside runnel's run of the case.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Peer comparison (issue 15): runnel's SPH step next to PySPH's `cube` benchmark at the same particle
+# Peer comparison: runnel's SPH step next to PySPH's `cube` benchmark at the same particle
 # count, alternating, on this machine. Not part of the test suite (it installs PySPH from PyPI and
 # compiles it: several minutes the first time).
 #

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Hostile and absurd inputs (issue 14): each gets exit 2 and one line naming the thing and the
+// Hostile and absurd inputs: each gets exit 2 and one line naming the thing and the
 // problem, with nothing written; bytes from the file are echoed escaped.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Outputs survive what a long run meets (issue 14): a full disk stops the run with exit 1 and one
+// Outputs survive what a long run meets: a full disk stops the run with exit 1 and one
 // line naming the file, no crash and no partial file under a final name; a reused --out never mixes
 // two runs; the exit-code rule holds for every writer.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A damaged checkpoint is refused, not believed (issue 14, item 5): every invariant the writer
+// A damaged checkpoint is refused, not believed: every invariant the writer
 // guarantees is checked on read, the data carry a digest, and a state that does not balance is
 // not resumed. Edits are made with the HDF5 C API, as a hostile or broken tool would.
 #include <gtest/gtest.h>

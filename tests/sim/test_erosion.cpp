@@ -128,8 +128,8 @@ TEST(Erosion, OnHillsErosionFollowsTheWaterAndLeavesTheSurfaceSmooth) {
       << "erosion grows with discharge and slope";
   EXPECT_LE(metrics::closed_depressions(after), 1.25 * metrics::closed_depressions(before) + 2);
   EXPECT_LE(metrics::local_peaks(after), 1.25 * metrics::local_peaks(before) + 2);
-  // At this small size and short time (issue 12's target on the default scenario is 10 %; the
-  // README gives its figure).
+  // At this small size and short time (the default scenario's target is 10 %; docs/validation.md
+  // gives its figure).
   EXPECT_LT(metrics::short_wavelength_share(before, after), 0.25) << "carved, not roughened";
   // The terrain's own short-wavelength power (1.03 of the initial's here; the droplet model's grows
   // 4.3-fold on the default scenario).

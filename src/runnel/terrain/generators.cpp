@@ -314,7 +314,7 @@ const std::vector<GeneratorSpec>& generators() {
        {{"side_slope", 20.0, "deg", "slope of the valley sides", 0.0, 80.0},
         {"axis_slope", 5.0, "deg", "slope along the valley axis", 0.0, 80.0}},
        v_valley},
-      // The seeds' synthesis (issue 19; docs/generators.md).
+      // The seeds' synthesis (docs/generators.md).
       {"midpoint",
        "midpoint displacement of squares (Fournier 1982), Münch 2011's three-point edge rule",
        {kRelief,
