@@ -128,50 +128,46 @@ class RollingCheckpoints {
 
 }  // namespace
 
-RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& options) {
-  namespace fs = std::filesystem;
-  if (options.particles_every > 0 && model.info().name != "sph") {
-    throw input_error("--particles-every: the " + model.info().name + " model has no particles");
-  }
-  const OutputFolder folder(
-      options.out_dir, run_identity(parameters_toml(model.parameters()), model.initial_terrain()),
-      options.overwrite);
-  const fs::path out(options.out_dir);
-  RollingCheckpoints checkpoints(out, model, options.keep_checkpoints, options.overwrite);
-  if (!options.quiet) {
+namespace {
+
+// Before the first step: the device memory the run will take, and a caution about a stepped
+// terrain, so that a user can stop the run and smooth the terrain first (once for the models of a
+// comparison, which share the terrain).
+void announce(const ComputeContext& compute, Model& model, const HeightSteps& steps, bool quiet) {
+  if (!quiet) {
     std::fprintf(stderr,
                  "runnel: %s on %s: at most %.1f MB of device memory (the device has %.0f MB)\n",
                  model.info().name.c_str(), compute.info().name.c_str(), model.device_bytes() / 1e6,
                  static_cast<double>(compute.info().global_memory) / 1e6);
   }
-  // Before the run, so that a user can stop it and smooth the terrain first; once for the models of
-  // a comparison, which share the terrain.
-  const HeightSteps steps = height_steps(model.initial_terrain());
   static std::string last_caution;
   if (const std::string caution = steps.caution(); !caution.empty() && caution != last_caution) {
     last_caution = caution;
     std::fprintf(stderr, "runnel: caution: %s\n", terminal_safe(caution).c_str());
   }
+}
+
+// What the step loop measured.
+struct Stepped {
+  std::vector<JsonObject> reports;  // the mass balance every options.report_every steps
+  double work = 0;                  // particle-, cell- or droplet-steps
+  double wall = 0;                  // s
+};
+
+// The steps, with progress, mass-balance reports, rolling checkpoints and the series.
+Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions& options,
+                        RollingCheckpoints& checkpoints, SeriesWriter& series, Progress& progress) {
+  Stepped r;
   const auto start = std::chrono::steady_clock::now();
-  compute.profiler().reset();
-  // Per-kernel times in metrics.json; always when a trace was asked for (KernelProfiler::trace_to).
-  compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") == nullptr ||
-                            compute.profiler().tracing());
-  Progress progress(Progress::mode_for_stderr(options.quiet));
-  std::vector<JsonObject> reports;
-  double work = 0;  // particle-, cell- or droplet-steps
   const std::uint64_t first_step = model.steps();
   const double first_time = model.time();
-  // The series grows during the run as series.h5.partial and becomes series.h5 (with its XDMF
-  // index) when the run ends: a killed or failed run leaves no partial file under the final name.
-  SeriesWriter series(out, options.series_every, options.particles_every, model.initial_terrain());
   auto done = [&] {
     return options.until_step > 0 ? model.steps() >= options.until_step
                                   : model.time() >= options.until_time;
   };
   while (!done()) {
     model.step();
-    work += model.step_work();
+    r.work += model.step_work();
     const bool report = model.steps() % options.report_every == 0;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -186,10 +182,10 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       std::snprintf(buf, sizeof buf, " | eroded %.4g m3 | balance %.2e m3 (rel %.1e)", m.eroded,
                     m.residual, m.relative);
       status += buf;
-      reports.push_back(JsonObject()
-                            .add("step", static_cast<long long>(model.steps()))
-                            .add("sim_time", model.time())
-                            .add("balance", m.json()));
+      r.reports.push_back(JsonObject()
+                              .add("step", static_cast<long long>(model.steps()))
+                              .add("sim_time", model.time())
+                              .add("balance", m.json()));
     }
     if (options.checkpoint_every > 0 && model.steps() % options.checkpoint_every == 0) {
       checkpoints.write(model);
@@ -199,28 +195,35 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   }
   series.finish();
   compute.queue().finish();
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  JsonObject kernel_seconds;
-  for (auto& [name, seconds] : compute.profiler().collect()) kernel_seconds.add(name, seconds);
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// Where the device's time went, from the profiler (metrics.json's kernel_* entries).
+JsonObject kernel_report(ComputeContext& compute) {
+  JsonObject seconds, launches, waits;
+  for (auto& [name, s] : compute.profiler().collect()) seconds.add(name, s);
   // Launches per kernel: with many small launches a step, the device's per-launch cost (on PoCL a
   // wake-up of its worker threads) is a cost of its own, outside every kernel's time.
-  JsonObject kernel_launches;
-  for (auto& [name, calls] : compute.profiler().calls()) kernel_launches.add(name, calls);
+  for (auto& [name, calls] : compute.profiler().calls()) launches.add(name, calls);
   // The device's idle time between launches, booked to the kernel that waited (profiler.hpp).
-  JsonObject kernel_waits;
-  for (auto& [name, seconds] : compute.profiler().waits()) kernel_waits.add(name, seconds);
-  const double device_idle = compute.profiler().idle_seconds();
+  for (auto& [name, s] : compute.profiler().waits()) waits.add(name, s);
+  const double idle = compute.profiler().idle_seconds();
   compute.profiler().close_trace();
   compute.profiler().enable(false);
-  const Parameters& params = model.parameters();
-  write_checkpoint((out / "final.h5").string(), model.checkpoint());
+  return JsonObject()
+      .add("kernel_seconds", seconds)
+      .add("kernel_launches", launches)
+      .add("kernel_waits", waits)
+      .add("device_idle_seconds", idle);
+}
 
-  // Outputs.
+// The run's pictures, terrains and maps (README: "what each output file means"); returns the
+// final terrain's drainage area, which the metrics use too.
+std::vector<double> write_terrain_outputs(const std::filesystem::path& out, Model& model,
+                                          const Heightmap& final_terrain) {
   const Heightmap& initial = model.initial_terrain();
-  const Heightmap final_terrain = model.terrain();
   const Heightmap reference = model.erosion_reference();  // the initial one, or uplifted
-  const MassBalance m = model.mass_balance();
   const float lo = std::min(initial.min_height(), final_terrain.min_height());
   const float hi = std::max(initial.max_height(), final_terrain.max_height());
   write_png_rgb((out / "height_initial.png").string(),
@@ -239,21 +242,21 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   write_terrain((out / "erosion.tif").string(), height_change(reference, final_terrain));
   // The D8 drainage area of the final terrain (m², docs/metrics.md), as a map for analysis.
   Heightmap drainage(final_terrain.nx, final_terrain.ny, final_terrain.cell);
-  const std::vector<double> area = metrics::flow_accumulation(final_terrain);
+  std::vector<double> area = metrics::flow_accumulation(final_terrain);
   for (std::size_t k = 0; k < area.size(); ++k) drainage.h[k] = static_cast<float>(area[k]);
   write_terrain((out / "drainage_area.npy").string(), drainage);
-  JsonObject ground_report;
-  if (Ground* ground = model.ground())
-    ground_report = write_ground_outputs(out, *ground, final_terrain);
+  return area;
+}
 
-  RunSummary s;
-  s.steps = model.steps();
-  s.sim_time = model.time();
-  s.wall_seconds = wall;
-  s.balance = m;
-  s.rain_volume = model.rain_volume();
-  s.terrain_values = metrics::terrain_metric_values(initial, final_terrain, area);
-  s.metrics.add("runnel_version", kVersion)
+// metrics.json: what the run was, what it did, and the mass balance.
+JsonObject run_metrics(const ComputeContext& compute, Model& model, const RunSummary& s,
+                       const Stepped& stepped, std::uint64_t first_step, const HeightSteps& steps,
+                       const Heightmap& final_terrain) {
+  const Parameters& params = model.parameters();
+  const Heightmap& initial = model.initial_terrain();
+  const MassBalance& m = s.balance;
+  return JsonObject()
+      .add("runnel_version", kVersion)
       .add("source_revision", kRevision)
       .add("device", compute.info().name)
       .add("model", model.info().name)
@@ -262,8 +265,9 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       .add("seed", static_cast<long long>(params.integer("run.seed")))
       .add("steps", static_cast<long long>(model.steps()))
       .add("sim_time", model.time())
-      .add("wall_seconds", wall)
-      .add(std::string(model.work_unit()) + "_per_second", work / std::max(wall, 1e-9))
+      .add("wall_seconds", stepped.wall)
+      .add(std::string(model.work_unit()) + "_per_second",
+           stepped.work / std::max(stepped.wall, 1e-9))
       .add("resumed_from_step", static_cast<long long>(first_step))
       .add("rain_volume", s.rain_volume)
       .add("eroded_volume", m.eroded)
@@ -282,15 +286,56 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                           .add("min_height", initial.min_height())
                           .add("max_height", initial.max_height())
                           .merge(steps.json()))
-      .add("terrain_metrics", metrics::terrain_metrics_json(s.terrain_values, final_terrain))
-      .add("kernel_seconds", kernel_seconds)
-      .add("kernel_launches", kernel_launches)
-      .add("kernel_waits", kernel_waits)
-      .add("device_idle_seconds", device_idle)
-      .add("parameters", parameters_json(params))
-      .add("mass_balance_reports", reports);
+      .add("terrain_metrics", metrics::terrain_metrics_json(s.terrain_values, final_terrain));
+}
+
+}  // namespace
+
+RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& options) {
+  namespace fs = std::filesystem;
+  if (options.particles_every > 0 && model.info().name != "sph") {
+    throw input_error("--particles-every: the " + model.info().name + " model has no particles");
+  }
+  const OutputFolder folder(
+      options.out_dir, run_identity(parameters_toml(model.parameters()), model.initial_terrain()),
+      options.overwrite);
+  const fs::path out(options.out_dir);
+  RollingCheckpoints checkpoints(out, model, options.keep_checkpoints, options.overwrite);
+  const HeightSteps steps = height_steps(model.initial_terrain());
+  announce(compute, model, steps, options.quiet);
+  compute.profiler().reset();
+  // Per-kernel times in metrics.json; always when a trace was asked for (KernelProfiler::trace_to).
+  compute.profiler().enable(std::getenv("RUNNEL_NO_PROFILE") == nullptr ||
+                            compute.profiler().tracing());
+  Progress progress(Progress::mode_for_stderr(options.quiet));
+  const std::uint64_t first_step = model.steps();
+  // The series grows during the run as series.h5.partial and becomes series.h5 (with its XDMF
+  // index) when the run ends: a killed or failed run leaves no partial file under the final name.
+  SeriesWriter series(out, options.series_every, options.particles_every, model.initial_terrain());
+  const Stepped stepped = step_until_done(compute, model, options, checkpoints, series, progress);
+  const JsonObject kernels = kernel_report(compute);
+
+  write_checkpoint((out / "final.h5").string(), model.checkpoint());
+  const Heightmap final_terrain = model.terrain();
+  const std::vector<double> area = write_terrain_outputs(out, model, final_terrain);
+  JsonObject ground_report;
+  if (Ground* ground = model.ground())
+    ground_report = write_ground_outputs(out, *ground, final_terrain);
+
+  RunSummary s;
+  s.steps = model.steps();
+  s.sim_time = model.time();
+  s.wall_seconds = stepped.wall;
+  s.balance = model.mass_balance();
+  s.rain_volume = model.rain_volume();
+  s.terrain_values = metrics::terrain_metric_values(model.initial_terrain(), final_terrain, area);
+  s.metrics = run_metrics(compute, model, s, stepped, first_step, steps, final_terrain)
+                  .merge(kernels)
+                  .add("parameters", parameters_json(model.parameters()))
+                  .add("mass_balance_reports", stepped.reports);
   if (model.ground()) s.metrics.add("ground", ground_report);
   write_text_atomically((out / "metrics.json").string(), s.metrics.str() + "\n");
+  const MassBalance& m = s.balance;
   char buf[200];
   std::snprintf(
       buf, sizeof buf,
