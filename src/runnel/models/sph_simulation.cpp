@@ -78,11 +78,20 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                                        ground_ ? &ground_->bed() : nullptr);
   const ThermalSettings thermal = ThermalSettings::from(params);
   thermal_interval_ = thermal.interval;
-  // The most device memory the run will hold: the particle store at its largest (the budget with
-  // the store's growth margin), the terrain (fixed point, deltas, float view, normals, contact
-  // heights, water depth with its coarser levels for films, a third more, talus outflows) and the
-  // hash grid's cell ranges. Refused now, with the figures, rather than failing when the rain has
-  // filled the store.
+  budget_device_memory(compute, terrain, rain);
+  if (thermal_interval_ > 0) {
+    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal,
+                                                   ground_ ? &ground_->bed() : nullptr);
+  }
+}
+
+// The most device memory the run will hold: the particle store at its largest (the budget with
+// the store's growth margin), the terrain (fixed point, deltas, float view, normals, contact
+// heights, water depth with its coarser levels for films, a third more, talus outflows) and the
+// hash grid's cell ranges. Refused now, with the figures, rather than failing when the rain has
+// filled the store.
+void Simulation::budget_device_memory(const ComputeContext& compute, const Heightmap& terrain,
+                                      RainSettings& rain) {
   const double vertices = static_cast<double>(terrain.size());
   const double fixed_bytes = vertices * (36 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
                              8.0 * static_cast<double>(solver_->hash().grid().cell_count());
@@ -110,10 +119,6 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                       std::to_string(ParticleStore::bytes_per_particle()) +
                       " bytes each, with growth margin, plus the terrain); " + compute.info().name +
                       " has " + format_number(available / 1e6) + " MB");
-  }
-  if (thermal_interval_ > 0) {
-    thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal,
-                                                   ground_ ? &ground_->bed() : nullptr);
   }
 }
 

@@ -61,6 +61,10 @@ class Simulation {
   const std::vector<std::int64_t>& initial_fixed() const { return initial_fixed_; }
 
  private:
+  // device_bytes_ for the run's largest particle store, the terrain and the hash grid; a budget
+  // that follows the storm is cut to what the device holds, a budget the user set is refused.
+  void budget_device_memory(const ComputeContext& compute, const Heightmap& terrain,
+                            RainSettings& rain);
   ComputeContext& compute_;
   Parameters params_;
   Heightmap initial_;
