@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include "runnel/core/rain_units.hpp"
 
 namespace runnel::viewer {
 
@@ -18,7 +19,7 @@ Brush default_brush(const Heightmap& t) {
   const double extent = std::max(t.nx - 1, t.ny - 1) * t.cell;
   b.radius = round_to_nice(0.08 * extent);
   const double spacing = 0.5 * t.cell, area = M_PI * b.radius * b.radius;
-  b.intensity = round_to_nice(200.0 * spacing * spacing * spacing / area * 3.6e6);
+  b.intensity = round_to_nice(rain_intensity(200.0 * spacing * spacing * spacing / area));
   return b;
 }
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "runnel/core/heightmap.hpp"
+#include "runnel/core/rain_units.hpp"
 #include "runnel/models/interaction.hpp"
 
 namespace runnel::viewer {
@@ -13,8 +14,10 @@ struct Brush {
   double x = 0, z = 0;   // m from the terrain's first vertex
   double radius = 20;    // m
   double intensity = 0;  // mm/h
-  RainDisc disc() const { return {x, z, radius, intensity / 3.6e6}; }
-  double discharge() const { return intensity / 3.6e6 * 3.14159265358979 * radius * radius; }
+  RainDisc disc() const { return {x, z, radius, rain_depth_rate(intensity)}; }
+  double discharge() const {
+    return rain_depth_rate(intensity) * 3.14159265358979 * radius * radius;
+  }
 };
 
 // The starting brush on a terrain: a radius of about 8 % of its extent and an intensity that rains

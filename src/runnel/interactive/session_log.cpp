@@ -9,6 +9,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/input_file.hpp"
+#include "runnel/core/rain_units.hpp"
 #include "runnel/io/atomic_file.hpp"
 
 namespace runnel {
@@ -51,7 +52,7 @@ std::string session_log_json(const SessionLog& log) {
                               {"z_m", d.z},
                               {"radius_m", d.radius},
                               {"rate_m_per_s", d.rate},
-                              {"intensity_mm_per_h", d.rate * 3.6e6}});
+                              {"intensity_mm_per_h", rain_intensity(d.rate)}});
       }
     }
     if (e.kind == Kind::kGlobalRain) j["on"] = e.on;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "runnel/core/rain_units.hpp"
 #include "runnel/models/water_binning.hpp"
 #include "runnel/sph/water_depth_reference.hpp"
 
@@ -95,7 +96,7 @@ void SphModel::apply_rain() {
                                     [](const RainDisc& d) { return d.rate > 0; });  // not sinks
   if (raining != painted_.end()) {
     const RainDisc& d = *raining;
-    rain.rain_on_disc(d.x, d.z, d.radius, d.rate * 1000.0 * 3600.0, particle_spacing());
+    rain.rain_on_disc(d.x, d.z, d.radius, rain_intensity(d.rate), particle_spacing());
   } else {
     rain.enabled = rain.enabled && global_rain_;
   }

@@ -7,6 +7,7 @@
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameter_groups.hpp"
+#include "runnel/core/rain_units.hpp"
 #include "runnel/core/settings_table.hpp"
 
 namespace runnel {
@@ -81,10 +82,10 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
   const bool storm_given = r.rate > 0 || r.intensity_mm_h > 0;
   if (r.max_particles == 0 && !storm_given) r.max_particles = kDefaultRainBudget;
   if (!(r.rate > 0)) {
-    r.rate = r.intensity_mm_h > 0 ? r.intensity_mm_h / 1000.0 / 3600.0 * r.area / volume
+    r.rate = r.intensity_mm_h > 0 ? rain_depth_rate(r.intensity_mm_h) * r.area / volume
                                   : static_cast<double>(r.max_particles) / r.lifespan;
   }
-  r.intensity_mm_h = r.rate * volume / r.area * 1000.0 * 3600.0;
+  r.intensity_mm_h = rain_intensity(r.rate * volume / r.area);
   if (r.max_particles == 0) {
     // No more drops can live at once than fall during the longest lifespan.
     r.budget_follows_storm = true;
@@ -103,7 +104,7 @@ void RainSettings::rain_on_disc(double x, double z, double radius, double intens
   b = disc_radius = radius;
   area = M_PI * radius * radius;
   intensity_mm_h = intensity;
-  rate = intensity / 1000.0 / 3600.0 * area / (spacing * spacing * spacing);
+  rate = rain_depth_rate(intensity) * area / (spacing * spacing * spacing);
   enabled = true;
 }
 
