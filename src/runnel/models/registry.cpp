@@ -2,6 +2,7 @@
 #include "runnel/models/registry.hpp"
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/parameter_groups.hpp"
 #include "runnel/core/scenario.hpp"
 #include "runnel/ground/ground_settings.hpp"
 #include "runnel/models/droplet_model.hpp"
@@ -16,18 +17,28 @@ namespace runnel {
 namespace {
 
 template <typename M>
-ModelEntry entry() {
+ModelEntry entry(std::vector<ParamSpec> (*parameters)()) {
   return {&M::model_info,
           [](ComputeContext& compute, const Parameters& params, const Heightmap& terrain)
-              -> std::unique_ptr<Model> { return std::make_unique<M>(compute, params, terrain); }};
+              -> std::unique_ptr<Model> { return std::make_unique<M>(compute, params, terrain); },
+          parameters};
+}
+
+// SPH's groups: the fluid, its rain and its erosion law.
+std::vector<ParamSpec> sph_model_parameters() {
+  std::vector<ParamSpec> all = sph_parameters();
+  for (auto group : {rain_parameters, erosion_parameters})
+    for (ParamSpec& spec : group()) all.push_back(std::move(spec));
+  return all;
 }
 
 }  // namespace
 
 const std::vector<ModelEntry>& model_registry() {
   static const std::vector<ModelEntry> registry = {
-      entry<SphModel>(),   entry<DropletModel>(), entry<PipeModel>(),
-      entry<OlsenModel>(), entry<ThermalModel>(), entry<StreamPowerModel>()};
+      entry<SphModel>(sph_model_parameters),   entry<DropletModel>(droplet_parameters),
+      entry<PipeModel>(pipe_parameters),       entry<OlsenModel>(olsen_parameters),
+      entry<ThermalModel>(thermal_parameters), entry<StreamPowerModel>(stream_power_parameters)};
   return registry;
 }
 

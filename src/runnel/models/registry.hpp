@@ -15,6 +15,9 @@ struct ModelEntry {
   const ModelInfo& (*info)();
   std::unique_ptr<Model> (*make)(ComputeContext& compute, const Parameters& params,
                                  const Heightmap& terrain);
+  // The model's own parameters (its settings tables), listed in the parameter table in the
+  // registry's order: the one place a new model is registered (docs/extending.md).
+  std::vector<ParamSpec> (*parameters)();
 };
 
 const std::vector<ModelEntry>& model_registry();

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The parameter table: every scenario key of runnel, with its default, unit, range and meaning.
 // The drivers' own keys (terrain.*, run.*) are declared here; each settings group declares its keys
-// once, beside the struct they fill (core/parameter_groups.hpp), and is listed here in order.
+// once, beside the struct they fill (core/parameter_groups.hpp); each model's groups come from its
+// registry entry, in the registry's order, and the ground's, which every model shares, after them.
 #include "runnel/core/parameter_groups.hpp"
 #include "runnel/core/parameters.hpp"
 #include "runnel/models/registry.hpp"     // run.model's choices are the registry's names
@@ -51,11 +52,9 @@ std::vector<ParamSpec> assemble() {
       // clang-format on
   };
   std::vector<ParamSpec> table = terrain;
-  for (auto group :
-       {sph_parameters, rain_parameters, erosion_parameters, thermal_parameters, droplet_parameters,
-        olsen_parameters, pipe_parameters, stream_power_parameters, ground_parameters}) {
-    for (ParamSpec& spec : group()) table.push_back(std::move(spec));
-  }
+  for (const ModelEntry& model : model_registry())
+    for (ParamSpec& spec : model.parameters()) table.push_back(std::move(spec));
+  for (ParamSpec& spec : ground_parameters()) table.push_back(std::move(spec));  // every model's
   table.insert(table.end(), run.begin(), run.end());
   return table;
 }
