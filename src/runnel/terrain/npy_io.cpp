@@ -46,11 +46,20 @@ std::string header_value(const std::string& header, const std::string& key,
 
 }  // namespace
 
-Heightmap read_npy(const std::string& path, double cell_if_none) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw input_error(path + ": cannot open for reading");
-  const std::streamoff file_size = in.tellg();
-  in.seekg(0);
+namespace {
+
+// What the header says about the array that follows it.
+struct NpyArray {
+  char byte_order = '<';
+  int item_size = 4;
+  bool fortran = false;
+  long long ny = 0, nx = 0;
+};
+
+// The dict literal's text: after the magic, the version and the header's length, all checked
+// against the file's size before anything is allocated.
+std::string read_npy_header(std::ifstream& in, std::streamoff file_size, const std::string& path,
+                            std::streamoff& data_start) {
   char prefix[8] = {0};
   if (file_size < 10 || !in.read(prefix, 8) || std::memcmp(prefix, kMagic, 6) != 0) {
     throw input_error(path + ": not a NumPy .npy file (bad magic)");
@@ -80,8 +89,38 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
                       " NumPy itself reads");
   std::string header(header_len, '\0');
   in.read(header.data(), header_len);
+  data_start = header_start + header_len;
+  return header;
+}
 
-  // The header is a Python dict literal, '{' ... '}', padded with spaces and a final newline.
+// Exactly two whole non-negative numbers, "(rows, columns)" with an optional trailing comma.
+std::vector<long long> npy_shape(const std::string& header, const std::string& path) {
+  const std::string shape_text = header_value(header, "shape", path);
+  const auto shape_end = shape_text.find(')');
+  if (!shape_text.starts_with("(") || shape_end == std::string::npos ||
+      shape_text.find('(', 1) < shape_end)
+    throw input_error(path + ": .npy header has no flat 'shape' tuple");
+  std::vector<long long> shape;
+  std::stringstream dims(shape_text.substr(1, shape_end - 1));
+  for (std::string item; std::getline(dims, item, ',');) {
+    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+    if (b == std::string::npos) continue;  // the trailing comma of a 1-tuple
+    const std::string digits = item.substr(b, e - b + 1);
+    if (digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos) {
+      throw input_error(path + ": .npy shape entry " + quoted(digits) +
+                        " is not a non-negative integer of at most 12 digits");
+    }
+    shape.push_back(std::stoll(digits));
+  }
+  if (shape.size() != 2) {
+    throw input_error(path + ": .npy array has " + std::to_string(shape.size()) +
+                      " dimensions, expected 2 (rows, columns)");
+  }
+  return shape;
+}
+
+// The header is a Python dict literal, '{' ... '}', padded with spaces and a final newline.
+NpyArray parse_npy_header(const std::string& header, const std::string& path) {
   const auto first = header.find_first_not_of(" \t");
   const auto last = header.find_last_not_of(" \t\n\0");
   if (first == std::string::npos || header[first] != '{' || header[last] != '}')
@@ -99,38 +138,32 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
                       quoted(descr.substr(1, close == std::string::npos ? 40 : close - 1)) +
                       " is not float32 or float64");
   }
-  const char byte_order = descr[1];
-  const int item_size = descr[3] == '4' ? 4 : 8;
+  NpyArray a;
+  a.byte_order = descr[1];
+  a.item_size = descr[3] == '4' ? 4 : 8;
   const std::string order = header_value(header, "fortran_order", path);
-  const bool fortran = order.starts_with("True");
-  if (!fortran && !order.starts_with("False"))
+  a.fortran = order.starts_with("True");
+  if (!a.fortran && !order.starts_with("False"))
     throw input_error(path + ": .npy 'fortran_order' is neither True nor False");
-  const std::string shape_text = header_value(header, "shape", path);
-  const auto shape_end = shape_text.find(')');
-  if (!shape_text.starts_with("(") || shape_end == std::string::npos ||
-      shape_text.find('(', 1) < shape_end)
-    throw input_error(path + ": .npy header has no flat 'shape' tuple");
-  // Exactly two whole non-negative numbers, "(rows, columns)" with an optional trailing comma.
-  std::vector<long long> shape;
-  std::stringstream dims(shape_text.substr(1, shape_end - 1));
-  for (std::string item; std::getline(dims, item, ',');) {
-    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
-    if (b == std::string::npos) continue;  // the trailing comma of a 1-tuple
-    const std::string digits = item.substr(b, e - b + 1);
-    if (digits.size() > 12 || digits.find_first_not_of("0123456789") != std::string::npos) {
-      throw input_error(path + ": .npy shape entry " + quoted(digits) +
-                        " is not a non-negative integer of at most 12 digits");
-    }
-    shape.push_back(std::stoll(digits));
-  }
-  if (shape.size() != 2) {
-    throw input_error(path + ": .npy array has " + std::to_string(shape.size()) +
-                      " dimensions, expected 2 (rows, columns)");
-  }
-  const long long ny = shape[0], nx = shape[1];
+  const std::vector<long long> shape = npy_shape(header, path);
+  a.ny = shape[0];
+  a.nx = shape[1];
+  return a;
+}
+
+}  // namespace
+
+Heightmap read_npy(const std::string& path, double cell_if_none) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw input_error(path + ": cannot open for reading");
+  const std::streamoff file_size = in.tellg();
+  in.seekg(0);
+  std::streamoff data_start = 0;
+  const NpyArray a = parse_npy_header(read_npy_header(in, file_size, path, data_start), path);
+  const long long ny = a.ny, nx = a.nx;
   check_terrain_size(path, nx, ny);
-  const std::streamoff data_bytes = static_cast<std::streamoff>(nx * ny * item_size);
-  const std::streamoff available = file_size - header_start - header_len;
+  const std::streamoff data_bytes = static_cast<std::streamoff>(nx * ny * a.item_size);
+  const std::streamoff available = file_size - data_start;
   if (available < data_bytes) {
     throw input_error(path + ": truncated: " + std::to_string(data_bytes) +
                       " bytes of data expected, " + std::to_string(available) + " present");
@@ -142,13 +175,13 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
   std::vector<char> raw(static_cast<std::size_t>(data_bytes));
   in.read(raw.data(), data_bytes);
   if (!in) throw input_error(path + ": read error");
-  const bool swap = (byte_order == '>' && std::endian::native == std::endian::little) ||
-                    (byte_order == '<' && std::endian::native == std::endian::big);
+  const bool swap = (a.byte_order == '>' && std::endian::native == std::endian::little) ||
+                    (a.byte_order == '<' && std::endian::native == std::endian::big);
 
   Heightmap terrain(static_cast<int>(nx), static_cast<int>(ny), cell_if_none);
   for (long long k = 0; k < nx * ny; ++k) {
     double v = 0.0;
-    if (item_size == 4) {
+    if (a.item_size == 4) {
       float f;
       std::memcpy(&f, raw.data() + 4 * k, 4);
       v = swap ? byteswap_value(f) : f;
@@ -158,8 +191,8 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
       v = swap ? byteswap_value(d) : d;
     }
     // C order: k = row·nx + col. Fortran order: k = col·ny + row.
-    const long long row = fortran ? k % ny : k / nx;
-    const long long col = fortran ? k / ny : k % nx;
+    const long long row = a.fortran ? k % ny : k / nx;
+    const long long col = a.fortran ? k / ny : k % nx;
     terrain.h[static_cast<std::size_t>(row * nx + col)] = static_cast<float>(v);
   }
   check_finite_heights(path, terrain);
