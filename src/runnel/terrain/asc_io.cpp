@@ -59,20 +59,11 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-}  // namespace
-
-Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw input_error(path + ": cannot open for reading");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  if (text.empty()) throw input_error(path + ": empty file, not an ESRI ASCII grid");
-
-  Tokenizer tokens(text);
+// Header: lines of "key value" where key starts with a letter; data starts at the first number.
+// Every key known, once, with a finite value; the origin by its corner or its centre.
+std::map<std::string, double> read_asc_header(Tokenizer& tokens, const std::string& path) {
   std::map<std::string, double> header;
   std::string_view key, value;
-  // Header: lines of "key value" where key starts with a letter; data starts at the first number.
   for (;;) {
     const std::size_t pos = tokens.pos();
     const int line = tokens.line();
@@ -109,6 +100,22 @@ Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
     if (!header.count(required))
       throw input_error(path + ": missing header key '" + required + "'");
   }
+  return header;
+}
+
+}  // namespace
+
+Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw input_error(path + ": cannot open for reading");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  if (text.empty()) throw input_error(path + ": empty file, not an ESRI ASCII grid");
+
+  Tokenizer tokens(text);
+  std::map<std::string, double> header = read_asc_header(tokens, path);
+  std::string_view value;
   const double ncols = header["ncols"], nrows = header["nrows"];
   if (ncols != std::floor(ncols) || nrows != std::floor(nrows) || ncols < 0 || nrows < 0) {
     throw input_error(path + ": ncols and nrows must be non-negative integers");
