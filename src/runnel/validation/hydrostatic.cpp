@@ -23,6 +23,74 @@
 
 namespace runnel {
 
+namespace {
+
+// Per layer of the tank (by height above the floor): Σ depth, Σ pressure, Σ expected, count.
+using LayerProfile = std::map<int, std::array<double, 4>>;
+
+// pressure.csv and pressure.png: each layer's mean pressure against its depth, beside ρ0 g d.
+void write_pressure_profile(const std::string& out_dir, const LayerProfile& profile) {
+  const std::filesystem::path out(out_dir);
+  std::vector<double> depth_curve, pressure_curve, expected_curve;
+  for (auto& [layer, row] : profile) {
+    depth_curve.push_back(row[0] / row[3]);
+    pressure_curve.push_back(row[1] / row[3]);
+    expected_curve.push_back(row[2] / row[3]);
+  }
+  write_file_atomically((out / "pressure.csv").string(), [&](std::FILE* f) {
+    std::fprintf(f, "depth,pressure,expected,particles\n");
+    for (auto& [layer, row] : profile) {
+      std::fprintf(f, "%.6g,%.6g,%.6g,%.0f\n", row[0] / row[3], row[1] / row[3], row[2] / row[3],
+                   row[3]);
+    }
+  });
+  Plot plot("hydrostatic tank: pressure against depth", "depth (m)", "pressure (Pa)");
+  plot.line(depth_curve, expected_curve, kPlotReference, "rho0 g d");
+  plot.points(depth_curve, pressure_curve, kPlotSimulation, "runnel, per layer");
+  plot.write((out / "pressure.png").string());
+}
+
+// What the settling tank's final quarter gave, per particle and as a whole.
+struct TankSamples {
+  // Per particle (by its stable id): Σ depth, Σ pressure, Σ height above the floor.
+  std::map<std::uint32_t, std::array<double, 3>> sums;
+  int samples = 0;
+  // Σ max(ρ/ρ0 − 1, 0) over the samples of every particle: the compression (a summation density
+  // is below ρ0 at the free surface by construction, which is no error).
+  double compression = 0;
+  long long density_samples = 0;
+};
+
+// Steps the tank until `settle` and samples every tenth step of the final quarter.
+TankSamples sample_settling_tank(SphSolver& solver, const SphSettings& s, double settle,
+                                 double floor_height, double width, bool progress) {
+  TankSamples t;
+  const double average_from = 0.75 * settle;
+  while (solver.time() < settle) {
+    solver.step();
+    if (solver.time() < average_from || solver.steps() % 10 != 0) continue;
+    const HostParticles p = solver.particles().download();
+    const std::vector<float> pressure = solver.pressure();
+    double volume = 0;
+    for (float rho : p.f[kRho]) volume += s.mass() / rho;
+    const double surface = floor_height + volume / (width * width);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      auto& sum = t.sums[p.id[i]];
+      sum[0] += surface - p.f[kY][i];
+      sum[1] += pressure[i];
+      sum[2] += p.f[kY][i] - floor_height;
+      t.compression += std::max(p.f[kRho][i] / s.rho0 - 1.0, 0.0);
+      ++t.density_samples;
+    }
+    ++t.samples;
+    if (progress) std::fprintf(stderr, "hydrostatic: t = %.3f / %.3f s\r", solver.time(), settle);
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  return t;
+}
+
+}  // namespace
+
 ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const int layers = options.resolution > 0 ? options.resolution : 16;
@@ -46,40 +114,13 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
   // viscosity (about 100 crossings of the column by sound).
   const double settle =
       options.settle_time > 0 ? options.settle_time : 50.0 * std::sqrt(height / s.gravity);
-  const double average_from = 0.75 * settle;
 
-  // Per particle (by its stable id): Σ depth, Σ pressure, Σ height over the final quarter.
-  std::map<std::uint32_t, std::array<double, 3>> sums;
-  int samples = 0;
-  // Σ max(ρ/ρ0 − 1, 0) over the samples of every particle: the compression (a summation density
-  // is below ρ0 at the free surface by construction, which is no error).
-  double compression = 0;
-  long long density_samples = 0;
-  while (solver.time() < settle) {
-    solver.step();
-    if (solver.time() < average_from || solver.steps() % 10 != 0) continue;
-    const HostParticles p = solver.particles().download();
-    const std::vector<float> pressure = solver.pressure();
-    double volume = 0;
-    for (float rho : p.f[kRho]) volume += s.mass() / rho;
-    const double surface = floor_height + volume / (width * width);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      auto& sum = sums[p.id[i]];
-      sum[0] += surface - p.f[kY][i];
-      sum[1] += pressure[i];
-      sum[2] += p.f[kY][i] - floor_height;
-      compression += std::max(p.f[kRho][i] / s.rho0 - 1.0, 0.0);
-      ++density_samples;
-    }
-    ++samples;
-    if (options.progress)
-      std::fprintf(stderr, "hydrostatic: t = %.3f / %.3f s\r", solver.time(), settle);
-  }
-  if (options.progress) std::fprintf(stderr, "\n");
-
-  // Per layer: Σ depth, Σ pressure, Σ expected, count.
-  std::map<int, std::array<double, 4>> profile;
+  const TankSamples t =
+      sample_settling_tank(solver, s, settle, floor_height, width, options.progress);
+  const auto& sums = t.sums;
+  const int samples = t.samples;
   double abs_error = 0, expected_sum = 0;
+  LayerProfile profile;
   for (auto& [id, sum] : sums) {
     const double depth = sum[0] / samples, pressure = sum[1] / samples;
     const double expected = s.rho0 * s.gravity * depth;
@@ -93,29 +134,12 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
   }
   double worst_layer = 0, worst_depth = 0, worst_below_surface = 0;
   const int top_layer = profile.empty() ? 0 : profile.rbegin()->first;
-  std::vector<double> depth_curve, pressure_curve, expected_curve;
   for (auto& [layer, row] : profile) {
     const double e = std::fabs(row[1] - row[2]) / row[2];
     if (e > worst_layer) worst_layer = e, worst_depth = row[0] / row[3];
     if (layer != top_layer) worst_below_surface = std::max(worst_below_surface, e);
-    depth_curve.push_back(row[0] / row[3]);
-    pressure_curve.push_back(row[1] / row[3]);
-    expected_curve.push_back(row[2] / row[3]);
   }
-  if (!options.out_dir.empty()) {
-    const std::filesystem::path out(options.out_dir);
-    write_file_atomically((out / "pressure.csv").string(), [&](std::FILE* f) {
-      std::fprintf(f, "depth,pressure,expected,particles\n");
-      for (auto& [layer, row] : profile) {
-        std::fprintf(f, "%.6g,%.6g,%.6g,%.0f\n", row[0] / row[3], row[1] / row[3], row[2] / row[3],
-                     row[3]);
-      }
-    });
-    Plot plot("hydrostatic tank: pressure against depth", "depth (m)", "pressure (Pa)");
-    plot.line(depth_curve, expected_curve, kPlotReference, "rho0 g d");
-    plot.points(depth_curve, pressure_curve, kPlotSimulation, "runnel, per layer");
-    plot.write((out / "pressure.png").string());
-  }
+  if (!options.out_dir.empty()) write_pressure_profile(options.out_dir, profile);
   ValidationResult r;
   r.name = "hydrostatic";
   r.particles = particles;
@@ -134,7 +158,7 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
       .add("worst_layer_depth", worst_depth)
       .add("worst_layer_below_surface_relative_error", worst_below_surface)
       .add("mean_relative_error", expected_sum > 0 ? abs_error / expected_sum : 1.0)
-      .add("mean_compression", density_samples > 0 ? compression / density_samples : 0.0)
+      .add("mean_compression", t.density_samples > 0 ? t.compression / t.density_samples : 0.0)
       .add("solver", solver.dfsph() ? solver.dfsph()->json() : JsonObject().add("solver", "wcsph"))
       .add("start", "uniform density rho0, at rest")
       .add("floor", "flat terrain heightmap");
