@@ -23,23 +23,12 @@
 #include "runnel/validation/validation.hpp"
 
 namespace runnel {
+namespace {
 
-ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  const int resolution = options.resolution > 0 ? options.resolution : 20;  // particles across L
-  const double L = 1.0;                                                     // m
-  const double dx = L / resolution;
-  const int slab = 4;  // particles through the slab
-  Parameters params = options.params;
-  params.set("sph.walls", true, "validate");
-  const double g = params.real("sph.gravity");
-  SphSettings s = SphSettings::from(params, dx, std::sqrt(g * 2.0 * L));
-
-  const double tank_cell = slab * dx;
-  SphSolver solver(compute, s, flat_floor(4 * resolution / slab, 1, tank_cell), 2.5 * L);
-  solver.add(hydrostatic_block(s, L, 2.0 * L, slab * dx));
-  const long long particles = static_cast<long long>(solver.particles().size());
-
+// The surge front x/L (the farthest particle plus half a spacing) every 0.05 of t* = t sqrt(g/L)
+// up to 2.4, interpolated between steps.
+std::vector<std::pair<double, double>> track_surge_front(SphSolver& solver, double dx, double L,
+                                                         double g, bool progress) {
   const double time_unit = std::sqrt(L / g);  // t = t*·sqrt(L/g)
   const double sample_every = 0.05, t_star_end = 2.4;
   std::vector<std::pair<double, double>> front;  // (t*, x/L)
@@ -63,9 +52,69 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
     }
     prev_t = t;
     prev_x = x;
-    if (options.progress) std::fprintf(stderr, "dambreak: t* = %.3f / %.1f\r", t, t_star_end);
+    if (progress) std::fprintf(stderr, "dambreak: t* = %.3f / %.1f\r", t, t_star_end);
   }
-  if (options.progress) std::fprintf(stderr, "\n");
+  if (progress) std::fprintf(stderr, "\n");
+
+  return front;
+}
+
+// front.csv and front.png: runnel's front beside the experiment, its second reading and the
+// peer's instant release.
+void write_front_files(const std::string& out_dir,
+                       const std::vector<std::pair<double, double>>& front,
+                       const std::vector<double>& exp_t, const std::vector<double>& exp_x,
+                       const FrontReading& peer, int resolution, double tank) {
+  const auto out = std::filesystem::path(out_dir);
+  write_file_atomically((out / "front.csv").string(), [&](std::FILE* f) {
+    std::fprintf(f, "t_star,x_over_L\n");
+    for (auto& [ts, x] : front) std::fprintf(f, "%.2f,%.6f\n", ts, x);
+  });
+  std::vector<double> sim_t, sim_x;
+  for (auto& [ts, x] : front) sim_t.push_back(ts), sim_x.push_back(x);
+  Plot plot("dam break: surge front", "t* = t sqrt(g/L)", "x/L");
+  plot.points(exp_t, exp_x, kPlotReference, "koshizuka & oka 1996");
+  // The same figure read a second time: the spread of two readings, beside the one scored.
+  const auto& readings = dambreak_other_readings();
+  const auto again = std::find_if(readings.begin(), readings.end(), [](const FrontReading& r) {
+    return r.name == "koshizuka_oka_pysph";
+  });
+  std::vector<double> again_t, again_x;
+  for (const FrontSample& m : again->samples) {
+    if (m.x_over_l >= tank) continue;
+    again_t.push_back(m.t_star);
+    again_x.push_back(m.x_over_l);
+  }
+  plot.points(again_t, again_x, kPlotSecondary, "koshizuka & oka 1996, read again (pysph)");
+  std::vector<double> peer_t, peer_x;
+  for (const FrontSample& m : peer.samples)
+    peer_t.push_back(m.t_star), peer_x.push_back(m.x_over_l);
+  plot.points(peer_t, peer_x, kPlotPeer, "pysph, the same instant release, 67 across l");
+  plot.line(sim_t, sim_x, kPlotSimulation,
+            "runnel, " + std::to_string(resolution) + " particles across l");
+  plot.write((out / "front.png").string());
+}
+
+}  // namespace
+
+ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const int resolution = options.resolution > 0 ? options.resolution : 20;  // particles across L
+  const double L = 1.0;                                                     // m
+  const double dx = L / resolution;
+  const int slab = 4;  // particles through the slab
+  Parameters params = options.params;
+  params.set("sph.walls", true, "validate");
+  const double g = params.real("sph.gravity");
+  SphSettings s = SphSettings::from(params, dx, std::sqrt(g * 2.0 * L));
+
+  const double tank_cell = slab * dx;
+  SphSolver solver(compute, s, flat_floor(4 * resolution / slab, 1, tank_cell), 2.5 * L);
+  solver.add(hydrostatic_block(s, L, 2.0 * L, slab * dx));
+  const long long particles = static_cast<long long>(solver.particles().size());
+
+  const std::vector<std::pair<double, double>> front =
+      track_surge_front(solver, dx, L, g, options.progress);
 
   const double tank = 4.0;  // L
   const SurgeScore target = score_surge_front(front, koshizuka_oka_1996(), tank);
@@ -102,36 +151,8 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
           .add("worst_surge_gap", peer_gap.worst)
           .add("compared_points", static_cast<long long>(peer_gap.points.size()));
 
-  if (!options.out_dir.empty()) {
-    write_file_atomically((std::filesystem::path(options.out_dir) / "front.csv").string(),
-                          [&](std::FILE* f) {
-                            std::fprintf(f, "t_star,x_over_L\n");
-                            for (auto& [ts, x] : front) std::fprintf(f, "%.2f,%.6f\n", ts, x);
-                          });
-    std::vector<double> sim_t, sim_x;
-    for (auto& [ts, x] : front) sim_t.push_back(ts), sim_x.push_back(x);
-    Plot plot("dam break: surge front", "t* = t sqrt(g/L)", "x/L");
-    plot.points(exp_t, exp_x, kPlotReference, "koshizuka & oka 1996");
-    // The same figure read a second time: the spread of two readings, beside the one scored.
-    const auto& readings = dambreak_other_readings();
-    const auto again = std::find_if(readings.begin(), readings.end(), [](const FrontReading& r) {
-      return r.name == "koshizuka_oka_pysph";
-    });
-    std::vector<double> again_t, again_x;
-    for (const FrontSample& m : again->samples) {
-      if (m.x_over_l >= tank) continue;
-      again_t.push_back(m.t_star);
-      again_x.push_back(m.x_over_l);
-    }
-    plot.points(again_t, again_x, kPlotSecondary, "koshizuka & oka 1996, read again (pysph)");
-    std::vector<double> peer_t, peer_x;
-    for (const FrontSample& m : peer.samples)
-      peer_t.push_back(m.t_star), peer_x.push_back(m.x_over_l);
-    plot.points(peer_t, peer_x, kPlotPeer, "pysph, the same instant release, 67 across l");
-    plot.line(sim_t, sim_x, kPlotSimulation,
-              "runnel, " + std::to_string(resolution) + " particles across l");
-    plot.write((std::filesystem::path(options.out_dir) / "front.png").string());
-  }
+  if (!options.out_dir.empty())
+    write_front_files(options.out_dir, front, exp_t, exp_x, peer, resolution, tank);
   ValidationResult r;
   r.name = "dambreak";
   r.particles = particles;
