@@ -83,28 +83,16 @@ std::vector<double> smoothed_change(const ErosionRun& r, int width) {
   return out;
 }
 
-}  // namespace
-
-ValidationResult validate_erosion_convergence(ComputeContext& compute,
-                                              const ValidationOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  const int size = options.resolution > 0 ? options.resolution : 65;
-  const double sim_time = options.settle_time > 0 ? options.settle_time : 20.0;
-  const bool own_terrain = options.terrain.size() > 0;
-  const Heightmap terrain =
-      own_terrain ? options.terrain
-                  : generate_terrain("fbm", size, size, 2.0, 7,
-                                     {{"relief", 0.12}, {"hurst", 1.0}, {"octaves", 6}});
-  const double cell = terrain.cell;
-  Parameters base = options.params;
+// The base run's parameters: the user's, with a storm heavy enough that the water on each footprint
+// is several particles at the base resolution (docs/erosion.md: below that the films are not
+// resolved, and drops of half the size claim more bed), and the spacing and spawn height fixed.
+Parameters convergence_base(const Parameters& given, double cell) {
+  Parameters base = given;
   auto set_default = [&](const char* key, auto value) {
     if (!base.was_set(key)) base.set(key, value, "validate");
   };
-  // mm/h: a storm heavy enough that the water on each footprint is several particles at the
-  // base resolution (docs/erosion.md: below that the films are not resolved, and drops of half
-  // the size claim more bed).
-  set_default("rain.intensity", 60000.0 * cell / 2.0);
-  set_default("rain.lifespan", 1e9);  // water leaves only through the map's edges
+  set_default("rain.intensity", 60000.0 * cell / 2.0);  // mm/h
+  set_default("rain.lifespan", 1e9);                    // water leaves only through the map's edges
   // Far above what 20 s of this rain can spawn (about 44,000 particles at half the spacing), so
   // it never binds, and within any device's memory.
   set_default("rain.max_particles", static_cast<std::int64_t>(2000000));
@@ -112,11 +100,17 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
   const double spacing = base.real("sph.spacing") > 0 ? base.real("sph.spacing") : 0.5 * cell;
   base.set("sph.spacing", spacing, "validate");
   base.set("rain.spawn_height", spacing, "validate");
+  return base;
+}
 
-  struct Variant {
-    const char* name;
-    Parameters params;
-  };
+struct Variant {
+  const char* name;
+  Parameters params;
+};
+
+// The base run and one run per knob: half the step, half the spacing, the spawn height halved
+// and doubled.
+std::vector<Variant> knob_variants(const Parameters& base, double spacing) {
   std::vector<Variant> variants = {{"base", base}};
   // Half the time step: wcsph's acoustic CFL factor; dfsph's flow CFL factor and its cap (the
   // default scenario's dfsph steps are mostly the cap's).
@@ -140,9 +134,42 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
     variants.push_back({spawn < 1 ? "spawn_0.5dx" : "spawn_2dx", p});
   }
 
+  return variants;
+}
+
+// metrics.json's table: every run's eroded volume, its change and Δh correlation with the base.
+std::vector<JsonObject> runs_table(const std::vector<Variant>& variants,
+                                   const std::vector<ErosionRun>& runs,
+                                   const std::vector<double>& correlation_with_base) {
+  const double eroded = runs[0].eroded;
+  std::vector<JsonObject> table;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const double correlation = correlation_with_base[k];
+    table.push_back(
+        JsonObject()
+            .add("variant", variants[k].name)
+            .add("eroded_m3", runs[k].eroded)
+            .add("relative_change", k == 0 ? 0.0 : std::fabs(runs[k].eroded - eroded) / eroded)
+            .add("dh_correlation_with_base", correlation)
+            .add("peak_mach", runs[k].peak_mach)
+            .add("peak_compression", runs[k].peak_compression)
+            .add("film_share", runs[k].water.film_share)
+            .add("unresolved_share", runs[k].water.unresolved_share)
+            .add("particles_spawned", runs[k].spawned)
+            .add("steps", runs[k].steps)
+            .add("wall_seconds", runs[k].wall_seconds));
+  }
+  return table;
+}
+
+// Runs every variant, then the two whose settings follow from the base run: twice the c0 it
+// derived from the terrain, and another seed.
+std::vector<ErosionRun> run_variants(ComputeContext& compute, std::vector<Variant>& variants,
+                                     const Parameters& base, const Heightmap& terrain,
+                                     double sim_time, bool progress) {
   std::vector<ErosionRun> runs;
   auto run_variant = [&](const Variant& v) {
-    if (options.progress) std::fprintf(stderr, "erosion-convergence: %s\n", v.name);
+    if (progress) std::fprintf(stderr, "erosion-convergence: %s\n", v.name);
     runs.push_back(run_rain(compute, v.params, terrain, sim_time));
   };
   for (const auto& v : variants) run_variant(v);
@@ -161,6 +188,27 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
   variants.push_back({"reseeded", reseeded});
   run_variant(variants.back());
 
+  return runs;
+}
+
+}  // namespace
+
+ValidationResult validate_erosion_convergence(ComputeContext& compute,
+                                              const ValidationOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const int size = options.resolution > 0 ? options.resolution : 65;
+  const double sim_time = options.settle_time > 0 ? options.settle_time : 20.0;
+  const bool own_terrain = options.terrain.size() > 0;
+  const Heightmap terrain =
+      own_terrain ? options.terrain
+                  : generate_terrain("fbm", size, size, 2.0, 7,
+                                     {{"relief", 0.12}, {"hurst", 1.0}, {"octaves", 6}});
+  const double cell = terrain.cell;
+  const Parameters base = convergence_base(options.params, cell);
+  const double spacing = base.real("sph.spacing");
+  std::vector<Variant> variants = knob_variants(base, spacing);  // run_variants adds two
+  const std::vector<ErosionRun> runs =
+      run_variants(compute, variants, base, terrain, sim_time, options.progress);
   const double eroded = runs[0].eroded;
   auto change = [&](std::size_t k) { return std::fabs(runs[k].eroded - eroded) / eroded; };
   // Each variant's Δh map against the base run's (the base against itself: 1).
@@ -185,21 +233,7 @@ ValidationResult validate_erosion_convergence(ComputeContext& compute,
   r.relative_error = *std::max_element(scores, scores + 5);
   r.target = 1.0;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::vector<JsonObject> table;
-  for (std::size_t k = 0; k < runs.size(); ++k) {
-    table.push_back(JsonObject()
-                        .add("variant", variants[k].name)
-                        .add("eroded_m3", runs[k].eroded)
-                        .add("relative_change", k == 0 ? 0.0 : change(k))
-                        .add("dh_correlation_with_base", correlation_with_base[k])
-                        .add("peak_mach", runs[k].peak_mach)
-                        .add("peak_compression", runs[k].peak_compression)
-                        .add("film_share", runs[k].water.film_share)
-                        .add("unresolved_share", runs[k].water.unresolved_share)
-                        .add("particles_spawned", runs[k].spawned)
-                        .add("steps", runs[k].steps)
-                        .add("wall_seconds", runs[k].wall_seconds));
-  }
+  const std::vector<JsonObject> table = runs_table(variants, runs, correlation_with_base);
   r.details
       .add("terrain", (own_terrain ? options.terrain_name : std::string("fbm")) + " " +
                           std::to_string(terrain.nx) + "x" + std::to_string(terrain.ny) + ", " +
