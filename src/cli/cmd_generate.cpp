@@ -63,6 +63,84 @@ void parse_size(const std::string& text, int& nx, int& ny) {
   if (x != std::string::npos) parse(text.substr(x + 1), ny);
 }
 
+// The terrain the flags ask for: a graph, a scenario's terrain, or one generator; `params` gets the
+// scenario's parameters (its layers among them).
+Heightmap generated_terrain(const GenerateOptions& opt, const CLI::App& cmd, Parameters& params) {
+  Heightmap terrain;
+  if (!opt.graph.empty()) {
+    if (!opt.name.empty() || !opt.scenario.empty())
+      throw input_error(
+          "--graph: the graph is the whole terrain; give no generator name or --scenario");
+    // The noise generators on the device: the same bytes as on the host, faster.
+    ComputeContext compute(opt.device);
+    terrain = evaluate_terrain_graph(opt.graph, &compute);
+  } else if (!opt.scenario.empty()) {
+    params = load_scenario(opt.scenario);
+    if (!opt.name.empty()) params.set("terrain.generator", opt.name, "generate");
+    if (cmd.count("--size")) params.set_text("terrain.size", opt.size, "--size");
+    if (cmd.count("--cell")) params.set("terrain.cell", opt.cell, "--cell");
+    if (cmd.count("--seed"))
+      params.set("terrain.seed", static_cast<std::int64_t>(opt.seed), "--seed");
+    for (auto& s : opt.sets) apply_overrides(params, {"terrain.set." + s});
+    terrain = load_terrain(params);
+  } else {
+    if (opt.name.empty()) throw input_error("generate: name a generator (or give --scenario)");
+    int nx = 0, ny = 0;
+    parse_size(opt.size, nx, ny);
+    std::map<std::string, double> values;
+    for (auto& s : opt.sets) {
+      const auto eq = s.find('=');
+      double v = 0;
+      const std::string text = eq == std::string::npos ? "" : s.substr(eq + 1);
+      const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (eq == std::string::npos || eq == 0 || ec != std::errc() ||
+          p != text.data() + text.size()) {
+        throw input_error("--set " + s + ": expected key=number");
+      }
+      values[s.substr(0, eq)] = v;
+    }
+    std::unique_ptr<ComputeContext> compute;
+    if (find_generator(opt.name).on_device) compute = std::make_unique<ComputeContext>(opt.device);
+    terrain = generate_terrain(opt.name, nx, ny, opt.cell, opt.seed, values, compute.get());
+  }
+  return terrain;
+}
+
+// Writes the terrain (and its picture, or a layered terrain's strata) after checking that no
+// output replaces an input or another output.
+void generate(const GenerateOptions& opt, const CLI::App& cmd) {
+  Parameters params;
+  const Heightmap terrain = generated_terrain(opt, cmd, params);
+  std::vector<NamedPath> inputs = scenario_inputs(params, opt.scenario);
+  inputs.push_back({"--graph", opt.graph});
+  check_output_paths(inputs, {{"-o", opt.output}, {"--picture", opt.picture}});
+  if (!params.layers().empty()) {
+    // The strata on the terrain as the run sees it: heights rounded to the quantum.
+    const double q = params.real("erosion.height_quantum");
+    std::vector<std::int64_t> fixed(terrain.size());
+    for (std::size_t k = 0; k < fixed.size(); ++k) fixed[k] = std::llround(terrain.h[k] / q);
+    for (const std::string& f :
+         write_layered_terrain(opt.output, terrain, build_strata(params, terrain, fixed, q), q))
+      std::fprintf(stderr, "runnel: wrote %s\n", terminal_safe(f).c_str());
+    return;
+  }
+  if (std::filesystem::path(opt.output).extension() == ".h5")
+    throw input_error("-o " + opt.output +
+                      ": an .h5 output holds a layered terrain; give a "
+                      "--scenario with [[layers]]");
+  WriteOptions write;
+  if (!opt.range.empty() && terrain_format_from_path(opt.output) != TerrainFormat::kPng)
+    throw input_error("--range: only a PNG output has a height range");
+  if (!opt.range.empty()) write.png_range = parse_range(opt.range, "--range");
+  write_terrain(opt.output, terrain, write);
+  if (!opt.picture.empty())
+    write_png_rgb(opt.picture,
+                  terrain_picture(terrain, terrain.min_height(), terrain.max_height()));
+  std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, cell %g m, heights %.3f..%.3f m)\n",
+               terminal_safe(opt.output).c_str(), terrain.nx, terrain.ny, terrain.cell,
+               terrain.min_height(), terrain.max_height());
+}
+
 }  // namespace
 
 void add_generate_command(CLI::App& app) {
@@ -100,75 +178,7 @@ void add_generate_command(CLI::App& app) {
                   "take the terrain (generator, size, cell, seed, [terrain.set]) from "
                   "a scenario file; flags given on the command line override it");
   cmd->footer(generator_help());
-  cmd->callback([opt, cmd] {
-    Heightmap terrain;
-    Parameters params;
-    if (!opt->graph.empty()) {
-      if (!opt->name.empty() || !opt->scenario.empty())
-        throw input_error(
-            "--graph: the graph is the whole terrain; give no generator name or --scenario");
-      // The noise generators on the device: the same bytes as on the host, faster.
-      ComputeContext compute(opt->device);
-      terrain = evaluate_terrain_graph(opt->graph, &compute);
-    } else if (!opt->scenario.empty()) {
-      params = load_scenario(opt->scenario);
-      if (!opt->name.empty()) params.set("terrain.generator", opt->name, "generate");
-      if (cmd->count("--size")) params.set_text("terrain.size", opt->size, "--size");
-      if (cmd->count("--cell")) params.set("terrain.cell", opt->cell, "--cell");
-      if (cmd->count("--seed"))
-        params.set("terrain.seed", static_cast<std::int64_t>(opt->seed), "--seed");
-      for (auto& s : opt->sets) apply_overrides(params, {"terrain.set." + s});
-      terrain = load_terrain(params);
-    } else {
-      if (opt->name.empty()) throw input_error("generate: name a generator (or give --scenario)");
-      int nx = 0, ny = 0;
-      parse_size(opt->size, nx, ny);
-      std::map<std::string, double> values;
-      for (auto& s : opt->sets) {
-        const auto eq = s.find('=');
-        double v = 0;
-        const std::string text = eq == std::string::npos ? "" : s.substr(eq + 1);
-        const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (eq == std::string::npos || eq == 0 || ec != std::errc() ||
-            p != text.data() + text.size()) {
-          throw input_error("--set " + s + ": expected key=number");
-        }
-        values[s.substr(0, eq)] = v;
-      }
-      std::unique_ptr<ComputeContext> compute;
-      if (find_generator(opt->name).on_device)
-        compute = std::make_unique<ComputeContext>(opt->device);
-      terrain = generate_terrain(opt->name, nx, ny, opt->cell, opt->seed, values, compute.get());
-    }
-    std::vector<NamedPath> inputs = scenario_inputs(params, opt->scenario);
-    inputs.push_back({"--graph", opt->graph});
-    check_output_paths(inputs, {{"-o", opt->output}, {"--picture", opt->picture}});
-    if (!params.layers().empty()) {
-      // The strata on the terrain as the run sees it: heights rounded to the quantum.
-      const double q = params.real("erosion.height_quantum");
-      std::vector<std::int64_t> fixed(terrain.size());
-      for (std::size_t k = 0; k < fixed.size(); ++k) fixed[k] = std::llround(terrain.h[k] / q);
-      for (const std::string& f :
-           write_layered_terrain(opt->output, terrain, build_strata(params, terrain, fixed, q), q))
-        std::fprintf(stderr, "runnel: wrote %s\n", terminal_safe(f).c_str());
-      return;
-    }
-    if (std::filesystem::path(opt->output).extension() == ".h5")
-      throw input_error("-o " + opt->output +
-                        ": an .h5 output holds a layered terrain; give a "
-                        "--scenario with [[layers]]");
-    WriteOptions write;
-    if (!opt->range.empty() && terrain_format_from_path(opt->output) != TerrainFormat::kPng)
-      throw input_error("--range: only a PNG output has a height range");
-    if (!opt->range.empty()) write.png_range = parse_range(opt->range, "--range");
-    write_terrain(opt->output, terrain, write);
-    if (!opt->picture.empty())
-      write_png_rgb(opt->picture,
-                    terrain_picture(terrain, terrain.min_height(), terrain.max_height()));
-    std::fprintf(stderr, "runnel: wrote %s (%d x %d vertices, cell %g m, heights %.3f..%.3f m)\n",
-                 terminal_safe(opt->output).c_str(), terrain.nx, terrain.ny, terrain.cell,
-                 terrain.min_height(), terrain.max_height());
-  });
+  cmd->callback([opt, cmd] { generate(*opt, *cmd); });
 }
 
 }  // namespace runnel::cli
