@@ -14,18 +14,62 @@
 
 namespace runnel::cli {
 
+namespace {
+
+struct RunFlags {
+  std::string scenario, terrain, generate, model, out = "runnel-out", device;
+  long long steps = -1;
+  double sim_time = -1;
+  long long seed = -1;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  std::string trace;
+  OutputFlags output;
+};
+
+// The scenario with the flags applied, checked, run and reported.
+void run(const RunFlags& opt) {
+  Parameters params = opt.scenario.empty() ? Parameters() : load_scenario(opt.scenario);
+  if (!opt.terrain.empty()) params.set("terrain.file", opt.terrain, "--terrain");
+  if (!opt.generate.empty()) {
+    params.set("terrain.file", std::string(), "--generate");
+    params.set("terrain.generator", opt.generate, "--generate");
+  }
+  if (opt.steps >= 0) params.set("run.steps", static_cast<std::int64_t>(opt.steps), "--steps");
+  if (opt.sim_time >= 0) {
+    params.set("run.sim_time", opt.sim_time, "--sim-time");
+    params.set("run.steps", static_cast<std::int64_t>(0), "--sim-time");
+  }
+  if (opt.seed >= 0) params.set("run.seed", static_cast<std::int64_t>(opt.seed), "--seed");
+  apply_overrides(params, opt.sets);
+  if (!opt.model.empty()) params.set("run.model", opt.model, "--model");
+  const ModelClock clock = model_entry(params.text("run.model")).info().clock;
+  if (opt.sim_time >= 0 && clock == ModelClock::kIterations) {
+    throw input_error("--sim-time: the " + params.text("run.model") +
+                      " model counts iterations, not seconds; use --steps or run.iterations");
+  }
+  if (opt.sim_time >= 0 && clock == ModelClock::kYears)  // the flag wins over the scenario
+    params.set("run.sim_years", opt.sim_time, "--sim-time");
+  require_run_length(params, clock);
+  check_run_outputs(scenario_inputs(params, opt.scenario), opt.out, opt.trace);
+  const Heightmap terrain = load_terrain(params);
+  ComputeContext compute(opt.device);
+  RunOptions options = run_options_from(params, clock);
+  options.out_dir = opt.out;
+  options.quiet = opt.quiet;
+  opt.output.apply(options);
+  // Building the model validates every setting before anything is written.
+  const std::unique_ptr<Model> model = make_model(compute, params, terrain);
+  if (!opt.trace.empty()) compute.profiler().trace_to(opt.trace);
+  const RunSummary s = run_model(compute, *model, options);
+  std::cout << terminal_safe(opt.out) << "/metrics.json: " << s.steps << " steps, mass balance "
+            << s.balance.residual << " m^3 (relative " << s.balance.relative << ")\n";
+}
+
+}  // namespace
+
 void add_run_command(CLI::App& app) {
-  struct Options {
-    std::string scenario, terrain, generate, model, out = "runnel-out", device;
-    long long steps = -1;
-    double sim_time = -1;
-    long long seed = -1;
-    std::vector<std::string> sets;
-    bool quiet = false;
-    std::string trace;
-    OutputFlags output;
-  };
-  auto opt = std::make_shared<Options>();
+  auto opt = std::make_shared<RunFlags>();
   auto* cmd = app.add_subcommand(
       "run",
       "Run an erosion model on a terrain: by default runnel's SPH rain erosion (rain falls, flows, "
@@ -63,43 +107,7 @@ void add_run_command(CLI::App& app) {
                   "chrome://tracing; about 150 bytes a launch, ~35 launches an SPH step)")
       ->type_name("FILE");
   add_output_flags(*cmd, opt->output);
-  cmd->callback([opt] {
-    Parameters params = opt->scenario.empty() ? Parameters() : load_scenario(opt->scenario);
-    if (!opt->terrain.empty()) params.set("terrain.file", opt->terrain, "--terrain");
-    if (!opt->generate.empty()) {
-      params.set("terrain.file", std::string(), "--generate");
-      params.set("terrain.generator", opt->generate, "--generate");
-    }
-    if (opt->steps >= 0) params.set("run.steps", static_cast<std::int64_t>(opt->steps), "--steps");
-    if (opt->sim_time >= 0) {
-      params.set("run.sim_time", opt->sim_time, "--sim-time");
-      params.set("run.steps", static_cast<std::int64_t>(0), "--sim-time");
-    }
-    if (opt->seed >= 0) params.set("run.seed", static_cast<std::int64_t>(opt->seed), "--seed");
-    apply_overrides(params, opt->sets);
-    if (!opt->model.empty()) params.set("run.model", opt->model, "--model");
-    const ModelClock clock = model_entry(params.text("run.model")).info().clock;
-    if (opt->sim_time >= 0 && clock == ModelClock::kIterations) {
-      throw input_error("--sim-time: the " + params.text("run.model") +
-                        " model counts iterations, not seconds; use --steps or run.iterations");
-    }
-    if (opt->sim_time >= 0 && clock == ModelClock::kYears)  // the flag wins over the scenario
-      params.set("run.sim_years", opt->sim_time, "--sim-time");
-    require_run_length(params, clock);
-    check_run_outputs(scenario_inputs(params, opt->scenario), opt->out, opt->trace);
-    const Heightmap terrain = load_terrain(params);
-    ComputeContext compute(opt->device);
-    RunOptions options = run_options_from(params, clock);
-    options.out_dir = opt->out;
-    options.quiet = opt->quiet;
-    opt->output.apply(options);
-    // Building the model validates every setting before anything is written.
-    const std::unique_ptr<Model> model = make_model(compute, params, terrain);
-    if (!opt->trace.empty()) compute.profiler().trace_to(opt->trace);
-    const RunSummary s = run_model(compute, *model, options);
-    std::cout << terminal_safe(opt->out) << "/metrics.json: " << s.steps << " steps, mass balance "
-              << s.balance.residual << " m^3 (relative " << s.balance.relative << ")\n";
-  });
+  cmd->callback([opt] { run(*opt); });
 }
 
 }  // namespace runnel::cli
