@@ -148,6 +148,67 @@ int run_mpi(const SweepOptions& opt, const SweepSpec& spec,
 #endif
 }
 
+// Expands the sweep (counted first), then runs it, one member, its SLURM script, or its tables.
+void sweep(SweepOptions opt) {
+  const SweepSpec spec = read_sweep(opt.file);
+  // Counted before anything is expanded: a sweep of 10^5 members is refused at once.
+  const long long count = sweep_member_count(spec);
+  if (count > spec.max_members && !opt.force) {
+    throw input_error(opt.file + ": " +
+                      (count > kMaxSweepMembers ? "more than " + std::to_string(kMaxSweepMembers)
+                                                : std::to_string(count)) +
+                      " members, more than max_members = " + std::to_string(spec.max_members) +
+                      " (--force to run them anyway)");
+  }
+  const std::vector<SweepMember> members = expand_sweep(spec);
+  if (opt.member >= static_cast<long long>(members.size())) {
+    throw input_error("--member " + std::to_string(opt.member) + ": the sweep has members 0 to " +
+                      std::to_string(members.size() - 1));
+  }
+  if (launched_by_mpi() && opt.member < 0 && !opt.slurm && !opt.collect && !opt.report) {
+    const int failed = run_mpi(opt, spec, members);
+    std::cout << terminal_safe(opt.out) << "/results.csv: " << members.size() - failed << " of "
+              << members.size() << " members done\n";
+    if (failed > 0) throw runtime_error("sweep: " + std::to_string(failed) + " members failed");
+    return;
+  }
+  // The script is composed (and its names checked) before the folder is claimed.
+  const std::string script_text =
+      opt.slurm ? slurm_script(spec, members, opt.out, fs::read_symlink("/proc/self/exe").string(),
+                               opt.time_limit)
+                : std::string();
+  claim_sweep_folder(opt.out, members, opt.extend);
+  if (opt.slurm) {
+    const fs::path script = fs::path(opt.out) / "sweep.slurm";
+    write_text_atomically(script.string(), script_text);
+    std::cout << terminal_safe(script.string()) << ": sbatch it to run the " << members.size()
+              << " members\n";
+    return;
+  }
+  if (opt.collect || opt.report) {
+    write_sweep_tables(spec, members, opt.out);
+    if (opt.report) {
+      for (const std::string& file : write_sweep_report(spec, members, opt.out))
+        std::cout << file << "\n";
+    }
+    return;
+  }
+  if (opt.member >= 0) {
+    const SweepMember& m = members[static_cast<std::size_t>(opt.member)];
+    if (member_state(opt.out, m.index) == MemberState::kDone) return;  // a requeued task
+    run_member(spec, m, opt.out, opt.quiet);
+    return;
+  }
+  if (opt.jobs == 0) opt.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int failed = run_workers(opt, spec, members);
+  std::cout << terminal_safe(opt.out) << "/results.csv: " << members.size() - failed << " of "
+            << members.size() << " members done\n";
+  if (failed > 0) {
+    throw runtime_error("sweep: " + std::to_string(failed) + " members failed (messages in " +
+                        opt.out + "/manifest.csv); run the command again to retry them");
+  }
+}
+
 }  // namespace
 
 void add_sweep_command(CLI::App& app) {
@@ -179,66 +240,7 @@ void add_sweep_command(CLI::App& app) {
                 "draw DIR/report_METRIC_vs_PARAMETER.png for the done members: each metric against "
                 "each varied numeric parameter, one line per model");
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
-  cmd->callback([opt] {
-    const SweepSpec spec = read_sweep(opt->file);
-    // Counted before anything is expanded: a sweep of 10^5 members is refused at once.
-    const long long count = sweep_member_count(spec);
-    if (count > spec.max_members && !opt->force) {
-      throw input_error(opt->file + ": " +
-                        (count > kMaxSweepMembers ? "more than " + std::to_string(kMaxSweepMembers)
-                                                  : std::to_string(count)) +
-                        " members, more than max_members = " + std::to_string(spec.max_members) +
-                        " (--force to run them anyway)");
-    }
-    const std::vector<SweepMember> members = expand_sweep(spec);
-    if (opt->member >= static_cast<long long>(members.size())) {
-      throw input_error("--member " + std::to_string(opt->member) +
-                        ": the sweep has members 0 to " + std::to_string(members.size() - 1));
-    }
-    if (launched_by_mpi() && opt->member < 0 && !opt->slurm && !opt->collect && !opt->report) {
-      const int failed = run_mpi(*opt, spec, members);
-      std::cout << terminal_safe(opt->out) << "/results.csv: " << members.size() - failed << " of "
-                << members.size() << " members done\n";
-      if (failed > 0) throw runtime_error("sweep: " + std::to_string(failed) + " members failed");
-      return;
-    }
-    // The script is composed (and its names checked) before the folder is claimed.
-    const std::string script_text =
-        opt->slurm ? slurm_script(spec, members, opt->out,
-                                  fs::read_symlink("/proc/self/exe").string(), opt->time_limit)
-                   : std::string();
-    claim_sweep_folder(opt->out, members, opt->extend);
-    if (opt->slurm) {
-      const fs::path script = fs::path(opt->out) / "sweep.slurm";
-      write_text_atomically(script.string(), script_text);
-      std::cout << terminal_safe(script.string()) << ": sbatch it to run the " << members.size()
-                << " members\n";
-      return;
-    }
-    if (opt->collect || opt->report) {
-      write_sweep_tables(spec, members, opt->out);
-      if (opt->report) {
-        for (const std::string& file : write_sweep_report(spec, members, opt->out))
-          std::cout << file << "\n";
-      }
-      return;
-    }
-    if (opt->member >= 0) {
-      const SweepMember& m = members[static_cast<std::size_t>(opt->member)];
-      if (member_state(opt->out, m.index) == MemberState::kDone) return;  // a requeued task
-      run_member(spec, m, opt->out, opt->quiet);
-      return;
-    }
-    if (opt->jobs == 0)
-      opt->jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    const int failed = run_workers(*opt, spec, members);
-    std::cout << terminal_safe(opt->out) << "/results.csv: " << members.size() - failed << " of "
-              << members.size() << " members done\n";
-    if (failed > 0) {
-      throw runtime_error("sweep: " + std::to_string(failed) + " members failed (messages in " +
-                          opt->out + "/manifest.csv); run the command again to retry them");
-    }
-  });
+  cmd->callback([opt] { sweep(*opt); });
 }
 
 }  // namespace runnel::cli
