@@ -13,14 +13,77 @@
 
 namespace runnel::cli {
 
+namespace {
+
+struct ValidateFlags {
+  std::string which, out, device, terrain;
+  int resolution = 0;
+  double settle = 0;
+  std::vector<std::string> sets;
+};
+
+// The stream-power model against its analytic steady states, as JSON on stdout.
+void print_stream_power_validation() {
+  std::vector<JsonObject> profiles;
+  for (double n : {1.0, 2.0, 4.0})
+    profiles.push_back(json(stream_power_profile(n)).add("n", n).add("target_theta", 0.5 / n));
+  std::vector<JsonObject> grids;
+  for (double n : {1.0, 2.0})
+    grids.push_back(json(stream_power_grid(41, n, 4)).add("n", n).add("target_theta", 0.5 / n));
+  std::cout << JsonObject()
+                   .add("case", "stream-power")
+                   .add("profile_1d", profiles)
+                   .add("grid_2d", grids)
+                   .add("hillslope_diffusion", json(hillslope_diffusion()))
+                   .str()
+            << "\n";
+}
+
+// The case's options from the flags (each checked), then the case, its summary on stdout.
+void validate(const ValidateFlags& opt, const CLI::App& cmd) {
+  ValidationOptions v;
+  v.resolution = opt.resolution;
+  // Given, they must be meaningful; absent (0), each case uses its default.
+  if (cmd.count("--resolution") && (opt.resolution < 2 || opt.resolution > 2000))
+    throw input_error("--resolution: must be 2 to 2000 (got " + std::to_string(opt.resolution) +
+                      ")");
+  if (cmd.count("--settle") && !(opt.settle > 0 && opt.settle <= 1e4))
+    throw input_error("--settle: must be more than 0 and at most 10000 s");
+  v.settle_time = opt.settle;
+  apply_overrides(v.params, opt.sets);
+  if (cmd.count("--terrain")) {
+    if (opt.which != "erosion-convergence")
+      throw input_error("--terrain: only erosion-convergence rains on a terrain");
+    if (cmd.count("--resolution"))
+      throw input_error("--resolution: not with --terrain (the file sets the terrain's size)");
+    // As `runnel run --terrain` reads it: --set terrain.cell=... gives a .png or .npy its cell.
+    v.params.set("terrain.file", opt.terrain, "--terrain");
+    v.terrain = load_terrain(v.params);
+    v.terrain_name = std::filesystem::path(opt.terrain).filename().string();
+  }
+  if (!opt.out.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(opt.out, ec);
+    if (ec) throw input_error("--out " + opt.out + ": cannot create the folder: " + ec.message());
+    v.out_dir = opt.out;
+  }
+  v.progress = isatty(STDERR_FILENO);
+  if (opt.which == "stream-power") {  // host-side numerics: no device
+    print_stream_power_validation();
+    return;
+  }
+  ComputeContext compute(opt.device);
+  const ValidationResult r = opt.which == "hydrostatic" ? validate_hydrostatic(compute, v)
+                             : opt.which == "dambreak"  ? validate_dambreak(compute, v)
+                             : opt.which == "droplet"   ? validate_droplet(compute, v)
+                                                        : validate_erosion_convergence(compute, v);
+  std::cout << r.summary_json() << "\n";
+}
+
+}  // namespace
+
 void add_validate_command(CLI::App& app) {
-  struct Options {
-    std::string which, out, device, terrain;
-    int resolution = 0;
-    double settle = 0;
-    std::vector<std::string> sets;
-  };
-  auto opt = std::make_shared<Options>();
+  auto opt = std::make_shared<ValidateFlags>();
   auto* cmd = app.add_subcommand(
       "validate",
       "Run an SPH reference case and compare it with its reference: "
@@ -51,58 +114,7 @@ void add_validate_command(CLI::App& app) {
   cmd->add_option("--out", opt->out, "folder for pressure.csv / front.csv (created)");
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
-  cmd->callback([opt, cmd] {
-    ValidationOptions v;
-    v.resolution = opt->resolution;
-    // Given, they must be meaningful; absent (0), each case uses its default.
-    if (cmd->count("--resolution") && (opt->resolution < 2 || opt->resolution > 2000))
-      throw input_error("--resolution: must be 2 to 2000 (got " + std::to_string(opt->resolution) +
-                        ")");
-    if (cmd->count("--settle") && !(opt->settle > 0 && opt->settle <= 1e4))
-      throw input_error("--settle: must be more than 0 and at most 10000 s");
-    v.settle_time = opt->settle;
-    apply_overrides(v.params, opt->sets);
-    if (cmd->count("--terrain")) {
-      if (opt->which != "erosion-convergence")
-        throw input_error("--terrain: only erosion-convergence rains on a terrain");
-      if (cmd->count("--resolution"))
-        throw input_error("--resolution: not with --terrain (the file sets the terrain's size)");
-      // As `runnel run --terrain` reads it: --set terrain.cell=... gives a .png or .npy its cell.
-      v.params.set("terrain.file", opt->terrain, "--terrain");
-      v.terrain = load_terrain(v.params);
-      v.terrain_name = std::filesystem::path(opt->terrain).filename().string();
-    }
-    if (!opt->out.empty()) {
-      std::error_code ec;
-      std::filesystem::create_directories(opt->out, ec);
-      if (ec)
-        throw input_error("--out " + opt->out + ": cannot create the folder: " + ec.message());
-      v.out_dir = opt->out;
-    }
-    v.progress = isatty(STDERR_FILENO);
-    if (opt->which == "stream-power") {  // host-side numerics: no device
-      std::vector<JsonObject> profiles;
-      for (double n : {1.0, 2.0, 4.0})
-        profiles.push_back(json(stream_power_profile(n)).add("n", n).add("target_theta", 0.5 / n));
-      std::vector<JsonObject> grids;
-      for (double n : {1.0, 2.0})
-        grids.push_back(json(stream_power_grid(41, n, 4)).add("n", n).add("target_theta", 0.5 / n));
-      std::cout << JsonObject()
-                       .add("case", "stream-power")
-                       .add("profile_1d", profiles)
-                       .add("grid_2d", grids)
-                       .add("hillslope_diffusion", json(hillslope_diffusion()))
-                       .str()
-                << "\n";
-      return;
-    }
-    ComputeContext compute(opt->device);
-    const ValidationResult r = opt->which == "hydrostatic" ? validate_hydrostatic(compute, v)
-                               : opt->which == "dambreak"  ? validate_dambreak(compute, v)
-                               : opt->which == "droplet"   ? validate_droplet(compute, v)
-                                                         : validate_erosion_convergence(compute, v);
-    std::cout << r.summary_json() << "\n";
-  });
+  cmd->callback([opt, cmd] { validate(*opt, *cmd); });
 }
 
 }  // namespace runnel::cli
