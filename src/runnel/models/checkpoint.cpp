@@ -165,6 +165,102 @@ Heightmap CheckpointData::initial_terrain() const {
   return initial;
 }
 
+namespace {
+
+// /terrain: the heights (float and fixed point), the initial ones, the erosion maps and the grid's
+// georeferencing.
+void write_terrain_group(H5File& f, const CheckpointData& d) {
+  const Heightmap& t = d.terrain;
+  const std::vector<hsize_t> grid = {static_cast<hsize_t>(t.ny), static_cast<hsize_t>(t.nx)};
+  f.create_group("/terrain");
+  f.write("/terrain/height", t.h, grid);
+  f.write("/terrain/height_fixed", d.height_fixed, grid);
+  f.write("/terrain/initial_fixed", d.initial_fixed, grid);
+  std::vector<float> eroded(t.size()), deposited(t.size());
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double change =
+        static_cast<double>(d.height_fixed[k] - d.initial_fixed[k]) * d.height_quantum;
+    eroded[k] = static_cast<float>(std::max(0.0, -change));
+    deposited[k] = static_cast<float>(std::max(0.0, change));
+  }
+  f.write("/terrain/eroded", eroded, grid);
+  f.write("/terrain/deposited", deposited, grid);
+  f.attribute("/terrain", "cell", t.cell);
+  f.attribute("/terrain", "origin_x", t.origin_x);
+  f.attribute("/terrain", "origin_z", t.origin_z);
+  // The source's georeferencing (absent when it had none): the CRS as OGC WKT, its NODATA value.
+  if (!t.georef.crs_wkt.empty()) f.attribute("/terrain", "crs_wkt", t.georef.crs_wkt);
+  if (t.georef.nodata) f.attribute("/terrain", "nodata", *t.georef.nodata);
+  f.attribute("/terrain", "height_quantum", d.height_quantum);
+}
+
+// /particles: every field of every particle, and the rates a restart needs.
+void write_particles_group(H5File& f, const CheckpointData& d) {
+  const hsize_t n = d.particles.size();
+  f.create_group("/particles");
+  for (ParticleField field : kFloatFields) {
+    f.write(dataset_path("particles", particle_field_info(field).name), d.particles.f[field], {n});
+  }
+  f.write("/particles/sediment", d.particles.sediment, {n});
+  f.write("/particles/contacts", d.particles.contacts, {n});
+  f.write("/particles/id", d.particles.id, {n});
+  f.write("/particles/ax", d.ax, {n});
+  f.write("/particles/ay", d.ay, {n});
+  f.write("/particles/az", d.az, {n});
+  f.write("/particles/drho", d.drho, {n});
+  f.write("/particles/depth", d.depth, {n});
+  if (!d.kappa.empty()) f.write("/particles/kappa", d.kappa, {n});
+  if (!d.kappa_v.empty()) f.write("/particles/kappa_v", d.kappa_v, {n});
+  f.attribute("/particles", "count", static_cast<std::int64_t>(n));
+  f.attribute("/particles", "next_id", static_cast<std::int64_t>(d.next_id));
+  f.attribute("/particles", "sediment_quantum_m3",
+              d.height_quantum * d.terrain.cell * d.terrain.cell);
+}
+
+// /state: the clock, the rain's counters, the seed and the model's counters.
+void write_state_group(H5File& f, const CheckpointData& d) {
+  f.create_group("/state");
+  f.attribute("/state", "time", d.time);
+  f.attribute("/state", "dt", d.dt);
+  f.attribute("/state", "steps", static_cast<std::int64_t>(d.steps));
+  f.attribute("/state", "rain_spawned", static_cast<std::int64_t>(d.rain_spawned));
+  f.attribute("/state", "rain_carry", d.rain_carry);
+  f.attribute("/state", "rain_held_back", static_cast<std::int64_t>(d.rain_held_back));
+  f.attribute("/state", "seed", d.seed);
+  const SphCounters& c = d.counters;
+  f.write("/state/counters",
+          std::vector<std::int64_t>{c.surface_projections, c.outflow_particles, c.collisions,
+                                    c.outflow_sediment, c.evaporated_particles, c.lost_sediment},
+          {6});
+  std::string counter_names;
+  for (auto& [name, value] : d.model_counters) {
+    counter_names += (counter_names.empty() ? "" : ",") + name;
+    f.attribute("/state", "counter_" + name, value);
+  }
+  f.attribute("/state", "counters", counter_names);
+}
+
+// /fields: the grid models' fields, by their dictionary names.
+void write_fields_group(H5File& f, const CheckpointData& d) {
+  const auto ny = static_cast<hsize_t>(d.terrain.ny), nx = static_cast<hsize_t>(d.terrain.nx);
+  f.create_group("/fields");
+  std::string field_names;
+  for (const StoredField& field : d.fields) {
+    field_names += (field_names.empty() ? "" : ",") + field.name;
+    const std::vector<hsize_t> dims =
+        field.components > 1 ? std::vector<hsize_t>{ny, nx, static_cast<hsize_t>(field.components)}
+                             : std::vector<hsize_t>{ny, nx};
+    const std::string name = "/fields/" + field.name;
+    if (!field.i64.empty())
+      f.write(name, field.i64, dims);
+    else
+      f.write(name, field.f32, dims);
+  }
+  f.attribute("/fields", "names", field_names);
+}
+
+}  // namespace
+
 void write_checkpoint(const std::string& path, const CheckpointData& d) {
   write_path_atomically(path, [&](const std::string& temporary) {
     H5File f = H5File::create(temporary);
@@ -175,83 +271,10 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.attribute("/", "parameters_toml", d.parameters_toml);
     f.attribute("/", "run_id", run_identity(d.parameters_toml));
     f.attribute("/", "digest", digest_of(d));
-
-    const Heightmap& t = d.terrain;
-    const std::vector<hsize_t> grid = {static_cast<hsize_t>(t.ny), static_cast<hsize_t>(t.nx)};
-    f.create_group("/terrain");
-    f.write("/terrain/height", t.h, grid);
-    f.write("/terrain/height_fixed", d.height_fixed, grid);
-    f.write("/terrain/initial_fixed", d.initial_fixed, grid);
-    std::vector<float> eroded(t.size()), deposited(t.size());
-    for (std::size_t k = 0; k < t.size(); ++k) {
-      const double change =
-          static_cast<double>(d.height_fixed[k] - d.initial_fixed[k]) * d.height_quantum;
-      eroded[k] = static_cast<float>(std::max(0.0, -change));
-      deposited[k] = static_cast<float>(std::max(0.0, change));
-    }
-    f.write("/terrain/eroded", eroded, grid);
-    f.write("/terrain/deposited", deposited, grid);
-    f.attribute("/terrain", "cell", t.cell);
-    f.attribute("/terrain", "origin_x", t.origin_x);
-    f.attribute("/terrain", "origin_z", t.origin_z);
-    // The source's georeferencing (absent when it had none): the CRS as OGC WKT, its NODATA value.
-    if (!t.georef.crs_wkt.empty()) f.attribute("/terrain", "crs_wkt", t.georef.crs_wkt);
-    if (t.georef.nodata) f.attribute("/terrain", "nodata", *t.georef.nodata);
-    f.attribute("/terrain", "height_quantum", d.height_quantum);
-
-    const hsize_t n = d.particles.size();
-    f.create_group("/particles");
-    for (ParticleField field : kFloatFields) {
-      f.write(dataset_path("particles", particle_field_info(field).name), d.particles.f[field],
-              {n});
-    }
-    f.write("/particles/sediment", d.particles.sediment, {n});
-    f.write("/particles/contacts", d.particles.contacts, {n});
-    f.write("/particles/id", d.particles.id, {n});
-    f.write("/particles/ax", d.ax, {n});
-    f.write("/particles/ay", d.ay, {n});
-    f.write("/particles/az", d.az, {n});
-    f.write("/particles/drho", d.drho, {n});
-    f.write("/particles/depth", d.depth, {n});
-    if (!d.kappa.empty()) f.write("/particles/kappa", d.kappa, {n});
-    if (!d.kappa_v.empty()) f.write("/particles/kappa_v", d.kappa_v, {n});
-    f.attribute("/particles", "count", static_cast<std::int64_t>(n));
-    f.attribute("/particles", "next_id", static_cast<std::int64_t>(d.next_id));
-    f.attribute("/particles", "sediment_quantum_m3", d.height_quantum * t.cell * t.cell);
-
-    f.create_group("/state");
-    f.attribute("/state", "time", d.time);
-    f.attribute("/state", "dt", d.dt);
-    f.attribute("/state", "steps", static_cast<std::int64_t>(d.steps));
-    f.attribute("/state", "rain_spawned", static_cast<std::int64_t>(d.rain_spawned));
-    f.attribute("/state", "rain_carry", d.rain_carry);
-    f.attribute("/state", "rain_held_back", static_cast<std::int64_t>(d.rain_held_back));
-    f.attribute("/state", "seed", d.seed);
-    const SphCounters& c = d.counters;
-    f.write("/state/counters",
-            std::vector<std::int64_t>{c.surface_projections, c.outflow_particles, c.collisions,
-                                      c.outflow_sediment, c.evaporated_particles, c.lost_sediment},
-            {6});
-    std::string counter_names;
-    for (auto& [name, value] : d.model_counters) {
-      counter_names += (counter_names.empty() ? "" : ",") + name;
-      f.attribute("/state", "counter_" + name, value);
-    }
-    f.attribute("/state", "counters", counter_names);
-
-    f.create_group("/fields");
-    std::string field_names;
-    for (const StoredField& field : d.fields) {
-      field_names += (field_names.empty() ? "" : ",") + field.name;
-      std::vector<hsize_t> dims = grid;
-      if (field.components > 1) dims.push_back(static_cast<hsize_t>(field.components));
-      const std::string name = "/fields/" + field.name;
-      if (!field.i64.empty())
-        f.write(name, field.i64, dims);
-      else
-        f.write(name, field.f32, dims);
-    }
-    f.attribute("/fields", "names", field_names);
+    write_terrain_group(f, d);
+    write_particles_group(f, d);
+    write_state_group(f, d);
+    write_fields_group(f, d);
     f.flush();
   });
 }
