@@ -323,28 +323,9 @@ CheckpointData read_checkpoint(const std::string& path) {
 
 namespace {
 
-CheckpointData read_checkpoint_contents(const std::string& path) {
-  const H5File f = H5File::open_read(path);
-  if (!f.exists("/terrain") && !f.exists("/particles")) {
-    throw input_error(path + ": not a runnel checkpoint (no /terrain or /particles)");
-  }
-  const std::int64_t version = f.read_int_attribute("/", "schema_version");
-  if (version == 1 || version == 2) {
-    throw input_error(path + ": checkpoint schema version " + std::to_string(version) +
-                      " was written before the SPH time integration and terrain contact changed "
-                      "(schema 3): it cannot continue exactly here; resume it with the runnel that "
-                      "wrote it, or start the run again");
-  }
-  if (version != kCheckpointSchemaVersion) {
-    throw input_error(path + ": checkpoint schema version " + std::to_string(version) +
-                      ", this runnel reads version " + std::to_string(kCheckpointSchemaVersion));
-  }
-  CheckpointData d;
-  d.model = f.read_string_attribute("/", "model");
-  d.runnel_version = f.read_string_attribute("/", "runnel_version");
-  d.source_revision = f.read_string_attribute("/", "source_revision");
-  d.parameters_toml = f.read_string_attribute("/", "parameters_toml");
-
+// /terrain, checked as it is read; returns its grid's dimensions (ny, nx).
+std::vector<hsize_t> read_terrain_group(const H5File& f, const std::string& path,
+                                        CheckpointData& d) {
   const std::vector<hsize_t> grid = f.dims("/terrain/height");
   if (grid.size() != 2 || grid[0] < 2 || grid[1] < 2)
     throw input_error(path + ": /terrain/height is not a 2-D grid");
@@ -366,6 +347,11 @@ CheckpointData read_checkpoint_contents(const std::string& path) {
   d.height_fixed = f.read_int64("/terrain/height_fixed", grid);
   d.initial_fixed = f.read_int64("/terrain/initial_fixed", grid);
 
+  return grid;
+}
+
+// /particles, the count checked against the datasets before anything is allocated.
+void read_particles_group(const H5File& f, const std::string& path, CheckpointData& d) {
   const std::int64_t count = f.read_int_attribute("/particles", "count");
   if (count < 0) throw input_error(path + ": /particles@count is negative");
   const std::vector<hsize_t> n = {static_cast<hsize_t>(count)};
@@ -393,7 +379,10 @@ CheckpointData read_checkpoint_contents(const std::string& path) {
   for (auto* rates : {&d.ax, &d.ay, &d.az, &d.drho})
     require_finite(path, "/particles rates", *rates);
   d.next_id = static_cast<std::uint32_t>(f.read_int_attribute("/particles", "next_id"));
+}
 
+// /state: the clock, the rain's counters, the seed and the counters.
+void read_state_group(const H5File& f, const std::string& path, CheckpointData& d) {
   d.time = f.read_double_attribute("/state", "time");
   d.dt = f.read_double_attribute("/state", "dt");
   if (!std::isfinite(d.time) || !(d.dt > 0) || !std::isfinite(d.dt))
@@ -410,6 +399,33 @@ CheckpointData read_checkpoint_contents(const std::string& path) {
   d.seed = f.read_int_attribute("/state", "seed");
   const auto c = f.read_int64("/state/counters", {6});
   d.counters = {c[0], c[1], c[2], c[3], c[4], c[5]};
+}
+
+CheckpointData read_checkpoint_contents(const std::string& path) {
+  const H5File f = H5File::open_read(path);
+  if (!f.exists("/terrain") && !f.exists("/particles")) {
+    throw input_error(path + ": not a runnel checkpoint (no /terrain or /particles)");
+  }
+  const std::int64_t version = f.read_int_attribute("/", "schema_version");
+  if (version == 1 || version == 2) {
+    throw input_error(path + ": checkpoint schema version " + std::to_string(version) +
+                      " was written before the SPH time integration and terrain contact changed "
+                      "(schema 3): it cannot continue exactly here; resume it with the runnel that "
+                      "wrote it, or start the run again");
+  }
+  if (version != kCheckpointSchemaVersion) {
+    throw input_error(path + ": checkpoint schema version " + std::to_string(version) +
+                      ", this runnel reads version " + std::to_string(kCheckpointSchemaVersion));
+  }
+  CheckpointData d;
+  d.model = f.read_string_attribute("/", "model");
+  d.runnel_version = f.read_string_attribute("/", "runnel_version");
+  d.source_revision = f.read_string_attribute("/", "source_revision");
+  d.parameters_toml = f.read_string_attribute("/", "parameters_toml");
+
+  const std::vector<hsize_t> grid = read_terrain_group(f, path, d);
+  read_particles_group(f, path, d);
+  read_state_group(f, path, d);
   read_model_state(f, path, grid, d);
   check_invariants(path, d);
   // A file that cannot be verified is not resumed: without the digest an edited velocity, seed
