@@ -15,6 +15,15 @@ void Viewer::draw_panel() {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("runnel");
+  panel_run_controls(model);
+  panel_brush_controls(model);
+  panel_readout(model);
+  ImGui::End();
+  if (help_) draw_help();
+}
+
+// The model, play and step, undo, and the files: checkpoint, screenshot, recording.
+void Viewer::panel_run_controls(Model& model) {
   int current = 0;
   for (std::size_t k = 0; k < model_names_.size(); ++k)
     if (model_names_[k] == model.info().name) current = static_cast<int>(k);
@@ -51,6 +60,10 @@ void Viewer::draw_panel() {
   ImGui::SameLine();
   if (ImGui::Button(recorder_ ? "Stop recording" : "Record")) toggle_recording();
   if (recorder_) ImGui::Text("recording: %lld frames", recorder_->frames());
+}
+
+// What the brush paints, its radius and rain, the water it added, the overlays.
+void Viewer::panel_brush_controls(Model& model) {
   ImGui::Separator();
   bool rain = session_->global_rain();
   if (model.info().has_rain && ImGui::Checkbox("scenario rain", &rain) && !session_->replaying())
@@ -94,6 +107,10 @@ void Viewer::draw_panel() {
     ImGui::Combo("particle colour", &colour, "sediment load\0flow speed\0");
     particle_colour_ = static_cast<ParticleColour>(colour);
   }
+}
+
+// The model's state: steps, time, the mass balance, messages, and a checkpoint to open.
+void Viewer::panel_readout(Model& model) {
   ImGui::Separator();
   ImGui::Text("%s", model.status().c_str());
   ImGui::Text("steps/s: %.0f   step %llu", steps_per_second_,
@@ -114,16 +131,16 @@ void Viewer::draw_panel() {
       ImGui::Text("%s = %s", key.c_str(), Parameters::to_text(value).c_str());
     }
   }
+}
+
+void Viewer::draw_help() {
+  ImGui::Begin("help", &help_);
+  ImGui::Text("left drag: paint rain   right drag: orbit   middle drag: pan");
+  ImGui::Text("wheel: zoom   ctrl/shift + wheel: brush radius");
+  ImGui::Text("F: water source at the brush   D: sink   C: clear both   G: scenario rain on/off");
+  ImGui::Text("ctrl+Z: undo the last stroke   space: play/pause   N: step   R: reset");
+  ImGui::Text("S: save checkpoint   P: screenshot   V: record   H: this help   Esc: quit");
   ImGui::End();
-  if (help_) {
-    ImGui::Begin("help", &help_);
-    ImGui::Text("left drag: paint rain   right drag: orbit   middle drag: pan");
-    ImGui::Text("wheel: zoom   ctrl/shift + wheel: brush radius");
-    ImGui::Text("F: water source at the brush   D: sink   C: clear both   G: scenario rain on/off");
-    ImGui::Text("ctrl+Z: undo the last stroke   space: play/pause   N: step   R: reset");
-    ImGui::Text("S: save checkpoint   P: screenshot   V: record   H: this help   Esc: quit");
-    ImGui::End();
-  }
 }
 
 void Viewer::print_stats(long long frame, double fps) {

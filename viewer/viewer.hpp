@@ -57,6 +57,10 @@ class Viewer {
   // in screenshots and recordings.
   void render_scene(int width, int height, bool with_brush = false);
   void draw_panel();
+  void panel_run_controls(Model& model);
+  void panel_brush_controls(Model& model);
+  void panel_readout(Model& model);
+  void draw_help();
   void print_stats(long long frame, double fps);
   void finish();
   double record_interval() const;
