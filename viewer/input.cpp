@@ -33,13 +33,20 @@ void Viewer::handle_input() {
         camera_.zoom(io.MouseWheel);
     }
   }
+  const bool can_paint = handle_brush(x, y, w, h, io.WantCaptureMouse);
+  if (!io.WantCaptureKeyboard) handle_keys(can_paint);
+}
+
+// The cursor ray against the terrain places the brush; the left button paints a stroke (rain, or a
+// mask). Returns whether the brush can paint here.
+bool Viewer::handle_brush(double x, double y, int w, int h, bool mouse_on_panel) {
   // The cursor ray against the terrain: where the brush is.
   glm::dvec3 origin, direction;
   camera_.ray(x, y, std::max(w, 1), std::max(h, 1), origin, direction);
   const double o[3] = {origin.x, origin.y, origin.z},
                d[3] = {direction.x, direction.y, direction.z};
   const auto hit = pick_terrain(session_->model().initial_terrain(), o, d);
-  brush_.over_terrain = hit.has_value() && !io.WantCaptureMouse;
+  brush_.over_terrain = hit.has_value() && !mouse_on_panel;
   if (hit) {
     brush_.x = hit->x;
     brush_.z = hit->z;
@@ -67,7 +74,10 @@ void Viewer::handle_input() {
     session_->paint_mask(brush_.disc(), value, rain_mask ? "rain" : "erodibility");
     last_mask_disc_ = brush_.disc();
   }
-  if (io.WantCaptureKeyboard) return;
+  return can_paint;
+}
+
+void Viewer::handle_keys(bool can_paint) {
   if (pressed(GLFW_KEY_Z | kCtrl) && !session_->replaying()) {
     message_ = session_->undo() ? "undone: back to the stroke's start"
                                 : "nothing to undo (the last " +

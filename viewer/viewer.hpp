@@ -49,6 +49,8 @@ class Viewer {
   void screenshot(const std::string& path);
   void toggle_recording();
   void handle_input();
+  bool handle_brush(double x, double y, int w, int h, bool mouse_on_panel);
+  void handle_keys(bool can_paint);
   void update_rain();
   void advance();
   void advance_unguarded();
