@@ -124,20 +124,11 @@ void write_compare_png(const std::string& path, const Heightmap& initial,
                                            " models, one terrain, one rain budget"));
 }
 
-std::string report_markdown(const std::vector<ModelResult>& results, const RainBudget& budget,
-                            const Heightmap& initial, const Options& options) {
-  std::string md = "# runnel compare: " + options.scenario_name + "\n\n";
-  md += "Terrain " + std::to_string(initial.nx) + " × " + std::to_string(initial.ny) +
-        " vertices, cell " + format("%.6g", initial.cell) + " m, heights " +
-        format("%.4g", initial.min_height()) + " to " + format("%.4g", initial.max_height()) +
-        " m. Rain budget " + format("%.6g", budget.volume) +
-        " m³ (the SPH rain: " + format("%.6g", budget.sph_rate) + " particles/s of " +
-        format("%.4g", budget.particle_volume) + " m³ for " + format("%.6g", budget.duration) +
-        " s); pipe and olsen rain it evenly on every cell, the droplet model as one droplet per "
-        "particle volume; thermal has no rain. See docs/models.md.\n\n";
-  md +=
-      "![initial terrain, then each model's final terrain above its erosion map](compare.png)\n\n";
-  md +=
+namespace {
+
+// One row a model: its run, its mass balance and the shared metrics.
+std::string results_table(const std::vector<ModelResult>& results) {
+  std::string md =
       "| model | class | steps | time | rain m³ | eroded m³ | deposited m³ | outflow m³ | balance "
       "(rel) | hypsometric integral | erosion score | mean slope ° | drainage density 1/m | "
       "concavity θ | spectral slope | erosion–flow ρ | stream-power ρ | depressions | short-λ "
@@ -164,6 +155,12 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
           format("%.3f", metric(r, "short_wavelength_dh_share")) + " | " +
           format("%.3f", metric(r, "short_wavelength_power_ratio")) + " |\n";
   }
+  return md;
+}
+
+// With a layered ground: the rock each model eroded from each material.
+std::string layers_table(const std::vector<ModelResult>& results) {
+  std::string md;
   if (!results.empty() && results.front().strata) {
     const Strata& strata = *results.front().strata;
     md +=
@@ -183,6 +180,26 @@ std::string report_markdown(const std::vector<ModelResult>& results, const RainB
       md += "\n";
     }
   }
+  return md;
+}
+
+}  // namespace
+
+std::string report_markdown(const std::vector<ModelResult>& results, const RainBudget& budget,
+                            const Heightmap& initial, const Options& options) {
+  std::string md = "# runnel compare: " + options.scenario_name + "\n\n";
+  md += "Terrain " + std::to_string(initial.nx) + " × " + std::to_string(initial.ny) +
+        " vertices, cell " + format("%.6g", initial.cell) + " m, heights " +
+        format("%.4g", initial.min_height()) + " to " + format("%.4g", initial.max_height()) +
+        " m. Rain budget " + format("%.6g", budget.volume) +
+        " m³ (the SPH rain: " + format("%.6g", budget.sph_rate) + " particles/s of " +
+        format("%.4g", budget.particle_volume) + " m³ for " + format("%.6g", budget.duration) +
+        " s); pipe and olsen rain it evenly on every cell, the droplet model as one droplet per "
+        "particle volume; thermal has no rain. See docs/models.md.\n\n";
+  md +=
+      "![initial terrain, then each model's final terrain above its erosion map](compare.png)\n\n";
+  md += results_table(results);
+  md += layers_table(results);
   // A comparison is only as fair as its least resolved model: say so beside the table.
   std::string cautions;
   const std::string steps = height_steps(initial).caution();
