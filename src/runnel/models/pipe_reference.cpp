@@ -28,13 +28,17 @@ std::int64_t sent(std::int64_t held, const double* flux4, double share, double u
 
 }  // namespace
 
-void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, double dt,
-          std::uint64_t seed, std::uint64_t step_index) {
+namespace {
+
+bool inside(int x, int z, int nx, int ny) {
+  return x >= 0 && z >= 0 && x < nx && z < ny;
+}
+
+// The virtual pipes' outflows from every cell: accelerated by the water levels' differences,
+// slowed by Manning friction, scaled so no cell sends more water than it has.
+std::vector<double> outflow_fluxes(const State& st, const std::vector<double>& d1, int nx, int ny,
+                                   double l, double q, const PipeSettings& s, double dt) {
   const std::size_t n = static_cast<std::size_t>(nx) * ny;
-  auto inside = [&](int x, int z) { return x >= 0 && z >= 0 && x < nx && z < ny; };
-  std::vector<double> d1(n);
-  for (std::size_t k = 0; k < n; ++k) d1[k] = st.depth[k] + dt * s.rain;
-  // Fluxes.
   std::vector<double> flux(4 * n);
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
@@ -44,7 +48,7 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
       for (int d = 0; d < 4; ++d) {
         const int x = i + kDi[d], z = j + kDj[d];
         double other = 0;
-        if (inside(x, z)) {
+        if (inside(x, z, nx, ny)) {
           const std::size_t m = static_cast<std::size_t>(z) * nx + x;
           other = static_cast<double>(st.height[m]) * q + d1[m];
         } else if (s.closed()) {
@@ -62,7 +66,12 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
       for (int d = 0; d < 4; ++d) flux[4 * k + d] = f[d] * scale;
     }
   }
-  // Water and velocity.
+  return flux;
+}
+
+// The depths after the exchange, and the velocities from the mean flux through each cell.
+void update_water(State& st, const std::vector<double>& flux, const std::vector<double>& d1, int nx,
+                  int ny, double l, double dt) {
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * nx + i;
@@ -70,7 +79,7 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
       for (int d = 0; d < 4; ++d) {
         out_total += flux[4 * k + d];
         const int x = i + kDi[d], z = j + kDj[d];
-        if (!inside(x, z)) continue;
+        if (!inside(x, z, nx, ny)) continue;
         in[d] = flux[4 * (static_cast<std::size_t>(z) * nx + x) + (d ^ 1)];
         in_total += in[d];
       }
@@ -83,8 +92,11 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
       st.velocity[2 * k + 1] = mean_depth > 1e-6 ? wz / (l * mean_depth) : 0.0;
     }
   }
-  st.flux = flux;
-  // Erosion and deposition on the slope of the heights as the step began; evaporation.
+}
+
+// Erosion and deposition on the slope of the heights as the step began; evaporation.
+void erode_and_evaporate(State& st, int nx, int ny, double l, double q, const PipeSettings& s,
+                         double dt, std::uint64_t seed, std::uint64_t step_index) {
   const std::vector<std::int64_t> start = st.height;
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
@@ -117,7 +129,12 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
       st.depth[k] *= std::exp(-s.evaporation * dt);
     }
   }
-  // Upwind transport of the sediment with the water that leaves.
+}
+
+// Upwind transport of the sediment with the water that leaves.
+void transport_sediment(State& st, const std::vector<double>& d1, int nx, int ny, double l,
+                        double dt, std::uint64_t seed, std::uint64_t step_index) {
+  const std::size_t n = static_cast<std::size_t>(nx) * ny;
   std::vector<std::int64_t> next(n);
   std::vector<double> share(n), u(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -132,7 +149,7 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
         const std::int64_t out = sent(st.sediment[k], &st.flux[4 * k], share[k], u[k], d);
         total -= out;
         const int x = i + kDi[d], z = j + kDj[d];
-        if (!inside(x, z)) {
+        if (!inside(x, z, nx, ny)) {
           st.outflow += std::max<std::int64_t>(out, 0);
           continue;
         }
@@ -143,6 +160,20 @@ void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, 
     }
   }
   st.sediment = next;
+}
+
+}  // namespace
+
+void step(State& st, int nx, int ny, double l, double q, const PipeSettings& s, double dt,
+          std::uint64_t seed, std::uint64_t step_index) {
+  const std::size_t n = static_cast<std::size_t>(nx) * ny;
+  std::vector<double> d1(n);
+  for (std::size_t k = 0; k < n; ++k) d1[k] = st.depth[k] + dt * s.rain;
+  const std::vector<double> flux = outflow_fluxes(st, d1, nx, ny, l, q, s, dt);
+  update_water(st, flux, d1, nx, ny, l, dt);
+  st.flux = flux;
+  erode_and_evaporate(st, nx, ny, l, q, s, dt, seed, step_index);
+  transport_sediment(st, d1, nx, ny, l, dt, seed, step_index);
 }
 
 }  // namespace runnel::pipe_reference
