@@ -12,20 +12,20 @@
 #include "runnel/interactive/session_log.hpp"
 #include "runnel/models/registry.hpp"
 
-int main(int argc, char** argv) {
-  // A closed pipe or a file-size limit while recording or saving is a write error, not a signal.
-  std::signal(SIGPIPE, SIG_IGN);
-  std::signal(SIGXFSZ, SIG_IGN);
-  runnel::viewer::ViewerOptions o;
-  std::string size = "1280x800";
-  CLI::App app{
-      "runnel-viewer: any runnel erosion model live in a window (docs/viewer.md). Paint rain with "
-      "the left mouse button (brush radius in m, intensity in mm/h in the panel); the water is "
-      "drawn as a surface tinted by its sediment load. Right drag orbits, middle drag pans, the "
-      "wheel zooms (ctrl/shift + wheel: brush radius); F places a water source, D a sink, C clears "
-      "them, "
-      "G switches the scenario's rain, ctrl+Z undoes the last stroke, space pauses, N steps, R "
-      "resets, S saves a checkpoint, P takes a screenshot, V records, H helps, Esc quits."};
+namespace {
+
+constexpr const char* kAbout =
+    "runnel-viewer: any runnel erosion model live in a window (docs/viewer.md). Paint rain with "
+    "the left mouse button (brush radius in m, intensity in mm/h in the panel); the water is "
+    "drawn as a surface tinted by its sediment load. Right drag orbits, middle drag pans, the "
+    "wheel zooms (ctrl/shift + wheel: brush radius); F places a water source, D a sink, C clears "
+    "them, "
+    "G switches the scenario's rain, ctrl+Z undoes the last stroke, space pauses, N steps, R "
+    "resets, S saves a checkpoint, P takes a screenshot, V records, H helps, Esc quits.";
+
+// Every flag, with its help and its check.
+void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::string& size,
+                     bool& no_rain, std::string& overlay) {
   app.add_option("input", o.input,
                  "scenario (.toml) or checkpoint (.h5) of any model; default: built-in defaults "
                  "(with --replay: the log's)");
@@ -39,12 +39,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--stats-every", o.stats_every, "print a JSON line of statistics every K frames")
       ->check(CLI::NonNegativeNumber);
-  bool no_rain = false;
   app.add_flag("--no-rain", no_rain, "start with the scenario's rain off (paint it)");
   app.add_flag("--particles", o.particles, "draw the SPH particles as dots over the water");
   app.add_flag("--paused", o.paused, "start paused (space plays)");
   app.add_option("--size", size, "window size WxH")->capture_default_str();
-  std::string overlay = "none";
   app.add_option("--overlay", overlay, "terrain overlay at start: none, erosion, water or speed")
       ->check(CLI::IsMember({"none", "erosion", "water", "speed"}))
       ->capture_default_str();
@@ -65,6 +63,20 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();
   app.add_option("--device", o.device, "OpenCL device (see 'runnel devices')");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A closed pipe or a file-size limit while recording or saving is a write error, not a signal.
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);
+  runnel::viewer::ViewerOptions o;
+  std::string size = "1280x800";
+  CLI::App app{kAbout};
+  bool no_rain = false;
+  std::string overlay = "none";
+  declare_options(app, o, size, no_rain, overlay);
   try {
     app.parse(argc, argv);
     const auto x = size.find('x');
