@@ -55,7 +55,7 @@ bool Viewer::handle_brush(double x, double y, int w, int h, bool mouse_on_panel)
   const bool painting_rain = brush_mode_ == BrushMode::kRain;
   const bool rain_mask = brush_mode_ == BrushMode::kDry || brush_mode_ == BrushMode::kWet;
   const bool can_paint = !session_->replaying() &&
-                         (painting_rain ? session_->model().paints_rain()
+                         (painting_rain ? session_->model().interaction().paints_rain()
                                         : session_->has_mask(rain_mask ? "rain" : "erodibility"));
   if (down && !mouse_down_ && brush_.over_terrain && can_paint) session_->begin_stroke();
   if (down && !mouse_down_ && brush_.over_terrain && !can_paint && !session_->replaying()) {
@@ -98,7 +98,7 @@ void Viewer::handle_keys(bool can_paint) {
     RainDisc sink = brush_.disc();
     sink.rate = -1.0;
     sources_.push_back(sink);
-    message_ = session_->model().water_view().depth.empty()
+    message_ = session_->model().interaction().water_view().depth.empty()
                    ? "a sink does nothing here: the model has no standing water"
                    : "sink placed: the water in it drains, its load settles";
   }

@@ -197,7 +197,7 @@ void Viewer::upload() {
   Model& model = session_->model();
   const Heightmap t = model.terrain();
   terrain_->update(t.h, terrain_normals_reference(t));
-  const WaterView w = model.water_view();
+  const WaterView w = model.interaction().water_view();
   water_->update(t.h, w.depth, w.load);
   std::vector<float> depth_speed(2 * t.size(), 0.0f);
   for (std::size_t k = 0; k < w.depth.size(); ++k) {

@@ -51,13 +51,13 @@ TEST_P(PaintsWater, PaintedDepthLandsOnTheDiscsVerticesAndNowhereElse) {
   auto& grid = dynamic_cast<GridModel&>(s.model());
   for (int k = 0; k < 3; ++k) s.step();  // the scenario rain is off: nothing falls
   EXPECT_EQ(s.model().rain_volume(), 0.0);
-  for (float d : s.model().water_view().depth) ASSERT_EQ(d, 0.0f);
+  for (float d : s.model().interaction().water_view().depth) ASSERT_EQ(d, 0.0f);
 
   s.set_rain({disc()});
   const double dt = s.step();  // the painted water comes after the step's flow
   const std::vector<int> inside = vertices_in_disc(33, 33, 1.0, disc());
   const std::set<int> expected(inside.begin(), inside.end());
-  const std::vector<float> depth = s.model().water_view().depth;
+  const std::vector<float> depth = s.model().interaction().water_view().depth;
   const float painted = static_cast<float>(disc().rate * dt);
   for (int k = 0; k < static_cast<int>(depth.size()); ++k) {
     if (expected.count(k)) {
@@ -82,7 +82,7 @@ TEST_P(PaintsWater, ASinkDrainsItsDiscAndTheLoadSettles) {
   const RainDisc sink{16.0, 15.0, 3.0, -1.0};
   s.set_rain({disc(0.2), sink});
   s.step();
-  const std::vector<float> depth = s.model().water_view().depth;
+  const std::vector<float> depth = s.model().interaction().water_view().depth;
   const std::vector<int> drained = vertices_in_disc(33, 33, 1.0, sink);
   ASSERT_FALSE(drained.empty());
   for (int k : drained) EXPECT_EQ(depth[k], 0.0f) << "vertex " << k;
@@ -136,11 +136,11 @@ TEST(Session, DropletsFallOnThePaintedDisc) {
 TEST(Session, SphRainsOnTheBrushDisc) {
   Session s = session("sph");
   for (int k = 0; k < 20; ++k) s.step();
-  EXPECT_TRUE(s.model().water_view().points.empty()) << "no particles without rain";
+  EXPECT_TRUE(s.model().interaction().water_view().points.empty()) << "no particles without rain";
   const RainDisc d{10.0, 20.0, 4.0, 0.5};
   s.set_rain({d});
   for (int k = 0; k < 40; ++k) s.step();
-  const WaterView w = s.model().water_view();
+  const WaterView w = s.model().interaction().water_view();
   ASSERT_GT(w.points.size(), 0u);
   // Fresh drops fall almost straight down: within a particle spacing (0.5 m) of the disc.
   for (std::size_t i = 0; i < w.points.size(); i += 4) {
@@ -155,14 +155,15 @@ TEST(Session, AnSphSinkEvaporatesTheParticlesOverIt) {
   Session s = session("sph");
   s.set_rain({{10.0, 20.0, 4.0, 0.5}});
   for (int k = 0; k < 60; ++k) s.step();
-  const std::size_t before = s.model().water_view().points.size();
+  const std::size_t before = s.model().interaction().water_view().points.size();
   ASSERT_GT(before, 0u);
   s.set_rain({{30.0, 2.0, 1.5, -1.0}});  // a sink in a corner, away from the water
   s.step();
-  EXPECT_EQ(s.model().water_view().points.size(), before) << "nothing over it, nothing drained";
+  EXPECT_EQ(s.model().interaction().water_view().points.size(), before)
+      << "nothing over it, nothing drained";
   s.set_rain({{16.0, 16.0, 100.0, -1.0}});  // one over everything
   for (int k = 0; k < 3; ++k) s.step();
-  EXPECT_EQ(s.model().water_view().points.size(), 0u);
+  EXPECT_EQ(s.model().interaction().water_view().points.size(), 0u);
   EXPECT_EQ(s.model().mass_balance().residual_quanta, 0);
 }
 

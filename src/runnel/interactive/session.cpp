@@ -41,8 +41,8 @@ void Session::make_start_model() {
 }
 
 void Session::apply_inputs() {
-  model_->set_global_rain(global_rain_);
-  model_->set_painted_rain(discs_);
+  model_->interaction().set_global_rain(global_rain_);
+  model_->interaction().set_painted_rain(discs_);
 }
 
 void Session::record(SessionEvent e) {
@@ -85,7 +85,7 @@ void Session::set_global_rain(bool on) {
   record(std::move(e));
 }
 bool Session::has_mask(const std::string& mask) {
-  if (mask == "rain") return model_->has_rain_mask();
+  if (mask == "rain") return model_->interaction().has_rain_mask();
   return mask == "erodibility" && model_->ground();
 }
 
@@ -123,7 +123,7 @@ void Session::apply(const SessionEvent& e) {
       break;
     case Kind::kRain:
       discs_ = e.discs;
-      model_->set_painted_rain(discs_);
+      model_->interaction().set_painted_rain(discs_);
       break;
     case Kind::kStrokeEnd:
       painting_ = false;
@@ -137,7 +137,7 @@ void Session::apply(const SessionEvent& e) {
       break;
     case Kind::kGlobalRain:
       global_rain_ = e.on;
-      model_->set_global_rain(global_rain_);
+      model_->interaction().set_global_rain(global_rain_);
       break;
     case Kind::kModel: {
       const Heightmap now = model_->terrain();
@@ -156,7 +156,7 @@ void Session::apply(const SessionEvent& e) {
       const Heightmap& t = model_->initial_terrain();
       const std::vector<int> vertices = vertices_in_disc(t.nx, t.ny, t.cell, e.discs.front());
       if (e.mask == "rain")
-        model_->paint_rain_mask(vertices, static_cast<float>(e.value));
+        model_->interaction().paint_rain_mask(vertices, static_cast<float>(e.value));
       else if (Ground* ground = model_->ground())
         ground->paint_mask(vertices, static_cast<float>(e.value));
       break;
@@ -176,7 +176,7 @@ void Session::start_replay(const SessionLog& log) {
   replay_finished_ = false;
   if (global_rain_ != log.global_rain) {
     global_rain_ = log.global_rain;
-    model_->set_global_rain(global_rain_);
+    model_->interaction().set_global_rain(global_rain_);
   }
   apply_due_events();
 }

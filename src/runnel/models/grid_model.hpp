@@ -17,7 +17,7 @@ namespace runnel {
 // balance (terrain change + suspended sediment + outflow, in quanta) and generic checkpoints (every
 // field of the state plus the model's named counters). A model implements take_step() and, where
 // it has them, its outflow and counters.
-class GridModel : public Model {
+class GridModel : public Model, public Interactive {
  public:
   GridModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
 
@@ -52,6 +52,7 @@ class GridModel : public Model {
 
   // Painting (interaction.hpp): models with a water depth field take painted rain as depth added
   // to the vertices of each disc after every step; the droplet model rains droplets in them.
+  Interactive* interactive() override { return this; }
   bool paints_rain() const override;
   void set_painted_rain(const std::vector<RainDisc>& discs) override { painted_ = discs; }
   bool set_global_rain(bool on) override;

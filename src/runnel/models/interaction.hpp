@@ -25,6 +25,26 @@ struct WaterView {
   std::vector<float> points;
 };
 
+// The model's side of the interaction, apart from its physics (Model::interactive() gives it):
+// painted rain, the scenario's rain switched, the water to draw, the rain mask painted.
+class Interactive {
+ public:
+  virtual ~Interactive() = default;
+  // Whether set_painted_rain() does anything.
+  virtual bool paints_rain() const = 0;
+  // The discs of painted rain from the next step on (empty: none). Their water counts in
+  // Model::rain_volume() and, like every state, in the checkpoint.
+  virtual void set_painted_rain(const std::vector<RainDisc>& discs) = 0;
+  // Turns the model's own (scenario) rain off or back on from the next step; false when the model
+  // has none.
+  virtual bool set_global_rain(bool on) = 0;
+  virtual WaterView water_view() = 0;
+  // Sets the rain mask (ground.rain_mask, the fraction of the scenario's rain falling at each
+  // vertex) to `value` on these vertices from the next step; false when the scenario has none.
+  virtual bool paint_rain_mask(const std::vector<int>& vertices, float value) = 0;
+  virtual bool has_rain_mask() const = 0;
+};
+
 // The vertices of an nx × ny grid of spacing `cell` inside a disc (distance from the centre at most
 // the radius): their indices, row-major. Painting adds water to exactly these.
 std::vector<int> vertices_in_disc(int nx, int ny, double cell, const RainDisc& disc);

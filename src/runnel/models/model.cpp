@@ -28,4 +28,24 @@ void Model::advance(double dt, const std::function<void()>& after_step) {
   while (time() < target - 1e-12 * std::max(1.0, std::fabs(target))) one_step();
 }
 
+namespace {
+
+class NoInteraction final : public Interactive {
+ public:
+  bool paints_rain() const override { return false; }
+  void set_painted_rain(const std::vector<RainDisc>&) override {}
+  bool set_global_rain(bool) override { return false; }
+  WaterView water_view() override { return {}; }
+  bool paint_rain_mask(const std::vector<int>&, float) override { return false; }
+  bool has_rain_mask() const override { return false; }
+};
+
+}  // namespace
+
+Interactive& Model::interaction() {
+  static NoInteraction none;
+  Interactive* own = interactive();
+  return own != nullptr ? *own : none;
+}
+
 }  // namespace runnel

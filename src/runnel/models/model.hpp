@@ -98,28 +98,12 @@ class Model {
   // The run's layer stack (docs/layers.md), or nullptr when the terrain is one material.
   virtual Ground* ground() { return nullptr; }
 
-  // Interaction (runnel-viewer, interaction.hpp). A model without water keeps these defaults: it
-  // takes no painted rain and shows no water.
-  // Whether set_painted_rain() does anything.
-  virtual bool paints_rain() const { return false; }
-  // The discs of painted rain from the next step on (empty: none). Their water counts in
-  // rain_volume() and, like every state, in the checkpoint.
-  virtual void set_painted_rain(const std::vector<RainDisc>& discs) { (void)discs; }
-  // Turns the model's own (scenario) rain off or back on from the next step; false when the model
-  // has none.
-  virtual bool set_global_rain(bool on) {
-    (void)on;
-    return false;
-  }
-  virtual WaterView water_view() { return {}; }
-  // Sets the rain mask (ground.rain_mask, the fraction of the scenario's rain falling at each
-  // vertex) to `value` on these vertices from the next step; false when the scenario has none.
-  virtual bool paint_rain_mask(const std::vector<int>& vertices, float value) {
-    (void)vertices;
-    (void)value;
-    return false;
-  }
-  virtual bool has_rain_mask() const { return false; }
+  // Painting rain and showing water (runnel-viewer, interaction.hpp), or nullptr for a model that
+  // takes no part in it.
+  virtual Interactive* interactive() { return nullptr; }
+  // The same, for callers that need no check: a model without one answers that it takes no
+  // painted rain, has no scenario rain or rain mask to switch, and shows no water.
+  Interactive& interaction();
 };
 
 }  // namespace runnel

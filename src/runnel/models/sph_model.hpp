@@ -11,7 +11,7 @@ namespace runnel {
 
 // Erosion_Runnel: runnel's own SPH rain erosion (physics.md), the Simulation behind the common
 // model interface. Its particle fields are those of ParticleStore (particle__* in the dictionary).
-class SphModel final : public Model {
+class SphModel final : public Model, public Interactive {
  public:
   static const ModelInfo& model_info();
   SphModel(ComputeContext& compute, const Parameters& params, const Heightmap& terrain);
@@ -46,6 +46,7 @@ class SphModel final : public Model {
   // Painting: the emitter has one region, so the first disc that rains rains in place of the
   // scenario's rain; over a sink the particles evaporate; water_view() bins the particles onto the
   // vertices.
+  Interactive* interactive() override { return this; }
   bool paints_rain() const override { return true; }
   void set_painted_rain(const std::vector<RainDisc>& discs) override;
   bool set_global_rain(bool on) override;
