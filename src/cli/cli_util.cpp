@@ -70,7 +70,8 @@ void add_output_flags(CLI::App& cmd, OutputFlags& flags) {
          "DIR/series.h5 every N steps; 0 (the default): none")
       ->check(whole_in(0, kMaxSteps));
   cmd.add_flag("--overwrite", flags.overwrite,
-               "replace checkpoints of another run found in DIR/checkpoints (refused otherwise)");
+               "replace the outputs of another run found in DIR (pictures, terrains, series, "
+               "checkpoints; refused otherwise); files runnel did not write are kept");
 }
 
 void OutputFlags::apply(RunOptions& options) const {
