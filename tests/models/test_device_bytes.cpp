@@ -121,8 +121,7 @@ TEST_P(MemoryBound, TheUpFrontBoundCoversTheModelsBuffers) {
 }
 
 INSTANTIATE_TEST_SUITE_P(GridModels, MemoryBound,
-                         ::testing::Values("droplet", "pipe", "olsen", "thermal", "stream-power",
-                                           "sph"),
+                         ::testing::Values("droplet", "pipe", "olsen", "thermal", "stream-power"),
                          [](const auto& info) { return test::param_name(info.param); });
 
 TEST(MemoryBound, ATerrainTooLargeForTheDeviceIsRefusedWithItsSizes) {
