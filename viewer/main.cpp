@@ -10,6 +10,7 @@
 #include "runnel/core/input_file.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/interactive/session_log.hpp"
+#include "runnel/io/output_paths.hpp"
 #include "runnel/models/registry.hpp"
 
 namespace {
@@ -91,6 +92,13 @@ int main(int argc, char** argv) {
     if (!o.input.empty()) runnel::require_regular_input(o.input, "input");
     if (!o.replay.empty()) runnel::read_session_log(o.replay);
     if (!o.model.empty()) runnel::model_entry(o.model);
+    // No output may replace an input or another output (a checkpoint saved over the one opened).
+    const bool record_folder = !o.record.empty() && !o.record.ends_with(".mp4");
+    runnel::check_output_paths({{"input", o.input}, {"--replay", o.replay}},
+                               {{"--save-at-exit", o.save_at_exit},
+                                {"--screenshot", o.screenshot},
+                                {"--log", o.log},
+                                {"--record", record_folder ? std::string() : o.record}});
     o.overlay = overlay == "erosion" ? 1 : overlay == "water" ? 2 : overlay == "speed" ? 3 : 0;
     return runnel::viewer::run_viewer(o);
   } catch (const CLI::CallForHelp& e) {

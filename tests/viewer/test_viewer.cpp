@@ -114,6 +114,7 @@ TEST(Viewer, BadFlagsAreRefusedBeforeAWindowOpens) {
       {{"--replay", dir.path("bad.json")}, "bad.json: missing or mistyped entry"},
       {{"--model", "nope"}, "model 'nope' is unknown"},
       {{dir.path("nothing.toml")}, "nothing.toml: cannot read the input (no such file)"},
+      {{dir.path("bad.json"), "--save-at-exit", dir.path("bad.json")}, "is the input"},
       {{"--screenshot-scale", "20"}, "--screenshot-scale"},
   };
   for (const auto& [args, expected] : cases) {
