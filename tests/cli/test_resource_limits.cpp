@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -357,6 +358,34 @@ TEST(ResourceLimits, ATerrainTheSpacingCannotResolveGetsACautionNamingTheFix) {
                                    "--out", dir.path("fine")});
   ASSERT_EQ(fine.exit_code, 0) << fine.err;
   EXPECT_EQ(fine.err.find("sph.spacing to"), std::string::npos) << fine.err;
+}
+
+}  // namespace
+}  // namespace runnel
+
+namespace runnel {
+namespace {
+
+TEST(ResourceLimits, EveryMessageIsOneLineWithoutTerminalControls) {
+  test::ScratchDir dir;
+  // Escape sequences and newlines in a --set key, a file name, a scenario's text and an --out path:
+  // each message is one line with the bytes written as \xNN.
+  // A TOML key spelled with an escape: the parser turns \u001b into the byte itself.
+  test::write_text(dir.path("esc.toml"), "[terrain]\n\"\\u001b]0;owned\\u0007\" = 1\n");
+  const std::vector<std::vector<std::string>> cases = {
+      {"run", "--set", "\x1b[2Jkey=1", "--out", dir.path("o")},
+      {"run", "--terrain", dir.path("a\nb\x1b[31m.asc"), "--out", dir.path("o")},
+      {"run", dir.path("esc.toml"), "--out", dir.path("o")},
+      {"convert", dir.path("x\r\x1b[1A.asc"), dir.path("y.asc")},
+  };
+  for (const auto& args : cases) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("\\x1b"), std::string::npos) << r.err;
+  }
 }
 
 }  // namespace
