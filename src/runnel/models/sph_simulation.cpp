@@ -34,10 +34,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                       "least " + std::to_string(kMinSphVertices) + " x " +
                       std::to_string(kMinSphVertices) + "; the grid models run on any terrain)");
   }
-  // The water's resolution, not the grid's: half a cell, so a channel a few cells wide is several
-  // particles across (docs/erosion.md).
-  const double spacing =
-      params.real("sph.spacing") > 0 ? params.real("sph.spacing") : 0.5 * terrain.cell;
+  const double spacing = runnel::particle_spacing(params, terrain.cell);
   const double relief =
       std::max(0.0, static_cast<double>(terrain.max_height() - terrain.min_height()));
   const double spawn =

@@ -70,6 +70,10 @@ SphSettings SphSettings::from(const Parameters& p, double default_spacing, doubl
   return s;
 }
 
+double particle_spacing(const Parameters& params, double terrain_cell) {
+  return params.real("sph.spacing") > 0 ? params.real("sph.spacing") : 0.5 * terrain_cell;
+}
+
 double default_dt_max(bool incompressible) {
   return incompressible ? 0.05 : 0.01;
 }

@@ -10,6 +10,10 @@ struct SphSettings;
 // sph.dt_max = 0 resolves to this: 0.01 s for wcsph (never binding at its acoustic steps), 0.05 s
 // for dfsph (whose flow CFL step would otherwise grow without bound where the water is slow).
 double default_dt_max(bool incompressible);
+
+// The particle spacing of a run on terrain cells of `terrain_cell` m: sph.spacing, or by default
+// half a cell, so a channel a few cells wide is several particles across (docs/erosion.md).
+double particle_spacing(const Parameters& params, double terrain_cell);
 // The radius (m) over which a particle's water is counted on the terrain and its erosion spread
 // (cl/footprint.cl): at least the kernel's support 2h and 2 cells, at most 8 cells.
 double footprint_radius(const SphSettings& s, double terrain_cell);

@@ -97,7 +97,7 @@ Parameters convergence_base(const Parameters& given, double cell) {
   // it never binds, and within any device's memory.
   set_default("rain.max_particles", static_cast<std::int64_t>(2000000));
   set_default("erosion.morphological_factor", 100.0);
-  const double spacing = base.real("sph.spacing") > 0 ? base.real("sph.spacing") : 0.5 * cell;
+  const double spacing = particle_spacing(base, cell);
   base.set("sph.spacing", spacing, "validate");
   base.set("rain.spawn_height", spacing, "validate");
   return base;
