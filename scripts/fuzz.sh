@@ -23,8 +23,12 @@ for reader in asc png npy checkpoint scenario sweep; do
 done
 # The Python entry points, through their harness (python/tests/test_fuzz_entry_points.py) on the
 # normal build's module: about 1,400 calls a second.
+# The interpreter: $PYTHON, else the virtual environment's (scripts/setup-python.sh), else python3.
+python="${PYTHON:-}"
+[ -z "$python" ] && [ -x .venv/bin/python ] && python=.venv/bin/python
+python="${python:-python3}"
 if [ -d build/python/runnel ]; then
   echo "fuzzing the Python entry points for about ${seconds} s"
   RUNNEL_FUZZ_ITERATIONS=$((seconds * 1400)) PYTHONPATH="$PWD/build/python" \
-    python3 -m pytest -q -p no:cacheprovider python/tests/test_fuzz_entry_points.py 2>&1 | tail -1
+    "$python" -m pytest -q -p no:cacheprovider python/tests/test_fuzz_entry_points.py 2>&1 | tail -1
 fi
