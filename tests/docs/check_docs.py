@@ -78,6 +78,9 @@ def check_python():
     if not pythonpath or not (pathlib.Path(pythonpath) / "runnel").exists():
         print("python: skipped, the Python module is not built (RUNNEL_BUILD_PYTHON)")
         return
+    if subprocess.run([python, "-c", "import numpy"], capture_output=True).returncode != 0:
+        print(f"python: skipped, {python} has no numpy (scripts/setup-python.sh makes one that has)")
+        return
     for block in blocks:
         env = dict(os.environ, PYTHONPATH=pythonpath)
         result = subprocess.run([python, "-c", block], cwd=source, capture_output=True,
