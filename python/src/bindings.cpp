@@ -158,20 +158,6 @@ void set_model_field(PyModel& self, const std::string& name, py::array_t<float, 
   throw input_error("field " + name + ": not a settable field of the " + m.info().name + " model");
 }
 
-void check_cell(const char* what, double cell) {
-  if (!(cell >= kMinCell && cell <= kMaxCell))
-    throw input_error(std::string(what) + ": " + format_number(cell) + " m is not a cell size (" +
-                      format_number(kMinCell) + " to " + format_number(kMaxCell) + " m)");
-}
-
-// A grid coordinate: finite and within the readers' bound (docs/robustness.md).
-double checked_origin(const char* what, double value) {
-  if (!(std::fabs(value) <= kMaxAbsOrigin))
-    throw input_error(std::string(what) + ": " + format_number(value) +
-                      " is not a finite coordinate within 1e12 m");
-  return value;
-}
-
 // A duration in the model's clock units (s, iterations or years): finite, at least zero, and at
 // most run.steps' bound of 1e12, beyond which advance() would run for ever instead of failing.
 double checked_duration(const char* what, double value) {
@@ -185,7 +171,6 @@ Heightmap terrain_from(py::array_t<float, py::array::c_style | py::array::forcec
                        double cell) {
   if (heights.ndim() != 2) throw input_error("heights: a 2-D array (rows, columns) is needed");
   check_terrain_size("heights", heights.shape(1), heights.shape(0));
-  check_cell("cell", cell);
   Heightmap t(static_cast<int>(heights.shape(1)), static_cast<int>(heights.shape(0)), cell);
   std::copy(heights.data(), heights.data() + heights.size(), t.h.begin());
   check_terrain_values("heights", t);
@@ -218,15 +203,21 @@ PYBIND11_MODULE(_runnel, m) {
       .def_property(
           "cell", [](const Heightmap& t) { return t.cell; },
           [](Heightmap& t, double cell) {
-            check_cell("cell", cell);
+            check_cell_size("cell", cell);
             t.cell = cell;
           })
       .def_property(
           "origin_x", [](const Heightmap& t) { return t.origin_x; },
-          [](Heightmap& t, double x) { t.origin_x = checked_origin("origin_x", x); })
+          [](Heightmap& t, double x) {
+            check_origin("origin_x", x, 0.0);
+            t.origin_x = x;
+          })
       .def_property(
           "origin_z", [](const Heightmap& t) { return t.origin_z; },
-          [](Heightmap& t, double z) { t.origin_z = checked_origin("origin_z", z); })
+          [](Heightmap& t, double z) {
+            check_origin("origin_z", 0.0, z);
+            t.origin_z = z;
+          })
       .def_property(
           "crs_wkt", [](const Heightmap& t) { return t.georef.crs_wkt; },
           [](Heightmap& t, const std::string& wkt) { t.georef.crs_wkt = wkt; })

@@ -13,9 +13,8 @@
 
 namespace runnel {
 
-namespace {
-
-const char* kind_of(mode_t mode) {
+const char* file_kind(unsigned mode) {
+  if (S_ISREG(mode)) return "a regular file";
   if (S_ISDIR(mode)) return "a directory";
   if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
   if (S_ISCHR(mode)) return "a character device";
@@ -23,8 +22,6 @@ const char* kind_of(mode_t mode) {
   if (S_ISSOCK(mode)) return "a socket";
   return "not a regular file";
 }
-
-}  // namespace
 
 void require_regular_input(const std::string& path, std::string_view what) {
   struct stat st {};
@@ -34,7 +31,7 @@ void require_regular_input(const std::string& path, std::string_view what) {
                       (err == ENOENT ? std::string("no such file") : std::strerror(err)) + ")");
   }
   if (!S_ISREG(st.st_mode))
-    throw input_error(path + ": the " + std::string(what) + " is " + kind_of(st.st_mode) +
+    throw input_error(path + ": the " + std::string(what) + " is " + file_kind(st.st_mode) +
                       ", not a regular file");
 }
 

@@ -11,6 +11,9 @@ namespace runnel {
 // content. Throws input_error naming `path`, what it is, and `what` the file was meant to be.
 void require_regular_input(const std::string& path, std::string_view what);
 
+// What a stat() mode says a path is, for messages: "a FIFO (named pipe)", "a directory", ...
+const char* file_kind(unsigned mode);
+
 // The whole of a small text file (a scenario, a sweep, a terrain graph, a session log): a regular
 // file of at most `max_bytes`, refused in one line otherwise.
 inline constexpr std::uintmax_t kMaxTextInputBytes = 16u << 20;

@@ -170,7 +170,7 @@ void Session::apply(const SessionEvent& e) {
 void Session::start_replay(const SessionLog& log) {
   if (log.model != log_.model)
     throw input_error("replay: the log starts with the " + log.model +
-                      " model, this session with " + log_.model);
+                      " model, the viewer runs the " + log_.model + " model");
   replay_ = log;
   replay_next_ = 0;
   replay_finished_ = false;

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "runnel/core/error.hpp"
+#include "runnel/core/input_file.hpp"
 
 namespace runnel {
 
@@ -33,13 +34,7 @@ void refuse_special_output(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return;  // nothing there yet
   if (S_ISREG(st.st_mode)) return;
-  const char* kind = S_ISDIR(st.st_mode)    ? "a folder"
-                     : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
-                     : S_ISCHR(st.st_mode)  ? "a character device"
-                     : S_ISBLK(st.st_mode)  ? "a block device"
-                     : S_ISSOCK(st.st_mode) ? "a socket"
-                                            : "not a regular file";
-  throw input_error(path + ": is " + kind + "; runnel writes only regular files");
+  throw input_error(path + ": is " + file_kind(st.st_mode) + "; runnel writes only regular files");
 }
 
 void check_output_paths(const std::vector<NamedPath>& inputs,

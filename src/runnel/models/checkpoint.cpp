@@ -301,15 +301,6 @@ std::string run_identity(const std::string& parameters_toml) {
   return id.hex();
 }
 
-std::string checkpoint_run_id(const std::string& path) {
-  try {
-    const H5File f = H5File::open_read(path);
-    return f.read_string_attribute("/", "run_id");
-  } catch (const std::exception&) {
-    return "";
-  }
-}
-
 namespace {
 CheckpointData read_checkpoint_contents(const std::string& path);
 }

@@ -58,8 +58,6 @@ std::string run_identity(const std::string& parameters_toml);
 // The same, also over the initial terrain's grid and heights: a run's output folder is another
 // run's when the file its terrain came from has changed content under the same name.
 std::string run_identity(const std::string& parameters_toml, const Heightmap& initial_terrain);
-// The run_id of a checkpoint file, or "" when it has none or cannot be read.
-std::string checkpoint_run_id(const std::string& path);
 
 // Writes atomically (temporary file, sync, rename): an interrupted write leaves the old file
 // intact.

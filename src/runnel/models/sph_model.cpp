@@ -174,7 +174,7 @@ std::string SphModel::rain_caution() {
   if (rain.held_back() == 0) return {};
   const RainSettings& r = rain.settings();
   const double requested = static_cast<double>(rain.spawned() + rain.held_back());
-  const double storm = std::ceil(r.rate * r.lifespan * (1.0 + r.lifespan_jitter)) + 1.0;
+  const double storm = r.most_alive();
   char line[400];
   std::snprintf(line, sizeof line,
                 "rain.max_particles = %lld held back %.0f of the %.0f drops the rain asked for "

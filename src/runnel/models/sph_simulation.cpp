@@ -105,9 +105,7 @@ void Simulation::budget_device_memory(const ComputeContext& compute, const Heigh
   }
   // No more particles live at once than the budget, nor than the rain spawns over the longest
   // lifespan (the budget may be set far above what the rain can fill).
-  const double most_alive =
-      std::min(static_cast<double>(rain.max_particles),
-               std::ceil(rain.rate * rain.lifespan * (1.0 + rain.lifespan_jitter)) + 1.0);
+  const double most_alive = std::min(static_cast<double>(rain.max_particles), rain.most_alive());
   device_bytes_ = most_alive * particle_bytes + fixed_bytes;
   if (available > 0 && device_bytes_ > available) {
     throw input_error("rain.max_particles: the run needs " + format_number(device_bytes_ / 1e6) +

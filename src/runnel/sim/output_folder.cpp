@@ -87,11 +87,6 @@ OutputFolder::OutputFolder(const std::string& dir_text, const std::string& run_i
                       "choose another --out");
   }
   try {
-    // A folder that lets the lock be opened may still refuse new files (a full quota, a
-    // read-only bind mount of a folder that had the lock): create one as the outputs will be.
-    write_text_atomically((dir / kRunMarker).string() + ".probe", "");
-    fs::remove(dir / (std::string(kRunMarker) + ".probe"), ec);
-
     const std::string earlier = read_marker(dir / kRunMarker);
     const std::vector<fs::path> outputs = earlier_outputs(dir);
     if (earlier != run_id && !outputs.empty()) {
@@ -101,6 +96,9 @@ OutputFolder::OutputFolder(const std::string& dir_text, const std::string& run_i
                           "); choose another --out, or --overwrite to replace them");
       for (const fs::path& p : outputs) fs::remove(p, ec);
     }
+    // Written as every output is (a temporary, then a rename): a folder that let the lock be
+    // opened but takes no new file (a read-only mount that had the lock) is refused here, before
+    // the first step.
     write_text_atomically((dir / kRunMarker).string(), run_id + "\n");
   } catch (...) {
     ::close(lock_fd_);

@@ -11,7 +11,8 @@ const std::vector<std::string>& run_output_names();
 // The --out folder of one run, held for as long as the run writes into it:
 // - locked (an flock on DIR/.runnel.lock): a second run into the same folder is refused while
 //   this one lives, so two runs cannot leave a mix of their files;
-// - proven writable before the first step (a probe file is created and removed), so a read-only
+// - proven writable before the first step (its lock and DIR/.runnel-run are created), so a
+// read-only
 //   folder is refused at once, not after the whole run;
 // - holding only this run's outputs: DIR/.runnel-run names the run (its parameters and its
 //   terrain's content); outputs of another run in the folder are refused, or removed with

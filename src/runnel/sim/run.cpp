@@ -82,28 +82,14 @@ void require_run_length(const Parameters& params, ModelClock clock) {
 namespace {
 
 // The checkpoints this run writes into DIR/checkpoints. Rotation only ever removes files this run
-// wrote; checkpoints of another run (another run_id) in the folder are refused up front, or
-// removed with --overwrite, so a reused --out never mixes two runs.
+// wrote; checkpoints of another run were refused or removed with the folder (OutputFolder).
 class RollingCheckpoints {
  public:
-  RollingCheckpoints(const std::filesystem::path& out, const Model& model, int keep, bool overwrite)
+  RollingCheckpoints(const std::filesystem::path& out, int keep)
       : dir_(out / "checkpoints"), keep_(keep) {
-    namespace fs = std::filesystem;
     std::error_code ec;
-    if (!fs::is_directory(dir_, ec)) return;
-    remove_stale_temporaries(dir_.string(), "step_");  // left by a writer that was killed
-    const std::string id = run_identity(parameters_toml(model.parameters()));
-    for (auto& e : fs::directory_iterator(dir_)) {
-      const std::string f = e.path().filename().string();
-      if (f.rfind("step_", 0) != 0 || e.path().extension() != ".h5") continue;
-      if (checkpoint_run_id(e.path().string()) == id) continue;  // this run's, before a resume
-      if (!overwrite) {
-        throw input_error(e.path().string() +
-                          ": a checkpoint of another run (other parameters) is in the output "
-                          "folder; choose another --out, or --overwrite to replace them");
-      }
-      fs::remove(e.path());
-    }
+    if (std::filesystem::is_directory(dir_, ec))
+      remove_stale_temporaries(dir_.string(), "step_");  // left by a writer that was killed
   }
 
   void write(Model& model) {
@@ -300,7 +286,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       options.out_dir, run_identity(parameters_toml(model.parameters()), model.initial_terrain()),
       options.overwrite);
   const fs::path out(options.out_dir);
-  RollingCheckpoints checkpoints(out, model, options.keep_checkpoints, options.overwrite);
+  RollingCheckpoints checkpoints(out, options.keep_checkpoints);
   const HeightSteps steps = height_steps(model.initial_terrain());
   announce(compute, model, steps, options.quiet);
   compute.profiler().reset();

@@ -89,8 +89,7 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
   if (r.max_particles == 0) {
     // No more drops can live at once than fall during the longest lifespan.
     r.budget_follows_storm = true;
-    r.max_particles = static_cast<std::int64_t>(
-        std::min(1e8, std::ceil(r.rate * r.lifespan * (1.0 + r.lifespan_jitter)) + 1.0));
+    r.max_particles = static_cast<std::int64_t>(std::min(1e8, r.most_alive()));
   }
   return r;
 }

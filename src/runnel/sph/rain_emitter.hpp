@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -41,6 +42,8 @@ struct RainSettings {
   static RainSettings from(const Parameters& p, const DeviceTerrain& terrain, double spacing,
                            double reference_speed);
   JsonObject json() const;
+  // The most drops that can be alive at once: those spawned over the longest lifespan.
+  double most_alive() const { return std::ceil(rate * lifespan * (1.0 + lifespan_jitter)) + 1.0; }
   // Rain of `intensity_mm_h` on the disc (x, z, radius), as rain.region = "disc" would resolve it
   // with that rain.intensity (the viewer's brush).
   void rain_on_disc(double x, double z, double radius, double intensity, double spacing);

@@ -99,14 +99,21 @@ void check_height_range(const std::string& path, const HeightRange& range) {
   }
 }
 
-void check_terrain_values(const std::string& path, const Heightmap& terrain) {
-  if (!(terrain.cell >= kMinCell && terrain.cell <= kMaxCell)) {
-    throw input_error(path + ": cell size " + format_number(terrain.cell) + " m is outside " +
+void check_cell_size(const std::string& path, double cell) {
+  if (!(cell >= kMinCell && cell <= kMaxCell)) {
+    throw input_error(path + ": cell size " + format_number(cell) + " m is outside " +
                       format_number(kMinCell) + " to " + format_number(kMaxCell) + " m");
   }
-  if (!(std::fabs(terrain.origin_x) <= kMaxAbsOrigin &&
-        std::fabs(terrain.origin_z) <= kMaxAbsOrigin))
+}
+
+void check_origin(const std::string& path, double origin_x, double origin_z) {
+  if (!(std::fabs(origin_x) <= kMaxAbsOrigin && std::fabs(origin_z) <= kMaxAbsOrigin))
     throw input_error(path + ": the grid's origin is not a finite coordinate within ±1e12 m");
+}
+
+void check_terrain_values(const std::string& path, const Heightmap& terrain) {
+  check_cell_size(path, terrain.cell);
+  check_origin(path, terrain.origin_x, terrain.origin_z);
   for (int j = 0; j < terrain.ny; ++j) {
     for (int i = 0; i < terrain.nx; ++i) {
       if (!(std::fabs(terrain.at(i, j)) <= kMaxAbsHeight)) {

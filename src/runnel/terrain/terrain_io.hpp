@@ -41,6 +41,9 @@ inline constexpr double kMaxAbsHeight = 1e7;              // m
 inline constexpr double kMinCell = 1e-6, kMaxCell = 1e6;  // m
 inline constexpr double kMaxAbsOrigin = 1e12;             // m
 void check_terrain_values(const std::string& path, const Heightmap& terrain);
+// Its parts for a single value (a setter): the cell size, the origin.
+void check_cell_size(const std::string& path, double cell);
+void check_origin(const std::string& path, double origin_x, double origin_z);
 void check_height_range(const std::string& path, const HeightRange& range);
 
 // The format from the file name's extension (.asc, .png, .npy, .tif, ...; any case). Throws an
