@@ -3,7 +3,7 @@
 #include <string>
 
 #include "fuzz_target.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/sim/scenario.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

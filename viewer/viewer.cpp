@@ -13,9 +13,9 @@
 #include <filesystem>
 
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 
@@ -41,7 +41,7 @@ void Viewer::load() {
   if (!input.empty() && std::filesystem::path(input).extension() == ".h5") {
     session_ = std::make_unique<Session>(compute_, read_checkpoint(input), input, options_.rain);
   } else {
-    Parameters params = input.empty() ? Parameters() : load_scenario(input);
+    Parameters params = input.empty() ? default_parameters() : load_scenario(input);
     if (!options_.model.empty()) {
       model_entry(options_.model);  // an unknown name is refused with the list
       params.set("run.model", options_.model, "--model");

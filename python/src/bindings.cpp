@@ -15,7 +15,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/checkpoint.hpp"
@@ -288,7 +288,7 @@ PYBIND11_MODULE(_runnel, m) {
   py::class_<PyModel>(m, "Model", "An erosion model on a terrain (docs/python.md)")
       .def(py::init([](const std::string& name, const Heightmap& terrain, const py::dict& params,
                        const std::string& device) {
-             Parameters p;
+             Parameters p = default_parameters();
              p.set("run.model", name, "model");
              set_parameters(p, params, "params");
              auto compute = context_for(device);
@@ -299,7 +299,7 @@ PYBIND11_MODULE(_runnel, m) {
       .def_static(
           "from_scenario",
           [](const std::string& path, const py::dict& overrides, const std::string& device) {
-            Parameters p = path.empty() ? Parameters() : load_scenario(path);
+            Parameters p = path.empty() ? default_parameters() : load_scenario(path);
             set_parameters(p, overrides, "overrides");
             const Heightmap terrain = load_terrain(p);
             auto compute = context_for(device);

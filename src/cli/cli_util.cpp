@@ -6,8 +6,8 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/sim/output_folder.hpp"
+#include "runnel/sim/scenario.hpp"
 
 namespace runnel::cli {
 

@@ -4,7 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/validation/sph_benchmark.hpp"
 
 namespace runnel::cli {
@@ -56,7 +56,7 @@ void add_bench_command(CLI::App& app) {
       throw input_error("--particles: must be in 8..1e8");
     if (opt->steps < 1 || opt->steps > 1000000) throw input_error("--steps: must be in 1..1e6");
     if (opt->tile < 0 || opt->tile > 256) throw input_error("--tile: must be in 0..256");
-    Parameters params;
+    Parameters params = default_parameters();
     apply_overrides(params, opt->sets);
     ComputeContext compute(opt->device);
     if (!opt->trace.empty()) {

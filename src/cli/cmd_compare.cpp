@@ -4,9 +4,9 @@
 
 #include "cli/commands.hpp"
 #include "runnel/compare/compare.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/models/registry.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 
 namespace runnel::cli {
@@ -53,7 +53,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
   cmd->callback([opt] {
-    Parameters params = opt->scenario.empty() ? Parameters() : load_scenario(opt->scenario);
+    Parameters params = opt->scenario.empty() ? default_parameters() : load_scenario(opt->scenario);
     if (!opt->terrain.empty()) params.set("terrain.file", opt->terrain, "--terrain");
     apply_overrides(params, opt->sets);
     compare::Options options;

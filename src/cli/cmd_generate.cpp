@@ -12,11 +12,11 @@
 #include "cli/commands.hpp"
 #include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/ground/ground_outputs.hpp"
 #include "runnel/ground/strata.hpp"
 #include "runnel/io/images.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_graph.hpp"
 #include "runnel/terrain/terrain_source.hpp"
@@ -109,7 +109,7 @@ Heightmap generated_terrain(const GenerateOptions& opt, const CLI::App& cmd, Par
 // Writes the terrain (and its picture, or a layered terrain's strata) after checking that no
 // output replaces an input or another output.
 void generate(const GenerateOptions& opt, const CLI::App& cmd) {
-  Parameters params;
+  Parameters params = default_parameters();
   const Heightmap terrain = generated_terrain(opt, cmd, params);
   std::vector<NamedPath> inputs = scenario_inputs(params, opt.scenario);
   inputs.push_back({"--graph", opt.graph});

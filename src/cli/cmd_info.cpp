@@ -7,11 +7,11 @@
 #include <optional>
 
 #include "cli/commands.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/ground/ground.hpp"
 #include "runnel/ground/strata.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/height_steps.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 

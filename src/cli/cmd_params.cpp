@@ -4,6 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/models/parameter_table.hpp"
 
 namespace runnel::cli {
 
@@ -14,7 +15,7 @@ void add_params_command(CLI::App& app) {
   cmd->add_flag("--markdown", *markdown, "print docs/parameters.md");
   cmd->callback([markdown] {
     if (*markdown) {
-      std::cout << parameters_markdown();
+      std::cout << parameters_markdown(parameter_table());
       return;
     }
     for (auto& p : parameter_table()) {

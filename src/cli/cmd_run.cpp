@@ -6,10 +6,10 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 
 namespace runnel::cli {
@@ -29,7 +29,7 @@ struct RunFlags {
 
 // The scenario with the flags applied, checked, run and reported.
 void run(const RunFlags& opt) {
-  Parameters params = opt.scenario.empty() ? Parameters() : load_scenario(opt.scenario);
+  Parameters params = opt.scenario.empty() ? default_parameters() : load_scenario(opt.scenario);
   if (!opt.terrain.empty()) params.set("terrain.file", opt.terrain, "--terrain");
   if (!opt.generate.empty()) {
     params.set("terrain.file", std::string(), "--generate");

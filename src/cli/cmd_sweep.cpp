@@ -21,9 +21,9 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/sweep/sweep.hpp"
 
 extern char** environ;

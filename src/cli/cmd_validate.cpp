@@ -6,7 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 #include "runnel/validation/stream_power_validation.hpp"
 #include "runnel/validation/validation.hpp"

@@ -11,6 +11,7 @@
 #include "runnel/ground/ground.hpp"
 #include "runnel/ground/strata.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_io.hpp"
@@ -26,7 +27,7 @@ Heightmap steep_terrain() {
 }
 
 Parameters base_parameters(const std::string& model) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("run.model", model);
   p.set("rain.max_particles", std::int64_t{400});
   p.set("pipe.edges", std::string("closed"));

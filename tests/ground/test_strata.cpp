@@ -9,9 +9,9 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/layers.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/ground/ground.hpp"
 #include "runnel/ground/strata.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 #include "test_support.hpp"

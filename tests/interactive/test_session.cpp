@@ -11,6 +11,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/interactive/session.hpp"
 #include "runnel/models/grid_model.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/models/water_binning.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -27,7 +28,7 @@ Heightmap terrain() {
 }
 
 Parameters parameters(const std::string& model) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("run.model", model);
   p.set("rain.max_particles", std::int64_t{600});
   p.set("droplet.batch", std::int64_t{64});

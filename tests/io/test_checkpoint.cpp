@@ -11,6 +11,7 @@
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/models/sph_model.hpp"
 #include "runnel/models/sph_simulation.hpp"
@@ -23,7 +24,7 @@ namespace {
 using test::compute;
 
 Parameters rainy(const std::string& solver = "wcsph") {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.solver", solver);
   p.set("rain.rate", 3000.0);
   p.set("rain.lifespan", 0.5);

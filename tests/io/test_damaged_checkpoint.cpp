@@ -14,6 +14,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/models/sph_model.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -27,7 +28,7 @@ using test::ScratchDir;
 
 // A small SPH run's checkpoint with particles carrying sediment.
 std::string write_sample(const ScratchDir& dir) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("rain.rate", 3000.0);
   p.set("rain.lifespan", 0.5);
   p.set("erosion.erodibility", 0.05);

@@ -9,6 +9,7 @@
 
 #include "runnel/landscape/flow_routing.hpp"
 #include "runnel/landscape/stream_power.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/validation/stream_power_validation.hpp"
@@ -77,7 +78,7 @@ TEST(StreamPower, D8SendsEveryNodeDownItsSteepestDescentAndTheStackPutsReceivers
 }
 
 TEST(StreamPower, TheModelBooksUpliftAndOutflowExactly) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("run.model", std::string("stream-power"));
   p.set("stream_power.k", 1e-4);
   p.set("stream_power.diffusivity", 0.05);
@@ -95,7 +96,7 @@ TEST(StreamPower, ErosionIsMeasuredFromTheUpliftedSurface) {
   // Detachment-limited incision without diffusion only ever lowers a vertex below where the uplift
   // put it, and all it removes leaves the map: measured from the uplifted surface, nothing is
   // deposited and the eroded volume is the outflow. The erosion map is that difference.
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("run.model", std::string("stream-power"));
   p.set("stream_power.k", 1e-4);
   const Heightmap t = generate_terrain("fbm", 33, 33, 20.0, 2, {{"relief", 0.1}});
@@ -117,7 +118,7 @@ TEST(StreamPower, TheErosionDepositionFormDepositsWhereTheDetachmentLimitedOneCa
   // Without uplift nothing can rise in the detachment-limited form; with G > 0 the flux from
   // upstream settles in the valleys and lows rise. Both balance exactly.
   for (double g : {0.0, 1.0}) {
-    Parameters p;
+    Parameters p = default_parameters();
     p.set("run.model", std::string("stream-power"));
     p.set("stream_power.uplift", 0.0);
     p.set("stream_power.k", 1e-4);
@@ -138,7 +139,7 @@ TEST(StreamPower, TheErosionDepositionFormDepositsWhereTheDetachmentLimitedOneCa
 
 TEST(StreamPower, ItsMetricsReportTheConcavityOfItsChannels) {
   // Run towards steady state under uplift: the fitted θ of the channels approaches m/n = 0.5.
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("run.model", std::string("stream-power"));
   p.set("stream_power.k", 2e-5);
   p.set("stream_power.dt", 20000.0);

@@ -13,6 +13,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/models/memory_check.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
@@ -38,7 +39,7 @@ double resident_bytes() {
 }
 
 Parameters parameters(const std::string& model) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("run.model", model);
   return p;
 }

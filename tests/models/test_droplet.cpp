@@ -12,6 +12,7 @@
 #include "runnel/models/droplet_blocks.hpp"
 #include "runnel/models/droplet_model.hpp"
 #include "runnel/models/droplet_reference.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
 
@@ -28,7 +29,7 @@ struct Outcome {
 
 Outcome run_droplets(std::uint64_t seed, int batches) {
   const Heightmap t = generate_terrain("fbm", 129, 129, 1.0, 6, {{"relief", 0.25}});
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("droplet.batch", std::int64_t{0});  // one droplet per 64 cells
   p.set("run.seed", static_cast<std::int64_t>(seed));
   DropletModel model(compute(), p, t);
@@ -66,7 +67,7 @@ TEST(DropletModel, ErosionFollowsTheDrainage) {
 // the droplets' erosion brushes and bilinear deposits, step by step in lockstep.
 TEST(DropletModel, ABatchMatchesThePlainCppReference) {
   const Heightmap hills = generate_terrain("fbm", 41, 37, 1.0, 6, {{"relief", 0.25}});
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("droplet.lifetime", std::int64_t{8});
   p.set("droplet.batch", std::int64_t{24});
   DropletModel model(compute(), p, hills);
@@ -101,7 +102,7 @@ TEST(DropletModel, ABatchMatchesThePlainCppReference) {
 // outflow, bit for bit. Blocks too small to keep one launch's work-items apart are refused.
 TEST(DropletModel, TheResultDoesNotDependOnHowTheBlocksAreCut) {
   const Heightmap hills = generate_terrain("fbm", 129, 97, 1.0, 6, {{"relief", 0.25}});
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("run.seed", std::int64_t{11});
   const double radius = DropletSettings::from(p).radius;
   const auto cut_into = [&](int width) {

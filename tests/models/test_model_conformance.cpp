@@ -9,6 +9,7 @@
 
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/grid_model.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
@@ -25,7 +26,7 @@ Heightmap small_terrain() {
 }
 
 Parameters small_parameters(const std::string& model) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("run.model", model);
   p.set("rain.max_particles", std::int64_t{400});
   p.set("pipe.edges", std::string("closed"));  // a closed domain: nothing leaves

@@ -8,6 +8,7 @@
 
 #include "runnel/models/olsen_model.hpp"
 #include "runnel/models/olsen_reference.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
 
@@ -18,7 +19,7 @@ using test::compute;
 
 TEST(OlsenModel, ConservesTerrainPlusSedimentExactly) {
   const Heightmap t = generate_terrain("fbm", 97, 97, 1.0, 2, {{"relief", 0.1}});
-  OlsenModel model(compute(), Parameters(), t);
+  OlsenModel model(compute(), default_parameters(), t);
   DeviceTerrain& terrain = model.state().terrain();
   const auto before = terrain.download_fixed();
   for (int k = 0; k < 200; ++k) model.step();
@@ -44,7 +45,7 @@ TEST(OlsenModel, ConservesTerrainPlusSedimentExactly) {
 TEST(OlsenModel, FollowsTheOracleWhenACellHoldsMoreSedimentThanOnePassShares) {
   const int nx = 33, ny = 33;
   const Heightmap t = generate_terrain("fbm", nx, ny, 1.0, 3, {{"relief", 0.5}});
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("erosion.height_quantum", 1e-10, "test");
   p.set("olsen.solubility", 1.0, "test");
   p.set("olsen.capacity", 100.0, "test");
@@ -76,7 +77,7 @@ TEST(OlsenModel, FollowsTheOracleWhenACellHoldsMoreSedimentThanOnePassShares) {
 TEST(OlsenModel, IsDeterministic) {
   std::vector<std::vector<std::int64_t>> results;
   for (int run = 0; run < 2; ++run) {
-    OlsenModel model(compute(), Parameters(),
+    OlsenModel model(compute(), default_parameters(),
                      generate_terrain("ridged", 65, 65, 1.0, 4, {{"relief", 0.2}}));
     for (int k = 0; k < 100; ++k) model.step();
     results.push_back(model.state().terrain().download_fixed());
@@ -88,7 +89,7 @@ TEST(OlsenModel, IsDeterministic) {
 TEST(OlsenModel, IterationsMatchThePlainCppReference) {
   const int nx = 21, ny = 17;
   const Heightmap rough = test::rough_terrain(nx, ny, 0.3f, 3);
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("olsen.solubility", 0.05);  // enough erosion per iteration to test the sediment paths
   OlsenModel model(compute(), p, rough);
   DeviceTerrain& terrain = model.state().terrain();

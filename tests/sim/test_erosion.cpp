@@ -13,6 +13,7 @@
 
 #include "runnel/core/clock.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/sph_simulation.hpp"
 #include "runnel/sph/footprint.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -33,7 +34,7 @@ Heightmap convergence_hills() {
 TEST(Erosion, AnEvaporatingLoadSpreadsOverItsFootprint) {
   // One particle carrying 1 m³ of sediment evaporates over flat ground: the whole load lands, in
   // the proportions of the footprint weights, on the vertices within the footprint radius.
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("rain.enabled", false);
   p.set("thermal.interval", 0.0);
   const Heightmap flat = generate_terrain("plane", 33, 33, 2.0, 1, {{"slope", 0.0}});
@@ -99,7 +100,7 @@ TEST(Erosion, UnderLightRainTheErodedVolumeDoesNotFollowTheParticleSize) {
   // eroded 14–18 % less; another seed alone moves the volume by about 5 %.
   const Heightmap hills = convergence_hills();
   auto eroded = [&](double spacing) {
-    Parameters p;
+    Parameters p = default_parameters();
     p.set("rain.intensity", 2000.0);
     p.set("rain.lifespan", 1e9);
     p.set("erosion.morphological_factor", 100.0);
@@ -115,7 +116,7 @@ TEST(Erosion, UnderLightRainTheErodedVolumeDoesNotFollowTheParticleSize) {
 }
 
 TEST(Erosion, OnHillsErosionFollowsTheWaterAndLeavesTheSurfaceSmooth) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("rain.intensity", 8000.0);
   p.set("rain.lifespan", 600.0);
   p.set("erosion.morphological_factor", 100.0);
@@ -182,7 +183,7 @@ TEST(Erosion, AnExchangeIntervalErodesAsEveryStepDoes) {
     long long residual;
   };
   auto run = [&](double interval, std::int64_t seed) {
-    Parameters p;
+    Parameters p = default_parameters();
     p.set("rain.intensity", 8000.0);
     p.set("rain.lifespan", 600.0);
     p.set("erosion.morphological_factor", 100.0);

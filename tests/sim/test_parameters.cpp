@@ -6,7 +6,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 #include "runnel/terrain/terrain_source.hpp"
@@ -26,7 +26,7 @@ std::string error_of(const std::function<void()>& f) {
 }
 
 TEST(Parameters, DefaultsComeFromTheTable) {
-  const Parameters p;
+  const Parameters p = default_parameters();
   EXPECT_EQ(p.integer("terrain.size"), 257);
   EXPECT_DOUBLE_EQ(p.real("terrain.cell"), 1.0);
   EXPECT_EQ(p.text("terrain.generator"), "fbm");
@@ -79,7 +79,7 @@ TEST(Parameters, BadScenariosNameTheKey) {
               load_terrain(parse_scenario("[terrain.set]\nbogus = 1\n", "s.toml"));
             }).find("terrain.set.bogus"),
             std::string::npos);
-  Parameters p;
+  Parameters p = default_parameters();
   EXPECT_NE(error_of([&] { apply_overrides(p, {"run.sed=3"}); }).find("run.sed"),
             std::string::npos);
   EXPECT_NE(error_of([&] { apply_overrides(p, {"terrain.size"}); }).find("key=value"),
@@ -98,7 +98,7 @@ TEST(Parameters, TerrainCellAppliesToFilesThatCarryNone) {
   write_terrain(dir.path("t.asc"), hills);
   for (const char* file : {"t.npy", "t.asc"}) {
     for (const bool from_file : {true, false}) {
-      Parameters p;
+      Parameters p = default_parameters();
       p.set("terrain.file", dir.path(file));
       p.set("terrain.cell", 2.5);
       p.set("terrain.cell_from_file", from_file);
@@ -125,7 +125,7 @@ TEST(Parameters, DefaultScenarioLoads) {
 
 TEST(Parameters, DocsAreGeneratedFromTheTable) {
   const std::string docs = test::read_text(test::source_dir() + "/docs/parameters.md");
-  EXPECT_EQ(docs, parameters_markdown())
+  EXPECT_EQ(docs, parameters_markdown(parameter_table()))
       << "regenerate with: build/runnel params --markdown > docs/parameters.md";
 }
 

@@ -11,6 +11,7 @@
 #include "runnel/core/parameter_groups.hpp"
 #include "runnel/models/droplet_model.hpp"
 #include "runnel/models/olsen_model.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/pipe_model.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sph/erosion.hpp"
@@ -53,13 +54,13 @@ TEST(SettingsTable, ASetValueReachesTheMemberAndTheKernelDefine) {
       {"sph.gravity", "SPH_GRAVITY"},
       {"sph.restitution", "SPH_RESTITUTION"}};
   for (const auto& [key, define] : sph_defines) {
-    Parameters p;
+    Parameters p = default_parameters();
     const double v = other_value(*find_param(key));
     p.set(key, v);
     const SphSettings s = SphSettings::from(p, 0.1, 2.0);
     EXPECT_NE(s.build_options().find(float_define(define, v)), std::string::npos) << key;
   }
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("pipe.min_tilt", 0.125);
   p.set("pipe.edges", std::string("closed"));
   const PipeSettings pipe = PipeSettings::from(p);
@@ -78,7 +79,8 @@ TEST(SettingsTable, ASetValueReachesTheMemberAndTheKernelDefine) {
 }
 
 TEST(SettingsTable, ResolvedSphValuesFollowTheirParameters) {
-  Parameters p;  // defaults: contact radius 0.5 dx, surface eps 0.01 dx, c0 automatic
+  Parameters p =
+      default_parameters();  // defaults: contact radius 0.5 dx, surface eps 0.01 dx, c0 automatic
   const SphSettings s = SphSettings::from(p, 0.2, 3.0);
   EXPECT_DOUBLE_EQ(s.spacing, 0.2);
   EXPECT_DOUBLE_EQ(s.h, std::stod(find_param("sph.h_factor")->default_value) * 0.2);
@@ -91,10 +93,10 @@ TEST(SettingsTable, ResolvedSphValuesFollowTheirParameters) {
 
 TEST(SettingsTable, RunModelOffersExactlyTheRegistrysModels) {
   for (const std::string& name : model_names()) {
-    Parameters p;
+    Parameters p = default_parameters();
     EXPECT_NO_THROW(p.set_text("run.model", "\"" + name + "\"")) << name;
   }
-  Parameters p;
+  Parameters p = default_parameters();
   EXPECT_THROW(p.set_text("run.model", "\"no-such-model\""), std::exception);
 }
 

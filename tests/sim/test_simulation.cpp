@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/sph_simulation.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/surface.hpp"
@@ -18,7 +19,7 @@ using test::compute;
 
 // Heavy, short-lived rain with strong erosion on a small terrain: every mass-balance term moves.
 Parameters busy_parameters() {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("rain.rate", 4000.0);
   p.set("rain.lifespan", 1.0);
   p.set("rain.max_particles", static_cast<std::int64_t>(3000));
@@ -175,7 +176,7 @@ TEST(Simulation, RainOnAValleyGathersOnItsAxisAndErodesIt) {
   // Rain on both flanks (10°) runs down to the axis (15°) and out at its foot: the water gathered
   // there spends far more power on the bed (ω = ρ g q S) than the sheets on the flanks, so the axis
   // erodes most. Particles of the cell's size keep the test quick.
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.spacing", 1.0);
   p.set("rain.rate", 40.0);
   p.set("rain.lifespan", 1000.0);
@@ -204,7 +205,7 @@ namespace runnel {
 namespace {
 
 TEST(Rain, DiscRegionBudgetAndIntensity) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("rain.region", std::string("disc"));
   p.set("rain.disc_x", 20.0);
   p.set("rain.disc_z", 15.0);

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "runnel/compute/kernel.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/surface.hpp"
@@ -19,7 +20,7 @@ namespace {
 using test::compute;
 
 SphSettings droplet_settings(double cfl) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.cfl", cfl);
   p.set("sph.dt_max", 1.0);
   p.set("sph.density_max", 100.0);  // droplets slam into the ground at up to Mach 1 here

@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/sph_reference.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/validation/tank.hpp"
@@ -20,7 +21,7 @@ namespace {
 using test::compute;
 
 Parameters dfsph_parameters() {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.solver", std::string("dfsph"));
   p.set("sph.walls", false);
   return p;

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <string>
 
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/validation/tank.hpp"
 #include "test_support.hpp"
@@ -54,7 +55,7 @@ Energy mechanical_energy(SphSolver& solver) {
 }
 
 TEST(SphEnergy, SettledBlockInATankOnlyLosesEnergy) {
-  Parameters params;
+  Parameters params = default_parameters();
   params.set("sph.walls", true);
   const double height = 0.2, dx = height / 8, width = 8 * dx;
   const SphSettings s = SphSettings::from(params, dx, std::sqrt(9.81 * height));
@@ -104,7 +105,7 @@ double incompressible_energy(SphSolver& solver) {
 // about half the steps gain, the worst by 0.4 % of the block's energy above its resting level;
 // printed, and in docs/validation.md). Its energy must still fall over the second.
 TEST(SphEnergy, IncompressibleSettledBlockLosesEnergyOverASecond) {
-  Parameters params;
+  Parameters params = default_parameters();
   params.set("sph.walls", true);
   params.set("sph.solver", std::string("dfsph"));
   const double height = 0.2, dx = height / 8, width = 8 * dx;

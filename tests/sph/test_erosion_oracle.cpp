@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/erosion.hpp"
 #include "runnel/sph/erosion_reference.hpp"
 #include "runnel/sph/sph_solver.hpp"
@@ -23,7 +24,7 @@ using test::compute;
 TEST(ErosionOracle, ExchangeMatchesThePlainCppReference) {
   const Heightmap rough = generate_terrain("diamond-square", 33, 29, 1.0, 7, {{"relief", 0.3}});
   for (const char* model : {"stream-power", "acidity"}) {
-    Parameters p;
+    Parameters p = default_parameters();
     p.set("erosion.model", std::string(model));
     p.set("erosion.deposit_fraction", 0.75);
     p.set("erosion.erodibility", 0.05);  // about a hundred quanta per detaching particle and step
@@ -101,7 +102,7 @@ TEST(ErosionLaw, WaterThatClimbsOrCrossesTheSlopeDropsItsLoadAndDetachesNothing)
   const double slope = 20.0, a = slope * M_PI / 180, speed = 2.0;
   const Heightmap plane =
       generate_terrain("plane", 41, 41, 1.0, 1, {{"slope", slope}});  // rises to +x
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("erosion.erodibility", 0.05);
   const SphSettings sph = SphSettings::from(p, 0.5, 5.0);
   SphSolver solver(compute(), sph, plane, 40.0);

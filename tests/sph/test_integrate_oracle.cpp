@@ -11,6 +11,7 @@
 #include "runnel/compute/kernel.hpp"
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/text.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/drift_reference.hpp"
 #include "runnel/sph/particle_store.hpp"
 #include "runnel/sph/sph_solver.hpp"
@@ -32,7 +33,7 @@ struct Case {
 
 Case random_case(double restitution, std::uint32_t seed) {
   Case c;
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.restitution", restitution);
   p.set("sph.manning_n", 0.05);
   c.settings = SphSettings::from(p, 0.25, 5.0);
@@ -154,7 +155,7 @@ TEST(IntegrateOracle, DriftMatchesThePlainCppReferenceOverAPlane) {
 // and root's few ulp), D floored at 1 µm, for depths across eleven decades, exact cubes and a
 // partial last work-item; nothing written past the particles.
 TEST(IntegrateOracle, BedFrictionFactorsAreTheScalarRootsBitsInEveryLane) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.manning_n", 0.035);
   const SphSettings s = SphSettings::from(p, 0.25, 5.0);
   std::vector<float> depth = {0.0f, -1.0f, 1e-7f, 1e-6f, 0.001f, 0.008f, 0.125f, 1.0f, 8.0f, 27.0f};
@@ -210,7 +211,7 @@ __kernel void scalar_factors(const __global float* depth, const uint n, __global
 // Each particle is kicked once and measured, whether the rows take contiguous runs (a CPU's cut) or
 // every blocks-th particle (a GPU's).
 TEST(IntegrateOracle, ClosingKickAddsHalfTheAccelerationStepBeforeTheStats) {
-  const SphSettings s = SphSettings::from(Parameters(), 0.25, 5.0);
+  const SphSettings s = SphSettings::from(default_parameters(), 0.25, 5.0);
   HostParticles host;
   std::mt19937 rng(2);
   std::uniform_real_distribution<float> u(-5.0f, 5.0f);

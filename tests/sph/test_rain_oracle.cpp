@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/rain_emitter.hpp"
 #include "runnel/sph/rain_reference.hpp"
 #include "runnel/sph/sph_solver.hpp"
@@ -20,7 +21,7 @@ using test::compute;
 TEST(RainOracle, EmittedDropsMatchThePlainCppReferenceInEveryRegion) {
   const Heightmap rough = generate_terrain("diamond-square", 33, 29, 1.0, 4, {{"relief", 0.3}});
   for (const char* region : {"terrain", "rectangle", "disc"}) {
-    Parameters p;
+    Parameters p = default_parameters();
     p.set("rain.region", std::string(region));
     p.set("rain.rect_x0", 3.0), p.set("rain.rect_x1", 20.0);
     p.set("rain.rect_z0", 5.0), p.set("rain.rect_z1", 26.0);
@@ -67,7 +68,7 @@ namespace {
 // shares) to the step's end, under gravity; the oracle integrates the same fall in double.
 TEST(RainOracle, IncompressibleStepsSpreadTheDropsOverTheStep) {
   const Heightmap rough = generate_terrain("diamond-square", 33, 29, 1.0, 4, {{"relief", 0.3}});
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.solver", std::string("dfsph"));
   p.set("rain.rate", 20000.0);
   p.set("rain.spawn_height", 3.0);  // above the contact surface everywhere

@@ -8,6 +8,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/compute/kernel.hpp"
 #include "runnel/compute/launch.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/sph_reference.hpp"
 #include "runnel/sph/sph_settings.hpp"
 #include "test_support.hpp"
@@ -23,7 +24,7 @@ struct Probe {
 
 Probe probe(const std::vector<float>& r, double h = kH) {
   ComputeContext& compute = test::compute();
-  SphSettings s = SphSettings::from(Parameters(), 0.1, 2.0);  // dx 0.1 m, c0 20 m/s
+  SphSettings s = SphSettings::from(default_parameters(), 0.1, 2.0);  // dx 0.1 m, c0 20 m/s
   s.h = h;
   Kernel k(compute,
            compute.program({"cl/common.cl", "cl/sph_kernel.cl", "cl/sph_kernel_probe.cl"},

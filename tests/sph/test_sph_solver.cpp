@@ -10,6 +10,7 @@
 #include <set>
 
 #include "runnel/core/error.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/sph_reference.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/validation/tank.hpp"
@@ -22,7 +23,7 @@ namespace {
 using test::compute;
 
 SphSettings settings(double gravity = 9.81, bool walls = true) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.gravity", gravity);
   p.set("sph.walls", walls);
   return SphSettings::from(p, 0.1, 2.0);  // dx = 0.1 m, c0 = 20 m/s
@@ -264,7 +265,7 @@ TEST(SphSolver, MomentumIsConservedInAClosedBoxWithoutGravity) {
 TEST(SphSolver, SameInputsGiveBitwiseIdenticalState) {
   std::vector<HostParticles> results;
   for (int run = 0; run < 2; ++run) {
-    Parameters params;
+    Parameters params = default_parameters();
     params.set("sph.walls", true);
     const SphSettings s = SphSettings::from(params, 0.05, std::sqrt(9.81 * 2.0 * 0.5));
     SphSolver solver(compute(), s, flat_floor(10, 1, 0.2), 1.5);
@@ -296,7 +297,7 @@ TEST(SphSolver, NanInTheStateStopsTheStepWithItsNumber) {
 }
 
 TEST(SphSolver, CollapsingTimeStepAndInsaneDensityStopTheRun) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.dt_min", 0.05);
   p.set("sph.dt_max", 1.0);
   SphSolver slow(compute(), SphSettings::from(p, 0.1, 2.0), flat_floor(1, 1, 4.0), 4.0);
@@ -318,7 +319,7 @@ TEST(SphSolver, CollapsingTimeStepAndInsaneDensityStopTheRun) {
 // pressure being clamped at zero), and the density stops at the floor, sph.density_min · ρ0,
 // instead of drifting down until the run stops.
 TEST(SphSolver, SeparatingDropsThinToTheDensityFloorAndNoFurther) {
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("sph.density_min", 0.5);
   const SphSettings s = SphSettings::from(p, 0.1, 2.0);
   SphSolver solver(compute(), s, flat_floor(1, 1, 4.0), 4.0);

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <random>
 
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/footprint.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/sph/water_depth_reference.hpp"
@@ -38,7 +39,7 @@ void expect_depths_match_the_plain_sum(const DepthCase& c) {
   const double spacing = 0.5;
   const Heightmap terrain =
       generate_terrain("diamond-square", c.vertices, c.vertices, c.cell, 5, {{"relief", 0.05}});
-  const SphSettings sph = SphSettings::from(Parameters(), spacing, 5.0);
+  const SphSettings sph = SphSettings::from(default_parameters(), spacing, 5.0);
   SphSolver solver(compute(), sph, terrain, terrain.max_height() + 10.0);
   const double side = (c.vertices - 1) * c.cell;
   HostParticles host;

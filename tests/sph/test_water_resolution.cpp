@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/sph/footprint.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/sph/water_depth_reference.hpp"
@@ -33,7 +34,7 @@ struct Measured {
 // `host` on a flat 24 m × 24 m floor of 1 m cells after `steps` steps, measured as `runnel run`
 // measures it at the end of a run.
 Measured settle_and_measure(HostParticles host, int steps) {
-  const SphSettings sph = SphSettings::from(Parameters(), kSpacing, 3.0);
+  const SphSettings sph = SphSettings::from(default_parameters(), kSpacing, 3.0);
   const Heightmap floor = flat_floor(kCells, kCells, kCell);
   SphSolver solver(compute(), sph, floor, 10.0);
   for (std::size_t i = 0; i < host.size(); ++i) host.id[i] = static_cast<std::uint32_t>(i);
@@ -83,9 +84,9 @@ TEST(WaterResolution, ASheetThreeParticlesDeepHoldsTheContinuumDepthOfThreeLayer
   // Inside the sheet the water over a unit of area is three layers, 3·dx; a particle's own water on
   // its footprint is lone_particle_depth. Their ratio is what the median particle reads, since
   // most particles are farther than a footprint from the sheet's edges.
-  const double own =
-      lone_particle_depth(std::pow(kSpacing, 3), 12.25, 12.25, kCells + 1, kCells + 1, kCell,
-                          footprint_radius(SphSettings::from(Parameters(), kSpacing, 3.0), kCell));
+  const double own = lone_particle_depth(
+      std::pow(kSpacing, 3), 12.25, 12.25, kCells + 1, kCells + 1, kCell,
+      footprint_radius(SphSettings::from(default_parameters(), kSpacing, 3.0), kCell));
   const double continuum = 3.0 * kSpacing / own;
   EXPECT_NEAR(m.resolution.median_particles_per_footprint, continuum, 0.1 * continuum)
       << "own depth " << own << " m";
@@ -106,7 +107,7 @@ struct FilmReading {
 };
 FilmReading scattered_films(double spacing, double depth) {
   const double cell = 2.0, side = 128.0;
-  const SphSettings sph = SphSettings::from(Parameters(), spacing, 3.0);
+  const SphSettings sph = SphSettings::from(default_parameters(), spacing, 3.0);
   const Heightmap floor = flat_floor(64, 64, cell);
   SphSolver solver(compute(), sph, floor, 10.0);
   const int n = static_cast<int>(std::lround(depth * side * side / std::pow(spacing, 3)));

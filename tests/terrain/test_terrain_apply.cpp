@@ -9,6 +9,7 @@
 
 #include "runnel/core/parameters.hpp"
 #include "runnel/models/droplet_model.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "test_support.hpp"
@@ -155,7 +156,7 @@ TEST(TerrainApply, KeptContactHeightsAreTheOffsetSurfacesAfterEveryChange) {
 // refreshed).
 TEST(TerrainApply, AfterDropletBatchesNoDeltaIsLeftAndTheNormalsAreFresh) {
   const Heightmap hills = generate_terrain("fbm", 90, 70, 1.0, 3, {{"relief", 0.3}});
-  Parameters p;
+  Parameters p = default_parameters();
   p.set("droplet.batch", std::int64_t{6});
   p.set("droplet.lifetime", std::int64_t{20});
   DropletModel model(compute(), p, hills);

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/filters.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/terrain_graph.hpp"

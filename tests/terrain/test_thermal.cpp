@@ -7,6 +7,7 @@
 #include <numeric>
 #include <random>
 
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/thermal.hpp"
 #include "runnel/terrain/thermal_reference.hpp"
@@ -36,7 +37,7 @@ TEST(Thermal, ConvergesToTheTalusAngleAndConservesVolume) {
   ASSERT_GT(steepest(pyramid), 55.0);
   DeviceTerrain terrain(compute(), pyramid);
   const auto before = terrain.download_fixed();
-  ThermalSettings s = ThermalSettings::from(Parameters());
+  ThermalSettings s = ThermalSettings::from(default_parameters());
   s.talus_angle_deg = 35.0;
   ThermalRelaxation thermal(compute(), terrain, s);
   for (int k = 0; k < 600; ++k) thermal.relax();
@@ -54,7 +55,7 @@ TEST(Thermal, HeightAwareVariantKeepsPeaksSharper) {
   double peaks[2];
   for (int variant = 0; variant < 2; ++variant) {
     DeviceTerrain terrain(compute(), cone);
-    ThermalSettings s = ThermalSettings::from(Parameters());
+    ThermalSettings s = ThermalSettings::from(default_parameters());
     s.talus_angle_deg = 30.0;
     s.height_aware = variant == 1;
     s.hardness = 1.0;
@@ -83,7 +84,7 @@ TEST(Thermal, OnePassMatchesThePlainCppReference) {
   for (bool height_aware : {false, true}) {
     DeviceTerrain terrain(compute(), rough, quantum);
     const std::vector<std::int64_t> before = terrain.download_fixed();
-    ThermalSettings s = ThermalSettings::from(Parameters());
+    ThermalSettings s = ThermalSettings::from(default_parameters());
     s.talus_angle_deg = 30.0;
     s.rate = 0.37;
     s.height_aware = height_aware;

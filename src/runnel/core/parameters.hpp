@@ -27,9 +27,10 @@ struct ParamSpec {
   bool has_unit() const { return !unit.empty() && unit != "1"; }
 };
 
-// The whole table, grouped by the key's first component.
-const std::vector<ParamSpec>& parameter_table();
-const ParamSpec* find_param(const std::string& key);
+// A program's parameters, grouped by the key's first component. runnel's own table is assembled
+// above the models (models/parameter_table.hpp); this layer works with any table.
+using ParameterTable = std::vector<ParamSpec>;
+const ParamSpec* find_param(const ParameterTable& table, const std::string& key);
 
 using ParamValue = std::variant<double, std::int64_t, bool, std::string>;
 
@@ -45,7 +46,9 @@ using LayerValues = std::map<std::string, ParamValue>;
 // A validated set of parameter values: every key of the table has a value (its default unless set).
 class Parameters {
  public:
-  Parameters();  // all defaults
+  explicit Parameters(const ParameterTable& table);  // all defaults; the table outlives the set
+
+  const ParameterTable& table() const { return *table_; }
 
   // Sets from text (`--set key=value`, TOML values). Throws an input error naming `origin` and the
   // key.
@@ -79,6 +82,7 @@ class Parameters {
 
  private:
   const ParamValue& get(const std::string& key) const;
+  const ParameterTable* table_;
   std::map<std::string, ParamValue> values_;
   std::map<std::string, double> generator_values_;
   std::vector<LayerValues> layers_;
@@ -86,6 +90,6 @@ class Parameters {
 };
 
 // docs/parameters.md, generated from the table (`runnel params --markdown`).
-std::string parameters_markdown();
+std::string parameters_markdown(const ParameterTable& table);
 
 }  // namespace runnel

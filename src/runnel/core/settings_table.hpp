@@ -17,10 +17,10 @@ namespace runnel {
 // and help (the ParamSpec that `runnel params`, docs/parameters.md and the scenario reader see),
 // the struct member it fills and, where a kernel reads it as it is, the -D define it becomes. A
 // group's `from()` reads every row with read_settings(), its `build_options()` starts from
-// settings_defines(), and parameter_table() is the concatenation of the groups' specs, so a key,
-// its default and its destination can no longer drift apart. A parameter the group resolves into
-// something else (0 = automatic, a multiple of dx) still fills its member here; from() then
-// resolves it in place and says why.
+// settings_defines(), and runnel's parameter table (models/parameter_table.hpp) is the
+// concatenation of the groups' specs, so a key, its default and its destination can no longer drift
+// apart. A parameter the group resolves into something else (0 = automatic, a multiple of dx) still
+// fills its member here; from() then resolves it in place and says why.
 template <class S>
 struct Setting {
   using Member =

@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/ground/ground.hpp"
 #include "runnel/models/registry.hpp"
+#include "runnel/sim/scenario.hpp"
 
 namespace runnel {
 

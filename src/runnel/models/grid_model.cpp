@@ -7,7 +7,7 @@
 
 #include "runnel/compute/buffer_bytes.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/core/parameters_toml.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/ground/ground_settings.hpp"
 #include "runnel/models/fields.hpp"

@@ -3,11 +3,12 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameter_groups.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/core/parameters_toml.hpp"
 #include "runnel/ground/ground_settings.hpp"
 #include "runnel/models/droplet_model.hpp"
 #include "runnel/models/memory_check.hpp"
 #include "runnel/models/olsen_model.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/pipe_model.hpp"
 #include "runnel/models/sph_model.hpp"
 #include "runnel/models/stream_power_model.hpp"
@@ -82,7 +83,8 @@ std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& par
 
 std::unique_ptr<Model> make_model_from_checkpoint(ComputeContext& compute, const CheckpointData& d,
                                                   const std::string& origin) {
-  Parameters params = parse_scenario(d.parameters_toml, "checkpoint parameters");
+  Parameters params = default_parameters();
+  read_parameters_toml(params, d.parameters_toml, "checkpoint parameters");
   params.set("run.model", d.model);
   require_memory_for(compute, params, d.terrain);
   std::unique_ptr<Model> model = model_entry(d.model).make(compute, params, d.initial_terrain());

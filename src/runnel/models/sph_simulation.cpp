@@ -6,7 +6,7 @@
 
 #include "runnel/core/clock.hpp"
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
+#include "runnel/core/parameters_toml.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/ground/ground_settings.hpp"

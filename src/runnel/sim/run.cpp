@@ -13,7 +13,6 @@
 #include <string>
 
 #include "runnel/core/error.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/ground/ground_outputs.hpp"
 #include "runnel/io/atomic_file.hpp"
@@ -23,6 +22,7 @@
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/sim/output_folder.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/height_steps.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 

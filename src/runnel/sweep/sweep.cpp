@@ -15,7 +15,6 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/core/input_file.hpp"
-#include "runnel/core/scenario.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/plot.hpp"
@@ -23,6 +22,7 @@
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
+#include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "runnel/core/parameters.hpp"
+#include "runnel/models/parameter_table.hpp"
 
 namespace runnel {
 
@@ -16,10 +17,10 @@ struct SweepAxis {
 };
 
 struct SweepSpec {
-  std::string path;             // the sweep file
-  Parameters base;              // the base scenario (or the defaults)
-  std::vector<SweepAxis> axes;  // in key order
-  bool zip = false;             // combine: "grid" (every combination) or "zip" (the i-th of each)
+  std::string path;                        // the sweep file
+  Parameters base = default_parameters();  // the base scenario (or the defaults)
+  std::vector<SweepAxis> axes;             // in key order
+  bool zip = false;  // combine: "grid" (every combination) or "zip" (the i-th of each)
   std::vector<std::string> metrics;  // collected into results.csv
   long long max_members = 1000;      // more needs --force
   long long checkpoint_every = 0;    // members checkpoint every N steps and resume from the newest
@@ -27,8 +28,8 @@ struct SweepSpec {
 
 struct SweepMember {
   std::size_t index = 0;
-  std::vector<std::string> values;  // one per axis
-  Parameters params;                // the member's resolved scenario
+  std::vector<std::string> values;           // one per axis
+  Parameters params = default_parameters();  // the member's resolved scenario
 };
 
 // The metrics a sweep can collect: the run's volumes and balance, the shared terrain metrics.

@@ -20,6 +20,7 @@
 
 #include "runnel/core/text.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/sph_model.hpp"
 #include "runnel/sph/sph_settings.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -105,7 +106,7 @@ Parameters convergence_base(const Parameters& given, double cell) {
 
 struct Variant {
   const char* name;
-  Parameters params;
+  Parameters params = default_parameters();
 };
 
 // The base run and one run per knob: half the step, half the spacing, the spawn height halved

@@ -8,15 +8,16 @@
 #include "runnel/core/heightmap.hpp"
 #include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
+#include "runnel/models/parameter_table.hpp"
 
 namespace runnel {
 
 // The SPH reference cases (physics.md §5): `runnel validate CASE`.
 struct ValidationOptions {
-  int resolution = 0;        // particles across the case's length scale; 0: the case's default
-  std::string out_dir;       // where CSVs go; empty: none
-  Parameters params;         // parameter overrides (--set)
-  bool progress = false;     // progress lines on stderr
+  int resolution = 0;   // particles across the case's length scale; 0: the case's default
+  std::string out_dir;  // where CSVs go; empty: none
+  Parameters params = default_parameters();  // parameter overrides (--set)
+  bool progress = false;                     // progress lines on stderr
   double settle_time = 0;    // s, hydrostatic: how long the column settles; 0: the case's default
   Heightmap terrain;         // erosion-convergence: the terrain; empty: fBm hills
   std::string terrain_name;  // how the summary names `terrain` (its file)

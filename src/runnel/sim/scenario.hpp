@@ -4,7 +4,8 @@
 #include <utility>
 #include <vector>
 
-#include "runnel/core/parameters.hpp"
+#include "runnel/core/parameters_toml.hpp"
+#include "runnel/models/parameter_table.hpp"
 
 namespace runnel {
 
@@ -19,12 +20,5 @@ Parameters parse_scenario(const std::string& toml_text, const std::string& origi
 // Every file the parameters name (terrain, graph, masks, uplift, layer thicknesses) as
 // (parameter, path): the inputs an output must never replace.
 std::vector<std::pair<std::string, std::string>> input_files(const Parameters& params);
-
-// Applies `--set key=value` overrides in order.
-void apply_overrides(Parameters& params, const std::vector<std::string>& assignments);
-
-// The parameter set as TOML text that parse_scenario reads back to the same values (checkpoints
-// store it).
-std::string parameters_toml(const Parameters& params);
 
 }  // namespace runnel

@@ -3,8 +3,9 @@
 // The drivers' own keys (terrain.*, run.*) are declared here; each settings group declares its keys
 // once, beside the struct they fill (core/parameter_groups.hpp); each model's groups come from its
 // registry entry, in the registry's order, and the ground's, which every model shares, after them.
+#include "runnel/models/parameter_table.hpp"
+
 #include "runnel/core/parameter_groups.hpp"
-#include "runnel/core/parameters.hpp"
 #include "runnel/models/registry.hpp"     // run.model's choices are the registry's names
 #include "runnel/terrain/generators.hpp"  // terrain.generator's, the generators'
 
@@ -61,9 +62,17 @@ std::vector<ParamSpec> assemble() {
 
 }  // namespace
 
-const std::vector<ParamSpec>& parameter_table() {
-  static const std::vector<ParamSpec> table = assemble();
+const ParameterTable& parameter_table() {
+  static const ParameterTable table = assemble();
   return table;
+}
+
+Parameters default_parameters() {
+  return Parameters(parameter_table());
+}
+
+const ParamSpec* find_param(const std::string& key) {
+  return find_param(parameter_table(), key);
 }
 
 }  // namespace runnel

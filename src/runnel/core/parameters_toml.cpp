@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: MIT
-#include "runnel/core/scenario.hpp"
+#include "runnel/core/parameters_toml.hpp"
 
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <variant>
@@ -50,7 +48,7 @@ void flatten(const toml::table& table, const std::string& prefix, Parameters& pa
     if (auto* sub = node.as_table()) {
       const bool known_group =
           key == "terrain.set" ||
-          std::any_of(parameter_table().begin(), parameter_table().end(),
+          std::any_of(params.table().begin(), params.table().end(),
                       [&](const ParamSpec& p) { return p.key.rfind(key + ".", 0) == 0; });
       if (!known_group) throw input_error(origin + ": unknown table [" + key + "]");
       flatten(*sub, key, params, origin);
@@ -58,12 +56,6 @@ void flatten(const toml::table& table, const std::string& prefix, Parameters& pa
     }
     params.set(key, toml_value(node, origin + " " + key), origin);
   }
-}
-
-// A file name relative to the scenario's folder, made absolute-or-normal; "" stays "".
-std::string resolved(const std::string& file, const std::string& base_dir) {
-  if (file.empty() || base_dir.empty() || !std::filesystem::path(file).is_relative()) return file;
-  return (std::filesystem::path(base_dir) / file).lexically_normal().string();
 }
 
 // A value as TOML text that reads back to the same value.
@@ -84,13 +76,7 @@ std::string toml_text(const ParamValue& value) {
 
 }  // namespace
 
-// The parameters that name a file, resolved against the scenario's folder.
-constexpr const char* kFileKeys[] = {"terrain.file",         "terrain.graph",
-                                     "ground.hardness_mask", "ground.rain_mask",
-                                     "ground.frozen_mask",   "stream_power.uplift_file"};
-
-Parameters parse_scenario(const std::string& text, const std::string& origin,
-                          const std::string& base_dir) {
+void read_parameters_toml(Parameters& params, const std::string& text, const std::string& origin) {
   check_toml_key_depth(text, origin);
   toml::table table;
   try {
@@ -101,36 +87,8 @@ Parameters parse_scenario(const std::string& text, const std::string& origin,
                       std::to_string(where.column) +
                       ": TOML syntax error: " + std::string(e.description()));
   }
-  Parameters params;
   flatten(table, "", params, origin);
   if (const toml::node* layers = table.get("layers")) read_layers(*layers, params, origin);
-  for (const char* key : kFileKeys) {
-    if (params.was_set(key)) params.set(key, resolved(params.text(key), base_dir), origin);
-  }
-  for (std::size_t l = 0; l < params.layers().size(); ++l) {
-    const LayerValues& layer = params.layers()[l];
-    if (layer.count("thickness_file"))
-      params.set_layer_value(l, "thickness_file",
-                             resolved(layer_text(layer, "thickness_file"), base_dir));
-  }
-  return params;
-}
-
-std::vector<std::pair<std::string, std::string>> input_files(const Parameters& params) {
-  std::vector<std::pair<std::string, std::string>> files;
-  for (const char* key : kFileKeys)
-    if (params.was_set(key) && !params.text(key).empty()) files.emplace_back(key, params.text(key));
-  for (std::size_t l = 0; l < params.layers().size(); ++l) {
-    const LayerValues& layer = params.layers()[l];
-    if (layer.count("thickness_file"))
-      files.emplace_back("layer thickness_file", layer_text(layer, "thickness_file"));
-  }
-  return files;
-}
-
-Parameters load_scenario(const std::string& path) {
-  return parse_scenario(read_text_input(path, "scenario file"), path,
-                        std::filesystem::path(path).parent_path().string());
 }
 
 void apply_overrides(Parameters& params, const std::vector<std::string>& assignments) {
