@@ -11,6 +11,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/ground/ground.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/models/droplet_model.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/models/sph_model.hpp"
 #include "runnel/sim/run.hpp"
@@ -46,8 +47,8 @@ Parameters model_parameters(const Parameters& scenario, const std::string& model
   } else if (model == "droplet") {
     const long long droplets =
         std::max<long long>(1, std::llround(budget.volume / budget.particle_volume));
-    const long long automatic = std::max<long long>(1, static_cast<long long>(terrain.size()) / 64);
-    const long long batch = p.integer("droplet.batch") > 0 ? p.integer("droplet.batch") : automatic;
+    const long long batch =
+        DropletSettings::from(p).batch_for(static_cast<long long>(terrain.size()));
     const long long iterations = (droplets + batch - 1) / batch;
     p.set("droplet.volume", budget.particle_volume, "compare");
     p.set("droplet.batch", static_cast<std::int64_t>((droplets + iterations - 1) / iterations),

@@ -181,12 +181,14 @@ long long DropletModel::plane_stride() const {
   return (batch_size() + kLanes - 1) / kLanes * kLanes;
 }
 
-long long DropletModel::batch_size() const {
+long long DropletSettings::batch_for(long long vertices) const {
   // Droplets of one batch do not see each other's changes: many ending in the same pit would all
   // fill it. One droplet per 64 cells by default keeps that rare.
-  return settings_.batch > 0
-             ? settings_.batch
-             : std::max<long long>(1, static_cast<long long>(state_.vertices()) / 64);
+  return batch > 0 ? batch : std::max<long long>(1, vertices / 64);
+}
+
+long long DropletModel::batch_size() const {
+  return settings_.batch_for(static_cast<long long>(state_.vertices()));
 }
 
 double DropletModel::droplet_volume() const {

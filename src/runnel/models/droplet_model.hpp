@@ -24,6 +24,8 @@ struct DropletSettings {
   double volume;       // m³ of rain per droplet; 0: cell³
 
   static DropletSettings from(const Parameters& params);
+  // Droplets a batch on a terrain of `vertices`: droplet.batch, or one per 64 vertices.
+  long long batch_for(long long vertices) const;
   std::string build_options() const;
 };
 

@@ -37,8 +37,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   const double spacing = runnel::particle_spacing(params, terrain.cell);
   const double relief =
       std::max(0.0, static_cast<double>(terrain.max_height() - terrain.min_height()));
-  const double spawn =
-      params.real("rain.spawn_height") > 0 ? params.real("rain.spawn_height") : spacing;
+  const double spawn = RainSettings::spawn_height_of(params, spacing);
   const double gravity = params.real("sph.gravity");
   // The speed the water typically reaches: a fall from the spawn height, or a slide down a quarter
   // of the relief (faster water is rarer and tolerates the larger density error).

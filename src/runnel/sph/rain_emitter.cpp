@@ -42,6 +42,11 @@ std::vector<ParamSpec> rain_parameters() {
   return settings_specs(kRainTable);
 }
 
+double RainSettings::spawn_height_of(const Parameters& p, double spacing) {
+  const double given = p.real("rain.spawn_height");
+  return given > 0 ? given : spacing;
+}
+
 RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrain, double spacing,
                                 double reference_speed) {
   RainSettings r = read_settings(p, kRainTable);
@@ -74,7 +79,7 @@ RainSettings RainSettings::from(const Parameters& p, const DeviceTerrain& terrai
     r.region = Region::kTerrain;
     r.area = lx * lz;
   }
-  if (!(r.spawn_height > 0)) r.spawn_height = spacing;
+  r.spawn_height = spawn_height_of(p, spacing);
   // By default a drop lives long enough to cross the terrain at a tenth of the reference speed:
   // water under bed friction runs several times slower than a free fall over the relief.
   if (!(r.lifespan > 0)) r.lifespan = 10.0 * std::max(lx, lz) / reference_speed;

@@ -38,6 +38,9 @@ struct RainSettings {
   double a, b, c, d;  // rectangle x0, x1, z0, z1, or disc x, radius, z
   double area;        // m²
 
+  // rain.spawn_height resolved: 0 is one particle spacing. The model needs it before from() (the
+  // reference speed is the fall from there).
+  static double spawn_height_of(const Parameters& p, double spacing);
   // `reference_speed` (m/s) and the particle spacing fill the automatic values.
   static RainSettings from(const Parameters& p, const DeviceTerrain& terrain, double spacing,
                            double reference_speed);

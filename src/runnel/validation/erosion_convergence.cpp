@@ -118,8 +118,7 @@ std::vector<Variant> knob_variants(const Parameters& base, double spacing) {
   Parameters half_cfl = base;
   if (base.text("sph.solver") == "dfsph") {
     half_cfl.set("sph.cfl_flow", 0.5 * base.real("sph.cfl_flow"), "validate");
-    const double dt_max =
-        base.real("sph.dt_max") > 0 ? base.real("sph.dt_max") : default_dt_max(true);
+    const double dt_max = SphSettings::from(base, spacing, 1.0).dt_max;  // 0 resolved
     half_cfl.set("sph.dt_max", 0.5 * dt_max, "validate");
   } else {
     half_cfl.set("sph.cfl", 0.5 * base.real("sph.cfl"), "validate");
