@@ -18,9 +18,14 @@ void add_params_command(CLI::App& app) {
       std::cout << parameters_markdown(parameter_table());
       return;
     }
-    for (auto& p : parameter_table()) {
-      std::cout << p.key << " = " << p.default_value << (p.has_unit() ? " [" + p.unit + "]" : "")
+    auto print = [](const ParamSpec& p, const std::string& key) {
+      std::cout << key << " = " << p.default_value << (p.has_unit() ? " [" + p.unit + "]" : "")
                 << "\n    " << p.help << "\n";
+    };
+    for (auto& p : parameter_table()) {
+      print(p, p.key);
+      if (p.type == ParamType::kEntries)
+        for (const ParamSpec& sub : *p.entry_keys) print(sub, p.key + "[]." + sub.key);
     }
   });
 }

@@ -75,8 +75,8 @@ void add_run_command(CLI::App& app) {
       "Run an erosion model on a terrain: by default runnel's SPH rain erosion (rain falls, flows, "
       "erodes and deposits), or droplet, pipe, olsen or thermal (--model). Writes "
       "height_initial.png, height_final.png, erosion.png, final.asc, final.npy, final.tif, "
-      "erosion.tif (GeoTIFF, georeferenced like the input), final.h5 and "
-      "metrics.json into --out");
+      "erosion.tif (GeoTIFF, georeferenced like the input), final.h5, "
+      "metrics.json and, with [[probes]] in the scenario, probes.csv into --out");
   cmd->add_option("scenario", opt->scenario,
                   "scenario file (TOML; see 'runnel params'); default: built-in defaults");
   auto* terrain = cmd->add_option("--terrain", opt->terrain,

@@ -44,6 +44,19 @@ struct Heightmap {
   double volume() const;
 };
 
+// The map frame every exported geometry uses, so ParaView, a GIS and splashsurf see one scene:
+// X east and Y north in the terrain's coordinates (its CRS when it has one), Z up. runnel's world
+// frame has x east from the first column, z south from the northern row, y up.
+struct MapFrame {
+  double origin_x = 0, north_edge = 0;  // map X of column 0, map Y of row 0 (the northern row)
+  explicit MapFrame(const Heightmap& t)
+      : origin_x(t.origin_x), north_edge(t.origin_z + (t.ny - 1) * t.cell) {}
+  double x(double world_x) const { return origin_x + world_x; }
+  double y(double world_z) const { return north_edge - world_z; }
+  double world_x(double map_x) const { return map_x - origin_x; }
+  double world_z(double map_y) const { return north_edge - map_y; }
+};
+
 // after − before per vertex (m; negative where the terrain was eroded, positive where deposited),
 // on the grid and georeferencing of `before`.
 Heightmap height_change(const Heightmap& before, const Heightmap& after);

@@ -22,6 +22,8 @@ const char* type_name(ParamType t) {
       return "true or false";
     case ParamType::kString:
       return "a string";
+    case ParamType::kEntries:
+      return "a list of tables";
   }
   return "";
 }
@@ -57,6 +59,9 @@ ParamValue parse_text(const ParamSpec& spec, std::string text, const std::string
       if (text.size() >= 2 && text.front() == '"' && text.back() == '"')
         text = text.substr(1, text.size() - 2);
       return text;
+    case ParamType::kEntries:
+      throw input_error(where + ": a list of tables; give each entry as [[" + spec.key +
+                        "]] in a scenario file");
   }
   return fail();
 }
@@ -66,6 +71,9 @@ ParamValue parse_text(const ParamSpec& spec, std::string text, const std::string
 ParamValue validated_value(const ParamSpec& spec_ref, const ParamValue& value_in,
                            const std::string& where) {
   const ParamSpec* spec = &spec_ref;
+  if (spec->type == ParamType::kEntries)
+    throw input_error(where + ": a list of tables; give each entry as [[" + spec->key +
+                      "]] in a scenario file");
   auto to_text = [](const ParamValue& v) { return Parameters::to_text(v); };
   ParamValue value = value_in;
   // An integer is a fine value for a real parameter.
@@ -109,7 +117,9 @@ const ParamSpec* find_param(const ParameterTable& table, const std::string& key)
 }
 
 Parameters::Parameters(const ParameterTable& table) : table_(&table) {
-  for (auto& spec : table) values_[spec.key] = parse_text(spec, spec.default_value, spec.key);
+  for (auto& spec : table)
+    if (spec.type != ParamType::kEntries)
+      values_[spec.key] = parse_text(spec, spec.default_value, spec.key);
 }
 
 void Parameters::set_text(const std::string& key, const std::string& text,
@@ -148,6 +158,34 @@ void Parameters::set(const std::string& key, const ParamValue& value_in,
   explicit_.insert(key);
 }
 
+void Parameters::add_entry(const std::string& key, const EntryValues& given,
+                           const std::string& origin) {
+  const ParamSpec* spec = find_param(*table_, key);
+  if (!spec || spec->type != ParamType::kEntries)
+    throw input_error(origin + " " + key + ": unknown list of tables (see 'runnel params')");
+  std::vector<EntryValues>& list = entries_[key];
+  const std::string where = origin + " " + key + "[" + std::to_string(list.size() + 1) + "]";
+  EntryValues entry;
+  for (const ParamSpec& sub : *spec->entry_keys)
+    entry[sub.key] = parse_text(sub, sub.default_value, where + "." + sub.key);
+  for (const auto& [sub_key, value] : given) {
+    const ParamSpec* sub = find_param(*spec->entry_keys, sub_key);
+    if (!sub) throw input_error(where + "." + sub_key + ": unknown key (see 'runnel params')");
+    entry[sub_key] = validated_value(*sub, value, where + "." + sub_key);
+  }
+  list.push_back(std::move(entry));
+  explicit_.insert(key);
+}
+
+const std::vector<EntryValues>& Parameters::entries(const std::string& key) const {
+  static const std::vector<EntryValues> none;
+  const ParamSpec* spec = find_param(*table_, key);
+  if (!spec || spec->type != ParamType::kEntries)
+    throw runtime_error("internal: '" + key + "' is not a declared list of tables");
+  auto it = entries_.find(key);
+  return it == entries_.end() ? none : it->second;
+}
+
 const ParamValue& Parameters::get(const std::string& key) const {
   auto it = values_.find(key);
   if (it == values_.end()) throw runtime_error("internal: parameter '" + key + "' is not declared");
@@ -179,6 +217,27 @@ std::string Parameters::to_text(const ParamValue& value) {
   return std::get<std::string>(value);
 }
 
+namespace {
+
+// One row of docs/parameters.md's tables.
+std::string markdown_row(const ParamSpec& p, const std::string& shown_key) {
+  std::string range;
+  if (p.type == ParamType::kReal || p.type == ParamType::kInteger) {
+    range = format_number(p.min_value) + " .. " + format_number(p.max_value);
+  } else if (!p.choices.empty()) {
+    for (auto& c : p.choices) range += (range.empty() ? "" : ", ") + c;
+  }
+  const char* type = p.type == ParamType::kReal      ? "real"
+                     : p.type == ParamType::kInteger ? "integer"
+                     : p.type == ParamType::kBool    ? "bool"
+                     : p.type == ParamType::kEntries ? "tables"
+                                                     : "string";
+  return "| `" + shown_key + "` | " + type + " | `" + p.default_value + "` | " + p.unit + " | " +
+         range + " | " + p.help + " |\n";
+}
+
+}  // namespace
+
 std::string parameters_markdown(const ParameterTable& table) {
   std::ostringstream out;
   out << "# Parameters\n\n"
@@ -196,18 +255,9 @@ std::string parameters_markdown(const ParameterTable& table) {
       out << "\n## [" << group
           << "]\n\n| key | type | default | unit | range | meaning |\n|---|---|---|---|---|---|\n";
     }
-    std::string range;
-    if (p.type == ParamType::kReal || p.type == ParamType::kInteger) {
-      range = format_number(p.min_value) + " .. " + format_number(p.max_value);
-    } else if (!p.choices.empty()) {
-      for (auto& c : p.choices) range += (range.empty() ? "" : ", ") + c;
-    }
-    const char* type = p.type == ParamType::kReal      ? "real"
-                       : p.type == ParamType::kInteger ? "integer"
-                       : p.type == ParamType::kBool    ? "bool"
-                                                       : "string";
-    out << "| `" << p.key << "` | " << type << " | `" << p.default_value << "` | " << p.unit
-        << " | " << range << " | " << p.help << " |\n";
+    out << markdown_row(p, p.key);
+    if (p.type == ParamType::kEntries)
+      for (const ParamSpec& sub : *p.entry_keys) out << markdown_row(sub, p.key + "[]." + sub.key);
   }
   out << layers_markdown();
   return out.str();

@@ -9,7 +9,8 @@
 
 namespace runnel {
 
-enum class ParamType { kReal, kInteger, kBool, kString };
+// kEntries: a list of tables ([[key]] in TOML), each entry's keys declared by `entry_keys`.
+enum class ParamType { kReal, kInteger, kBool, kString, kEntries };
 
 // One simulation parameter, declared once: the scenario reader, `--set`, `runnel params`,
 // docs/parameters.md and the outputs all iterate over this table (docs/architecture.md).
@@ -22,6 +23,7 @@ struct ParamSpec {
   double max_value;
   std::vector<std::string> choices;  // allowed values for strings; empty = any
   std::string help;
+  const std::vector<ParamSpec>* entry_keys = nullptr;  // kEntries: the keys of one entry
 
   // Whether a value of this parameter is written with a unit (text and dimensionless ones are not).
   bool has_unit() const { return !unit.empty() && unit != "1"; }
@@ -33,6 +35,8 @@ using ParameterTable = std::vector<ParamSpec>;
 const ParamSpec* find_param(const ParameterTable& table, const std::string& key);
 
 using ParamValue = std::variant<double, std::int64_t, bool, std::string>;
+// One entry of a list of tables: every key of its spec's entry_keys, given or at its default.
+using EntryValues = std::map<std::string, ParamValue>;
 
 // `value` checked against `spec` (an integer is accepted for a real): the type, the range, the
 // choices. Throws an input error starting with `where`.
@@ -41,7 +45,7 @@ ParamValue validated_value(const ParamSpec& spec, const ParamValue& value,
 
 // One stratum of a scenario's [[layers]]: the keys it sets, each validated against layer_table()
 // (core/layers.cpp); the ground builds the stratum from them (ground/strata.cpp).
-using LayerValues = std::map<std::string, ParamValue>;
+using LayerValues = EntryValues;
 
 // A validated set of parameter values: every key of the table has a value (its default unless set).
 class Parameters {
@@ -72,6 +76,14 @@ class Parameters {
   // values, a unique name and one way of giving the thickness.
   void add_layer(const LayerValues& layer, const std::string& origin);
   const std::vector<LayerValues>& layers() const { return layers_; }
+
+  // A list of tables (a kEntries key): each entry checked against the spec's entry_keys (unknown
+  // keys, types, ranges), its other keys at their defaults. Throws an input error naming `origin`,
+  // the list, the entry's number and the key.
+  void add_entry(const std::string& key, const EntryValues& given, const std::string& origin);
+  // The entries of a kEntries key, in the order given (empty unless set).
+  const std::vector<EntryValues>& entries(const std::string& key) const;
+  const std::map<std::string, std::vector<EntryValues>>& all_entries() const { return entries_; }
   // Replaces one key of layer `index` (already validated; the scenario reader resolves paths).
   void set_layer_value(std::size_t index, const std::string& key, const ParamValue& value) {
     layers_.at(index)[key] = value;
@@ -86,6 +98,7 @@ class Parameters {
   std::map<std::string, ParamValue> values_;
   std::map<std::string, double> generator_values_;
   std::vector<LayerValues> layers_;
+  std::map<std::string, std::vector<EntryValues>> entries_;
   std::set<std::string> explicit_;
 };
 

@@ -39,6 +39,22 @@ void read_layers(const toml::node& node, Parameters& params, const std::string& 
   }
 }
 
+// [[key]]: a list of tables, each an entry of a kEntries parameter.
+void read_entries(const toml::node& node, const std::string& key, Parameters& params,
+                  const std::string& origin) {
+  const toml::array* list = node.as_array();
+  if (!list || !list->is_array_of_tables())
+    throw input_error(origin + " " + key + ": expected [[" + key + "]] tables, one per entry");
+  for (const toml::node& table : *list) {
+    EntryValues entry;
+    const std::string where =
+        origin + " " + key + "[" + std::to_string(params.entries(key).size() + 1) + "]";
+    for (auto&& [k, value] : *table.as_table())
+      entry[std::string(k.str())] = toml_value(value, where + "." + std::string(k.str()));
+    params.add_entry(key, entry, origin);
+  }
+}
+
 void flatten(const toml::table& table, const std::string& prefix, Parameters& params,
              const std::string& origin) {
   for (auto&& [k, node] : table) {
@@ -52,6 +68,11 @@ void flatten(const toml::table& table, const std::string& prefix, Parameters& pa
                       [&](const ParamSpec& p) { return p.key.rfind(key + ".", 0) == 0; });
       if (!known_group) throw input_error(origin + ": unknown table [" + key + "]");
       flatten(*sub, key, params, origin);
+      continue;
+    }
+    const ParamSpec* spec = find_param(params.table(), key);
+    if (spec && spec->type == ParamType::kEntries) {
+      read_entries(node, key, params, origin);
       continue;
     }
     params.set(key, toml_value(node, origin + " " + key), origin);
@@ -118,6 +139,11 @@ std::string parameters_toml(const Parameters& params) {
     out += "[" + table + "]\n";
     for (auto& [k, v] : entries) out += k + " = " + v + "\n";
   }
+  for (const auto& [key, list] : params.all_entries())
+    for (const EntryValues& entry : list) {
+      out += "[[" + key + "]]\n";
+      for (auto& [k, v] : entry) out += k + " = " + toml_text(v) + "\n";
+    }
   for (const LayerValues& layer : params.layers()) {
     out += "[[layers]]\n";
     for (auto& [k, v] : layer) out += k + " = " + toml_text(v) + "\n";

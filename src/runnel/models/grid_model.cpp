@@ -11,6 +11,7 @@
 #include "runnel/core/version.hpp"
 #include "runnel/ground/ground_settings.hpp"
 #include "runnel/models/fields.hpp"
+#include "runnel/terrain/standing_water.hpp"
 
 namespace runnel {
 
@@ -155,6 +156,14 @@ long long GridModel::suspended_quanta() {
   if (!state_.has(kSedimentSuspended)) return 0;
   const auto s = state_.download_int64(kSedimentSuspended);
   return std::accumulate(s.begin(), s.end(), 0LL);
+}
+
+bool GridModel::start_standing_water(const Parameters& params) {
+  if (!has_standing_water(params)) return false;
+  const std::vector<float> depth = initial_water_depth(params, state_.initial_terrain());
+  state_.upload_field({kSurfaceWaterDepth, 1, depth, {}});
+  initial_water_volume_ = runnel::water_volume(depth, state_.initial_terrain());
+  return true;
 }
 
 double GridModel::water_volume() {

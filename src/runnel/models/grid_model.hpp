@@ -30,6 +30,7 @@ class GridModel : public Model, public Interactive {
   MassBalance mass_balance() final;
   Heightmap erosion_reference() final;
   double rain_volume() override { return painted_volume_; }
+  double initial_water_volume() const override { return initial_water_volume_; }
   CheckpointData checkpoint() final;
   void restore(const CheckpointData& data) final;
   std::string status() override;
@@ -67,6 +68,9 @@ class GridModel : public Model, public Interactive {
   static constexpr std::uint64_t kStepsBetweenWaits = 64;
   // m³ of water standing on the terrain (surface_water__depth × cell²).
   double water_volume();
+  // Fills the water depth field with the scenario's standing water (a model whose constructor
+  // created that field calls it); returns whether there was any.
+  bool start_standing_water(const Parameters& params);
   // Integer counters an exact restart needs, by name.
   virtual std::vector<std::pair<std::string, std::int64_t>> counters() { return {}; }
   virtual void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>&) {}
@@ -91,6 +95,7 @@ class GridModel : public Model, public Interactive {
   float rain_on() const { return global_rain_ ? 1.0f : 0.0f; }
   double rain_time() const { return rain_time_; }
   // m³ of painted water so far, and the fraction of a droplet or particle painting carries over.
+  double initial_water_volume_ = 0;
   double painted_volume_ = 0, paint_carry_ = 0;
   // The scenario rain's volume before the last rain-mask change, and the rain time then.
   double rain_accum_ = 0, rain_mark_ = 0;

@@ -75,6 +75,8 @@ class Model {
   virtual MassBalance mass_balance() = 0;
   // Water the model has rained onto the terrain so far, m³ (0 for models without rain).
   virtual double rain_volume() = 0;
+  // Water standing on the terrain at t = 0 ([[water.bodies]], water.depth), m³.
+  virtual double initial_water_volume() const { return 0.0; }
 
   // The whole state for an exact restart, and back; restore() expects a model built from the
   // checkpoint's parameters and initial terrain (make_model_from_checkpoint does both).

@@ -73,6 +73,7 @@ OlsenModel::OlsenModel(ComputeContext& compute, const Parameters& params, const 
   bind_detachment(dissolve_, bed(), placeholder_);
   dissolve_.set("rain_weight", rain_weight()).set("level", level_).set("sendable", sendable_);
   outflow_.set("level", level_).set("sendable", sendable_);
+  start_standing_water(params);
 }
 
 double OlsenModel::scratch_bytes() const {

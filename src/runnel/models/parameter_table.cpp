@@ -49,6 +49,7 @@ std::vector<ParamSpec> assemble() {
       {"run.sim_time", T::kReal, "10", "s", 0, 1e12, {}, "simulated time to run when run.steps is 0 (models with a clock: sph and pipe in seconds, stream-power in years unless run.sim_years is set)"},
       {"run.sim_years", T::kReal, "0", "yr", 0, 1e12, {}, "simulated years to run when run.steps is 0, for models whose clock is years (stream-power), so one scenario can give seconds of rain and years of landscape evolution (runnel compare); 0: run.sim_time, read as years"},
       {"run.iterations", T::kInteger, "100", "iterations", 0, 1e12, {}, "iterations to run when run.steps is 0 (models counting iterations: droplet batches, olsen, thermal)"},
+      {"run.probe_every", T::kReal, "0.1", "s", 1e-6, 1e12, {}, "clock time between the gauges' readings in probes.csv ([[probes]]; the model's clock: s for sph and pipe)"},
       {"run.report_every", T::kInteger, "200", "steps", 1, 1e12, {}, "steps between mass-balance reports (progress lines when not on a terminal)"},
       // clang-format on
   };
@@ -56,6 +57,8 @@ std::vector<ParamSpec> assemble() {
   for (const ModelEntry& model : model_registry())
     for (ParamSpec& spec : model.parameters()) table.push_back(std::move(spec));
   for (ParamSpec& spec : ground_parameters()) table.push_back(std::move(spec));  // every model's
+  for (ParamSpec& spec : water_parameters()) table.push_back(std::move(spec));   // with water
+  for (ParamSpec& spec : probe_parameters()) table.push_back(std::move(spec));
   table.insert(table.end(), run.begin(), run.end());
   return table;
 }

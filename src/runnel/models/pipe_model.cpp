@@ -116,6 +116,11 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   water_kernel_.set("rain_weight", rain_weight());
   bind_detachment(erode_kernel_, bed(), placeholder_);
   erode_kernel_.set("sendable", sendable_);
+  if (start_standing_water(params)) {
+    // The first step must already respect the CFL limit of the standing water's waves.
+    compute.queue().enqueueFillBuffer(cfl_speed2_, 0.0f, 0, n * sizeof(float));
+    choose_next_dt();
+  }
 }
 
 double PipeModel::scratch_bytes() const {
@@ -259,6 +264,7 @@ JsonObject PipeModel::diagnostics() {
   return JsonObject()
       .add("next_dt_s", dt_)
       .add("water_volume_m3", water_volume())
+      .add("initial_water_volume_m3", initial_water_volume())
       .add("edges", settings_.edges)
       .add("transport", settings_.transport);
 }

@@ -13,6 +13,7 @@
 #include "runnel/models/sph_model.hpp"
 #include "runnel/models/stream_power_model.hpp"
 #include "runnel/models/thermal_model.hpp"
+#include "runnel/terrain/standing_water.hpp"
 
 namespace runnel {
 namespace {
@@ -72,12 +73,23 @@ void require_memory_for(const ComputeContext& compute, const Parameters& params,
                      std::to_string(terrain.ny) + " vertices");
 }
 
+// Standing water needs a model that holds water on the terrain.
+void require_water_for_standing_water(const Parameters& params) {
+  if (!has_standing_water(params)) return;
+  const std::string& name = params.text("run.model");
+  if (name == "sph" || name == "pipe" || name == "olsen") return;
+  throw input_error(
+      std::string(params.entries("water.bodies").empty() ? "water.depth" : "water.bodies") +
+      ": the " + name + " model holds no standing water (sph, pipe and olsen do); leave it out");
+}
+
 }  // namespace
 
 std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& params,
                                   const Heightmap& terrain) {
   const ModelEntry& entry = model_entry(params.text("run.model"));
   require_memory_for(compute, params, terrain);
+  require_water_for_standing_water(params);
   return entry.make(compute, params, terrain);
 }
 

@@ -26,6 +26,7 @@ class SphModel final : public Model, public Interactive {
   const Heightmap& initial_terrain() const override { return sim_->initial_terrain(); }
   MassBalance mass_balance() override { return sim_->mass_balance(); }
   double rain_volume() override;
+  double initial_water_volume() const override { return sim_->initial_water_volume(); }
   CheckpointData checkpoint() override { return sim_->checkpoint(); }
   void restore(const CheckpointData& data) override;
   JsonObject diagnostics() override;

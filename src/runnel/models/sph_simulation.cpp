@@ -10,6 +10,8 @@
 #include "runnel/core/text.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/ground/ground_settings.hpp"
+#include "runnel/sph/standing_water_particles.hpp"
+#include "runnel/terrain/standing_water.hpp"
 
 namespace runnel {
 namespace {
@@ -45,7 +47,13 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   const SphSettings sph = SphSettings::from(params, spacing, reference_speed_);
 
   const ErosionSettings erosion = ErosionSettings::from(params, sph, terrain.cell);
-  const double top = terrain.max_height() + spawn + 4.0 * spacing;
+  // Standing water at t = 0: its depth per vertex, and the highest water surface.
+  const std::vector<float> standing =
+      has_standing_water(params) ? initial_water_depth(params, terrain) : std::vector<float>();
+  double water_top = terrain.max_height();
+  for (std::size_t v = 0; v < standing.size(); ++v)
+    water_top = std::max(water_top, static_cast<double>(terrain.h[v] + standing[v]));
+  const double top = std::max(terrain.max_height() + spawn, water_top) + 4.0 * spacing;
   // The fluid's hash grid spans the relief and the spawn height in cells of 2h, at most 1024.
   const double most = 1000.0 * 2.0 * sph.h - relief - 4.0 * spacing - 4.0 * sph.h;
   if (spawn > relief && spawn > most) {
@@ -74,7 +82,11 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
                                        ground_ ? &ground_->bed() : nullptr);
   const ThermalSettings thermal = ThermalSettings::from(params);
   thermal_interval_ = thermal.interval;
-  budget_device_memory(compute, terrain, rain);
+  HostParticles body;
+  if (!standing.empty()) body = standing_water_particles(sph, initial_, standing);
+  initial_water_volume_ = static_cast<double>(body.size()) * spacing * spacing * spacing;
+  budget_device_memory(compute, terrain, rain, body.size());
+  if (body.size() > 0) solver_->add(std::move(body));
   if (thermal_interval_ > 0) {
     thermal_ = std::make_unique<ThermalRelaxation>(compute, solver_->terrain(), thermal,
                                                    ground_ ? &ground_->bed() : nullptr);
@@ -87,11 +99,12 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
 // hash grid's cell ranges. Refused now, with the figures, rather than failing when the rain has
 // filled the store.
 void Simulation::budget_device_memory(const ComputeContext& compute, const Heightmap& terrain,
-                                      RainSettings& rain) {
+                                      RainSettings& rain, std::size_t standing_particles) {
   const double vertices = static_cast<double>(terrain.size());
-  const double fixed_bytes = vertices * (36 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
-                             8.0 * static_cast<double>(solver_->hash().grid().cell_count());
   const double particle_bytes = 1.5 * static_cast<double>(ParticleStore::bytes_per_particle() + 4);
+  const double fixed_bytes = vertices * (36 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
+                             8.0 * static_cast<double>(solver_->hash().grid().cell_count()) +
+                             static_cast<double>(standing_particles) * particle_bytes;
   const double available = static_cast<double>(compute.info().global_memory);
   // A budget that follows the storm stays within the device's memory (the drops beyond are held
   // back, counted and cautioned about); a budget the user set is refused if it does not fit.

@@ -39,6 +39,8 @@ class Simulation {
   bool has_rain_mask() const { return rain_mask_.present(); }
   Heightmap terrain();
   const Heightmap& initial_terrain() const { return initial_; }
+  // The standing water's particles at t = 0 ([[water.bodies]], water.depth), m³.
+  double initial_water_volume() const { return initial_water_volume_; }
   double time() const { return solver_->time(); }
   double dt() const { return solver_->dt(); }
   std::uint64_t steps() const { return solver_->steps(); }
@@ -64,7 +66,7 @@ class Simulation {
   // device_bytes_ for the run's largest particle store, the terrain and the hash grid; a budget
   // that follows the storm is cut to what the device holds, a budget the user set is refused.
   void budget_device_memory(const ComputeContext& compute, const Heightmap& terrain,
-                            RainSettings& rain);
+                            RainSettings& rain, std::size_t standing_particles);
   ComputeContext& compute_;
   Parameters params_;
   Heightmap initial_;
@@ -76,8 +78,9 @@ class Simulation {
   std::unique_ptr<Erosion> erosion_;
   std::unique_ptr<ThermalRelaxation> thermal_;
   std::unique_ptr<Ground> ground_;
-  double thermal_interval_ = 0;  // s
-  double device_bytes_ = 0;      // see device_bytes()
+  double thermal_interval_ = 0;      // s
+  double device_bytes_ = 0;          // see device_bytes()
+  double initial_water_volume_ = 0;  // m³ of the standing water's particles at t = 0
 };
 
 }  // namespace runnel

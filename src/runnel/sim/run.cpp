@@ -24,6 +24,7 @@
 #include "runnel/sim/output_folder.hpp"
 #include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/height_steps.hpp"
+#include "runnel/terrain/probes.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
@@ -37,20 +38,35 @@ std::string status_line(Model& model, double steps_per_second) {
   return buf;
 }
 
+void add_value(JsonObject& o, const std::string& key, const ParamValue& value) {
+  if (auto* d = std::get_if<double>(&value))
+    o.add(key, *d);
+  else if (auto* i = std::get_if<std::int64_t>(&value))
+    o.add(key, static_cast<long long>(*i));
+  else if (auto* b = std::get_if<bool>(&value))
+    o.add(key, *b);
+  else
+    o.add(key, std::get<std::string>(value));
+}
+
 JsonObject parameters_json(const Parameters& params) {
   JsonObject o;
-  for (auto& [key, value] : params.values()) {
-    if (auto* d = std::get_if<double>(&value))
-      o.add(key, *d);
-    else if (auto* i = std::get_if<std::int64_t>(&value))
-      o.add(key, static_cast<long long>(*i));
-    else if (auto* b = std::get_if<bool>(&value))
-      o.add(key, *b);
-    else
-      o.add(key, std::get<std::string>(value));
-  }
+  for (auto& [key, value] : params.values()) add_value(o, key, value);
   for (auto& [key, value] : params.generator_values()) o.add("terrain.set." + key, value);
+  for (auto& [key, list] : params.all_entries()) {
+    std::vector<JsonObject> entries;
+    for (const EntryValues& entry : list) {
+      entries.emplace_back();
+      for (auto& [k, v] : entry) add_value(entries.back(), k, v);
+    }
+    o.add(key, entries);
+  }
   return o;
+}
+
+// The gauges' readings at the model's present state.
+void read_gauges(Model& model, ProbeRecorder& probes) {
+  probes.record(model.time(), model.terrain(), model.interaction().water_view().depth);
 }
 
 }  // namespace
@@ -142,8 +158,10 @@ struct Stepped {
 
 // The steps, with progress, mass-balance reports, rolling checkpoints and the series.
 Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions& options,
-                        RollingCheckpoints& checkpoints, SeriesWriter& series, Progress& progress) {
+                        RollingCheckpoints& checkpoints, SeriesWriter& series,
+                        ProbeRecorder& probes, Progress& progress) {
   Stepped r;
+  if (probes.due(model.time())) read_gauges(model, probes);
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t first_step = model.steps();
   const double first_time = model.time();
@@ -177,6 +195,7 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
       checkpoints.write(model);
     }
     series.after_step(model);
+    if (probes.due(model.time())) read_gauges(model, probes);
     progress.update(fraction, status, report);
   }
   series.finish();
@@ -256,6 +275,7 @@ JsonObject run_metrics(const ComputeContext& compute, Model& model, const RunSum
            stepped.work / std::max(stepped.wall, 1e-9))
       .add("resumed_from_step", static_cast<long long>(first_step))
       .add("rain_volume", s.rain_volume)
+      .add("initial_water_volume", model.initial_water_volume())
       .add("eroded_volume", m.eroded)
       .add("deposited_volume", m.deposited)
       .add("outflow_volume", m.outflow)
@@ -298,7 +318,11 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   // The series grows during the run as series.h5.partial and becomes series.h5 (with its XDMF
   // index) when the run ends: a killed or failed run leaves no partial file under the final name.
   SeriesWriter series(out, options.series_every, options.particles_every, model.initial_terrain());
-  const Stepped stepped = step_until_done(compute, model, options, checkpoints, series, progress);
+  ProbeRecorder probes(probes_of(model.parameters(), model.initial_terrain()),
+                       model.parameters().real("run.probe_every"));
+  const Stepped stepped =
+      step_until_done(compute, model, options, checkpoints, series, probes, progress);
+  if (probes.active()) write_text_atomically((out / "probes.csv").string(), probes.csv());
   const JsonObject kernels = kernel_report(compute);
 
   write_checkpoint((out / "final.h5").string(), model.checkpoint());

@@ -20,7 +20,8 @@ std::string resolved(const std::string& file, const std::string& base_dir) {
 // The parameters that name a file, resolved against the scenario's folder.
 constexpr const char* kFileKeys[] = {"terrain.file",         "terrain.graph",
                                      "ground.hardness_mask", "ground.rain_mask",
-                                     "ground.frozen_mask",   "stream_power.uplift_file"};
+                                     "ground.frozen_mask",   "stream_power.uplift_file",
+                                     "water.depth"};
 
 Parameters parse_scenario(const std::string& text, const std::string& origin,
                           const std::string& base_dir) {

@@ -13,17 +13,6 @@
 
 namespace runnel {
 
-// The map frame every exported geometry uses, so ParaView, a GIS and splashsurf see one scene:
-// X east and Y north in the terrain's coordinates (its CRS when it has one), Z up. runnel's world
-// frame has x east from the first column, z south from the northern row, y up.
-struct MapFrame {
-  double origin_x = 0, north_edge = 0;  // map X of column 0, map Y of row 0 (the northern row)
-  explicit MapFrame(const Heightmap& t)
-      : origin_x(t.origin_x), north_edge(t.origin_z + (t.ny - 1) * t.cell) {}
-  double x(double world_x) const { return origin_x + world_x; }
-  double y(double world_z) const { return north_edge - world_z; }
-};
-
 // A run's time series (docs/series.md): series.h5 with the heightmap every `height_every` steps
 // (/height, frames × ny × nx, as before) and SPH particle snapshots every `particle_every` steps
 // (/particles/STEP/...), the frames' steps and times, the grid's map coordinates and quads; and

@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: MIT
+// Standing water at t = 0 ([[water.bodies]], water.depth) and gauges ([[probes]]): where the water
+// lies, that a lake at rest stays at rest, that a closed box keeps its water, what a gauge reads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "runnel/core/parameters_toml.hpp"
+#include "runnel/models/parameter_table.hpp"
+#include "runnel/models/pipe_model.hpp"
+#include "runnel/models/registry.hpp"
+#include "runnel/sph/standing_water_particles.hpp"
+#include "runnel/terrain/probes.hpp"
+#include "runnel/terrain/standing_water.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+using test::compute;
+
+// A terrain whose height is a given function of the world position (x east, z south).
+template <class F>
+Heightmap terrain_of(int n, double cell, F height) {
+  Heightmap t(n, n, cell);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) t.at(i, j) = static_cast<float>(height(i * cell, j * cell));
+  return t;
+}
+
+Parameters with_scenario(const std::string& toml) {
+  Parameters p = default_parameters();
+  read_parameters_toml(p, toml, "test");
+  return p;
+}
+
+TEST(StandingWater, ABodyFillsTheTerrainBelowItsLevelInsideItsRectangleInMapMetres) {
+  // A ramp rising 0.1 m a metre to the east, georeferenced at (1000, 2000); the body covers the
+  // western half and the three northern rows (map y grows to the north, rows to the south).
+  Heightmap t = terrain_of(11, 1.0, [](double x, double) { return 0.1 * x; });
+  t.origin_x = 1000;
+  t.origin_z = 2000;
+  const Parameters p =
+      with_scenario("[[water.bodies]]\nx0 = 1000\nx1 = 1005\ny0 = 2008\ny1 = 2010\nlevel = 0.35\n");
+  const std::vector<float> depth = initial_water_depth(p, t);
+  double volume = 0;
+  for (int j = 0; j < 11; ++j)
+    for (int i = 0; i < 11; ++i) {
+      const double expected = (j <= 2 && i <= 5) ? std::max(0.0, 0.35 - 0.1 * i) : 0.0;
+      EXPECT_NEAR(depth[j * 11 + i], expected, 1e-6) << "vertex " << i << ", row " << j;
+      volume += expected;
+    }
+  EXPECT_NEAR(water_volume(depth, t), volume, 1e-5);
+}
+
+TEST(StandingWater, ALakeAtRestStaysAtRestAndAGaugeReadsItsLevel) {
+  // A bowl holding a lake up to 2 m, closed edges, no rain, no evaporation: the pipe model must not
+  // move it (a lake at rest), and a gauge in it reads the level as the water surface. (Cells of 1
+  // m: the virtual pipes' own waves travel at sqrt(g A / l), docs/models.md, "pipe".)
+  const Heightmap bowl = terrain_of(33, 1.0, [](double x, double z) {
+    return 0.02 * ((x - 16) * (x - 16) + (z - 16) * (z - 16));
+  });
+  Parameters p = with_scenario(
+      "[pipe]\nrain = 0\nevaporation = 0\nedges = \"closed\"\n"
+      "[[water.bodies]]\nx0 = 0\nx1 = 32\ny0 = 0\ny1 = 32\nlevel = 2\n"
+      "[[probes]]\nname = \"middle\"\nx = 15.3\ny = 16.6\n");
+  PipeModel model(compute(), p, bowl);
+  const std::vector<float> start = model.depth();
+  EXPECT_NEAR(model.initial_water_volume(), water_volume(start, bowl), 1e-9);
+  EXPECT_GT(model.initial_water_volume(), 300.0);
+  while (model.time() < 30.0) model.step();
+  const std::vector<float> end = model.depth();
+  for (std::size_t v = 0; v < end.size(); ++v) ASSERT_NEAR(end[v], start[v], 1e-4) << v;
+  const std::vector<Probe> probes = probes_of(p, bowl);
+  ASSERT_EQ(probes.size(), 1u);
+  const ProbeReading r = read_probe(model.terrain(), end, probes[0]);
+  EXPECT_NEAR(r.surface, 2.0, 1e-4);
+  EXPECT_NEAR(r.bed + r.depth, r.surface, 1e-12);
+}
+
+TEST(StandingWater, AClosedBoxKeepsTheWaterOfItsDamBreak) {
+  // Half a flat box filled 0.2 m deep and released: the water surges, and without rain, outflow or
+  // evaporation its volume is the body's at every step.
+  const Heightmap flat = terrain_of(41, 0.1, [](double, double) { return 0.0; });
+  Parameters p = with_scenario(
+      "[pipe]\nrain = 0\nevaporation = 0\nedges = \"closed\"\n"
+      "[[water.bodies]]\nx0 = 0\nx1 = 1.95\ny0 = 0\ny1 = 4\nlevel = 0.2\n");
+  PipeModel model(compute(), p, flat);
+  const double initial = model.initial_water_volume();
+  EXPECT_NEAR(initial, 20 * 41 * 0.2 * 0.01, 1e-6);  // columns 0..19, every row
+  while (model.time() < 1.0) model.step();
+  const std::vector<float> depth = model.depth();
+  EXPECT_GT(depth[40], 0.01f) << "the surge reached the far wall";
+  EXPECT_NEAR(water_volume(depth, flat), initial, 1e-4 * initial);
+}
+
+TEST(StandingWater, SphParticlesFillEachColumnFromTheBedToTheWatersTop) {
+  // A flat floor at 1 m under 1 m of water on its western half, particles 0.25 m apart: four
+  // layers in every column of the half, at rest, none above the surface.
+  const Heightmap flat = terrain_of(17, 0.5, [](double, double) { return 1.0; });
+  std::vector<float> depth(flat.size(), 0.0f);
+  for (int j = 0; j < 17; ++j)
+    for (int i = 0; i <= 8; ++i) depth[j * 17 + i] = 1.0f;
+  Parameters p = default_parameters();
+  p.set("sph.spacing", 0.25);
+  const SphSettings s = SphSettings::from(p, 0.25, 5.0);
+  const HostParticles water = standing_water_particles(s, flat, depth);
+  // Columns at x = (i + ½) · 0.25: the depth interpolates from 1 m at x = 4 to 0 at 4.5 m, and a
+  // column holds ceil(d / 0.25 − ½) particles when it holds half a spacing at all.
+  std::size_t expected = 0;
+  for (int i = 0; i < 32; ++i) {
+    const double x = (i + 0.5) * 0.25;
+    const double d = x <= 4.0 ? 1.0 : std::max(0.0, 1.0 - (x - 4.0) / 0.5);
+    if (d >= 0.125) expected += 32 * static_cast<std::size_t>(std::ceil(d / 0.25 - 0.5));
+  }
+  EXPECT_EQ(water.size(), expected);
+  for (std::size_t k = 0; k < water.size(); ++k) {
+    ASSERT_GT(water.f[kY][k], 1.0f);
+    ASSERT_LT(water.f[kY][k], 2.0f);
+    ASSERT_EQ(water.f[kVx][k], 0.0f);
+    ASSERT_GE(water.f[kRho][k], static_cast<float>(s.rho0));  // hydrostatic: compressed below
+  }
+}
+
+TEST(StandingWater, AnSphLakeAtRestKeepsItsLevelAndVolume) {
+  // The bowl's lake as SPH particles 1 m apart: the surface a gauge reads stays within half a
+  // spacing of the level, and the particles hold the bowl's volume below it, π r² · 2 / 2 with
+  // r = 10 m (314 m³), within the lattice's resolution.
+  const Heightmap bowl = terrain_of(33, 1.0, [](double x, double z) {
+    return 0.02 * ((x - 16) * (x - 16) + (z - 16) * (z - 16));
+  });
+  Parameters p = with_scenario(
+      "[run]\nmodel = \"sph\"\n[rain]\nenabled = false\n[sph]\nspacing = 1.0\n"
+      "[[water.bodies]]\nx0 = 0\nx1 = 32\ny0 = 0\ny1 = 32\nlevel = 2\n"
+      "[[probes]]\nname = \"middle\"\nx = 16.2\ny = 15.7\n");
+  std::unique_ptr<Model> model = make_model(compute(), p, bowl);
+  const double analytic = M_PI * 100.0 * 2.0 / 2.0;
+  EXPECT_NEAR(model->initial_water_volume(), analytic, 0.1 * analytic);
+  const Probe gauge = probes_of(p, bowl).at(0);
+  model->advance(2.0);
+  const ProbeReading r =
+      read_probe(model->terrain(), model->interaction().water_view().depth, gauge);
+  EXPECT_NEAR(r.surface, 2.0, 0.5);
+  EXPECT_EQ(model->mass_balance().residual_quanta, 0);
+}
+
+TEST(StandingWater, AResumedRunWithStandingWaterEqualsAnUninterruptedOne) {
+  const Heightmap bowl = terrain_of(33, 1.0, [](double x, double z) {
+    return 0.02 * ((x - 16) * (x - 16) + (z - 16) * (z - 16));
+  });
+  for (const char* model_name : {"pipe", "sph"}) {
+    Parameters p =
+        with_scenario(std::string("[run]\nmodel = \"") + model_name +
+                      "\"\n[sph]\nspacing = 1.0\n"
+                      "[[water.bodies]]\nx0 = 10\nx1 = 20\ny0 = 0\ny1 = 32\nlevel = 2\n");
+    std::unique_ptr<Model> whole = make_model(compute(), p, bowl);
+    for (int k = 0; k < 40; ++k) whole->step();
+    std::unique_ptr<Model> first = make_model(compute(), p, bowl);
+    for (int k = 0; k < 20; ++k) first->step();
+    std::unique_ptr<Model> resumed = make_model_from_checkpoint(compute(), first->checkpoint());
+    for (int k = 0; k < 20; ++k) resumed->step();
+    EXPECT_EQ(resumed->terrain().h, whole->terrain().h) << model_name;
+    EXPECT_EQ(resumed->interaction().water_view().depth, whole->interaction().water_view().depth)
+        << model_name;
+    EXPECT_EQ(resumed->initial_water_volume(), whole->initial_water_volume()) << model_name;
+  }
+}
+
+TEST(Probes, ReadTheBedAndTheWaterOnTheTerrainsTriangles) {
+  // On a plane the triangles' interpolation is exact: the gauge reads the plane's height at the
+  // point, whichever triangle holds it, from map coordinates.
+  Heightmap plane = terrain_of(9, 0.5, [](double x, double z) { return 2 + 0.5 * x + 0.25 * z; });
+  plane.origin_x = 100;
+  plane.origin_z = 200;
+  const std::vector<float> depth(plane.size(), 0.125f);
+  std::ostringstream toml;
+  toml << "[[probes]]\nname = \"a\"\nx = 101.3\ny = " << 200 + 8 * 0.5 - 2.6 << "\n"
+       << "[[probes]]\nname = \"b\"\nx = 103.9\ny = 200.2\n";
+  const std::vector<Probe> probes = probes_of(with_scenario(toml.str()), plane);
+  ASSERT_EQ(probes.size(), 2u);
+  const ProbeReading a = read_probe(plane, depth, probes[0]);
+  EXPECT_NEAR(a.bed, 2 + 0.5 * 1.3 + 0.25 * 2.6, 1e-5);
+  EXPECT_NEAR(a.depth, 0.125, 1e-6);
+  EXPECT_NEAR(a.surface, a.bed + 0.125, 1e-5);
+  const ProbeReading b = read_probe(plane, depth, probes[1]);
+  EXPECT_NEAR(b.bed, 2 + 0.5 * 3.9 + 0.25 * (4 - 0.2), 1e-5);
+}
+
+TEST(Probes, RecordOnTheRunsClockAtWholeMultiplesOfTheirInterval) {
+  const Heightmap flat = terrain_of(9, 1.0, [](double, double) { return 1.0; });
+  ProbeRecorder recorder({{"g", 2.0, 2.0}}, 0.5);
+  const std::vector<float> depth(flat.size(), 0.0f);
+  int taken = 0;
+  for (double t = 0; t < 2.01; t += 0.3)  // steps of 0.3: samples at the first step past k · 0.5
+    if (recorder.due(t)) {
+      recorder.record(t, flat, depth);
+      ++taken;
+    }
+  EXPECT_EQ(taken, 4);  // at t = 0, 0.6, 1.2 and 1.5 (1.8 is short of 2.0)
+  EXPECT_EQ(recorder.csv().substr(0, 25), "t,name,surface,depth,bed\n");
+  EXPECT_NE(recorder.csv().find("1.500000,g,1.000000,0.000000,1.000000"), std::string::npos)
+      << recorder.csv();
+}
+
+TEST(StandingWater, ScenarioEntriesSurviveTheCheckpointsParameterText) {
+  const Parameters p = with_scenario(
+      "[[water.bodies]]\nx0 = 0\nx1 = 8\ny0 = 0\ny1 = 8\nlevel = 0.3\n"
+      "[[water.bodies]]\nx0 = 1\nx1 = 2\ny0 = 1\ny1 = 2\nlevel = 1.5\n"
+      "[[probes]]\nname = \"g1\"\nx = 4.1\ny = 3.9\n");
+  const Parameters back = with_scenario(parameters_toml(p));
+  EXPECT_EQ(back.entries("water.bodies"), p.entries("water.bodies"));
+  EXPECT_EQ(back.entries("probes"), p.entries("probes"));
+  EXPECT_EQ(parameters_toml(back), parameters_toml(p));
+}
+
+}  // namespace
+}  // namespace runnel
