@@ -38,9 +38,12 @@ double resident_bytes() {
                    : -1;
 }
 
+// A model by name; "pipe-bedload" is the pipe model under its bed-load law (with the talus).
 Parameters parameters(const std::string& model) {
   Parameters p = default_parameters();
-  p.set("run.model", model);
+  const bool bedload = model == "pipe-bedload";
+  p.set("run.model", bedload ? std::string("pipe") : model);
+  if (bedload) p.set("pipe.law", std::string("bedload"));
   return p;
 }
 
@@ -122,7 +125,8 @@ TEST_P(MemoryBound, TheUpFrontBoundCoversTheModelsBuffers) {
 }
 
 INSTANTIATE_TEST_SUITE_P(GridModels, MemoryBound,
-                         ::testing::Values("droplet", "pipe", "olsen", "thermal", "stream-power"),
+                         ::testing::Values("droplet", "pipe", "pipe-bedload", "olsen", "thermal",
+                                           "stream-power"),
                          [](const auto& info) { return test::param_name(info.param); });
 
 TEST(MemoryBound, ATerrainTooLargeForTheDeviceIsRefusedWithItsSizes) {

@@ -18,6 +18,7 @@ std::vector<ParamSpec> olsen_parameters();         // models/olsen_model.cpp
 std::vector<ParamSpec> pipe_parameters();          // models/pipe_model.cpp
 std::vector<ParamSpec> stream_power_parameters();  // models/stream_power_model.cpp
 std::vector<ParamSpec> ground_parameters();        // ground/ground_settings.cpp
+std::vector<ParamSpec> sediment_parameters();      // ground/bedload.cpp
 std::vector<ParamSpec> water_parameters();         // terrain/standing_water.cpp
 std::vector<ParamSpec> probe_parameters();         // terrain/probes.cpp
 

@@ -57,7 +57,8 @@ std::vector<ParamSpec> assemble() {
   for (const ModelEntry& model : model_registry())
     for (ParamSpec& spec : model.parameters()) table.push_back(std::move(spec));
   for (ParamSpec& spec : ground_parameters()) table.push_back(std::move(spec));  // every model's
-  for (ParamSpec& spec : water_parameters()) table.push_back(std::move(spec));   // with water
+  for (ParamSpec& spec : sediment_parameters()) table.push_back(std::move(spec));
+  for (ParamSpec& spec : water_parameters()) table.push_back(std::move(spec));  // with water
   for (ParamSpec& spec : probe_parameters()) table.push_back(std::move(spec));
   table.insert(table.end(), run.begin(), run.end());
   return table;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/pipe_model.hpp"
 
+#include "runnel/ground/bedload.hpp"
 #include "runnel/ground/ground_settings.hpp"
 
 #include <algorithm>
@@ -40,6 +41,7 @@ const SettingsTable<PipeSettings> kPipeTable = {
       {"pipe.dt_max", "0.05", "s", 1e-9, 100, {}, "largest time step", &PipeSettings::dt_max},
       {"pipe.transport", "\"upwind\"", "", 0, 0, {"upwind", "semi-lagrangian"}, "sediment transport: upwind (mass-conserving, sediment leaves with the water) or semi-lagrangian (Mei 2007's advection; not conserving, the loss is reported as lost_volume)", &PipeSettings::transport},
       {"pipe.edges", "\"outflow\"", "", 0, 0, {"outflow", "closed"}, "outflow (outside cells have b = d = 0) or closed", &PipeSettings::edges},
+      {"pipe.law", "\"capacity\"", "", 0, 0, {"capacity", "bedload"}, "erosion law: capacity (Mei 2007: the water dissolves the bed up to a transport capacity and carries it in suspension) or bedload (Wong & Parker's Meyer-Peter & Müller from the Shields stress of the Manning bed shear, the bed by Exner with porosity, talus sliding at thermal.talus_angle every thermal.interval; sediment.* gives the grains)", &PipeSettings::law},
 };
 // clang-format on
 
@@ -75,7 +77,8 @@ const ModelInfo& PipeModel::model_info() {
        {kSurfaceWaterVelocity, FieldIntent::kOut},
        {kSedimentSuspended, FieldIntent::kOut}},
       {},
-      120};
+      168};  // 120 under the capacity law; the bed-load law adds its sent planes, the next heights
+             // and the talus
   return info;
 }
 
@@ -102,8 +105,13 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   lost_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(outflow_, cl_long{0}, 0, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(lost_, cl_long{0}, 0, sizeof(cl_long));
-  cl::Program& program = compute.program({"cl/common.cl", "cl/models/pipe.cl"},
-                                         settings_.build_options() + ground_defines(params));
+  std::vector<std::string> sources = {"cl/common.cl", "cl/models/pipe.cl"};
+  std::string options = settings_.build_options() + ground_defines(params);
+  if (settings_.bedload()) {
+    sources.push_back("cl/models/pipe_bedload.cl");
+    options += SedimentSettings::from(params).build_options();
+  }
+  cl::Program& program = compute.program(sources, options);
   flux_kernel_ = Kernel(compute, program, "pipe_flux");
   water_kernel_ = Kernel(compute, program, "pipe_water");
   erode_kernel_ = Kernel(compute, program, "pipe_erode");
@@ -116,6 +124,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   water_kernel_.set("rain_weight", rain_weight());
   bind_detachment(erode_kernel_, bed(), placeholder_);
   erode_kernel_.set("sendable", sendable_);
+  if (settings_.bedload()) start_bed_load(compute, program, params);
   if (start_standing_water(params)) {
     // The first step must already respect the CFL limit of the standing water's waves.
     compute.queue().enqueueFillBuffer(cfl_speed2_, 0.0f, 0, n * sizeof(float));
@@ -125,7 +134,8 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
 
 double PipeModel::scratch_bytes() const {
   return buffer_bytes({&previous_depth_, &capacity_, &cfl_speed2_, &sediment_next_, &sent_, &stats_,
-                       &outflow_, &lost_, &sendable_});
+                       &outflow_, &lost_, &sendable_, &bed_sent_, &height_next_, &bed_moved_}) +
+         (talus_ ? talus_->device_bytes() : 0.0);
 }
 
 double PipeModel::take_step() {
@@ -159,10 +169,16 @@ double PipeModel::take_step() {
   erode_kernel_
       .set("dissolved_fraction", static_cast<float>(-std::expm1(-settings_.dissolve * dt_)))
       .set("deposited_fraction", static_cast<float>(-std::expm1(-settings_.deposit * dt_)));
-  for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) k->launch(work);
-  transport(sediment, flux, velocity, dt);
-  std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment
+  if (settings_.bedload()) {
+    for (Kernel* k : {&flux_kernel_, &water_kernel_}) k->launch(work);
+    move_bed_load(depth, velocity, dt);
+  } else {
+    for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) k->launch(work);
+    transport(sediment, flux, velocity, dt);
+    std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment
+  }
   terrain.apply();
+  if (settings_.bedload()) relax_talus(dt_);
   const double taken = dt_;
   choose_next_dt();
   return taken;
@@ -246,7 +262,10 @@ long long PipeModel::lost_quanta() {
 }
 
 std::vector<std::pair<std::string, std::int64_t>> PipeModel::counters() {
-  return {{"outflow_quanta", outflow_quanta()}, {"lost_quanta", lost_quanta()}};
+  std::vector<std::pair<std::string, std::int64_t>> c = {{"outflow_quanta", outflow_quanta()},
+                                                         {"lost_quanta", lost_quanta()}};
+  if (settings_.bedload()) c.emplace_back("bed_moved_quanta", bed_moved_quanta());
+  return c;
 }
 
 void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) {
@@ -254,6 +273,10 @@ void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::i
                 lost = counter_value(c, "lost_quanta");
   compute_.queue().enqueueWriteBuffer(outflow_, CL_TRUE, 0, sizeof(outflow), &outflow);
   compute_.queue().enqueueWriteBuffer(lost_, CL_TRUE, 0, sizeof(lost), &lost);
+  if (settings_.bedload()) {
+    const cl_long moved = counter_value(c, "bed_moved_quanta");
+    compute_.queue().enqueueWriteBuffer(bed_moved_, CL_TRUE, 0, sizeof(moved), &moved);
+  }
 }
 
 double PipeModel::rain_volume() {
@@ -265,6 +288,9 @@ JsonObject PipeModel::diagnostics() {
       .add("next_dt_s", dt_)
       .add("water_volume_m3", water_volume())
       .add("initial_water_volume_m3", initial_water_volume())
+      .add("law", settings_.law)
+      .add("bed_load_moved_m3",
+           static_cast<double>(bed_moved_quanta()) * state_.terrain().volume_quantum())
       .add("edges", settings_.edges)
       .add("transport", settings_.transport);
 }

@@ -1,16 +1,19 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "runnel/models/grid_model.hpp"
+#include "runnel/terrain/thermal.hpp"
 
 namespace runnel {
 
 // The random streams of the pipe's stochastic rounding (rng.hpp: one key per step and stream).
 inline constexpr std::uint64_t kPipeErodeStream = 0x70657264ULL;      // "perd"
 inline constexpr std::uint64_t kPipeTransportStream = 0x70747273ULL;  // "ptrs"
+inline constexpr std::uint64_t kPipeBedloadStream = 0x7062646cULL;    // "pbdl"
 // The most quanta of a cell's suspended sediment one transport step shares among its pipes
 // (pipe.cl's pipe_send computes in 32 bits); a cell holding more keeps the rest for later steps.
 inline constexpr long long kPipeSendable = 1LL << 30;
@@ -32,6 +35,8 @@ struct PipeSettings {
   double dt_max;          // s
   std::string transport;  // "upwind" or "semi-lagrangian"
   std::string edges;      // "outflow" or "closed"
+  std::string law;        // "capacity" (Mei's suspended load) or "bedload" (Wong & Parker)
+  bool bedload() const { return law == "bedload"; }
   bool closed() const { return edges == "closed"; }
   // Mei's advection (not conserving; the loss is reported)
   bool semi_lagrangian() const { return transport == "semi-lagrangian"; }
@@ -53,6 +58,8 @@ class PipeModel final : public GridModel {
   std::vector<float> depth() { return state_.download_float(kSurfaceWaterDepth); }
   long long outflow_quanta() override;
   long long lost_quanta() override;
+  // Bed quanta the bed load has moved out of cells so far (0 under the capacity law).
+  long long bed_moved_quanta();
   double rain_volume() override;
   double scenario_rain_rate() const override { return settings_.rain; }
   JsonObject diagnostics() override;
@@ -71,6 +78,16 @@ class PipeModel final : public GridModel {
   double dt_ = 0;
   int depth_, flux_, velocity_, sediment_;  // GridState handles
   void transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& velocity, float dt);
+  // pipe.law = "bedload": the grains the flow rolls along the bed, moved between the cells'
+  // heights.
+  void start_bed_load(ComputeContext& compute, cl::Program& program, const Parameters& params);
+  void move_bed_load(cl::Buffer& depth, cl::Buffer& velocity, float dt);
+  void relax_talus(double dt);
+  cl::Buffer bed_sent_, height_next_, bed_moved_;  // bed load only
+  Kernel bedload_kernel_;
+  std::unique_ptr<ThermalRelaxation>
+      talus_;  // bed load only: slopes above the angle of repose slide
+  double talus_interval_ = 0;
   cl::Buffer previous_depth_, capacity_, cfl_speed2_, sediment_next_, sent_, stats_, outflow_,
       lost_;
   cl::Buffer sendable_;  // pipe_erode's 32-bit copy of the sediment for pipe_send (pipe.cl)
