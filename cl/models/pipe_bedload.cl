@@ -1,14 +1,34 @@
 // SPDX-License-Identifier: MIT
 // The pipe model's bed-load law (pipe.law = "bedload"; docs/models.md, "pipe"): Wong & Parker's
 // (2006) Meyer-Peter & Müller, q* = 3.97 (θ − θc)^(3/2), from the Shields stress of the Manning
-// bed shear the pipe flow already feels; the bed follows Exner, (1 − p) ∂z/∂t = −∇·q. Each cell
-// sends its load downstream through the faces its velocity points at, q_x and q_z of the vector
-// q = |q| v / |v| (donor cell), in whole quanta by stochastic rounding with one u per cell and
-// step; pipe_receive moves them and pipe_edge_outflow books what leaves the map, so the bed, the
-// outflow and nothing else balance exactly. Built after pipe.cl (PIPE_* defines, pipe_inverse_cbrt)
-// with the SED_* defines of SedimentSettings.
+// bed shear of the flow through each face; the bed follows Exner, (1 − p) ∂z/∂t = −∇·q. The load
+// crosses a face in the direction of the face's water flux Q, at the face's speed Q / (l h), h the
+// mean depth of its two cells, and leaves the cell the water leaves (upwind, on the faces where the
+// water's fluxes live, so bed and flow see the same velocities), in whole quanta by stochastic
+// rounding with one u per cell and step; pipe_receive moves them and pipe_edge_outflow books what
+// leaves the map, so the bed, the outflow and nothing else balance exactly. Built after pipe.cl
+// (PIPE_* defines, pipe_inverse_cbrt) with the SED_* defines of SedimentSettings.
 
-__kernel void pipe_bedload(const __global float* depth, const __global float* velocity, __global int* sent,
+// A step lowers the bed by at most this fraction of the water over it: the bed must change slowly
+// beside the flow for the two to be stepped apart (an Exner stability limit; it binds only at
+// fronts and in films).
+#define PIPE_BEDLOAD_MOST_OF_DEPTH 0.1f
+
+// The bed quanta a face's flux `q_out` (m³/s leaving, ≥ 0) over water `h` deep carries in a step.
+inline float face_bed_load(float q_out, float h, float cell, float dt, float quantum) {
+  if (!(q_out > 0.0f) || !(h > PIPE_CFL_DEPTH)) return 0.0f;
+  const float u = q_out / (cell * h);
+  const float tau = 1000.0f * PIPE_GRAVITY_N2 * u * u * pipe_inverse_cbrt(h);  // Pa
+  const float shields = tau / ((SED_GRAIN_DENSITY - 1000.0f) * PIPE_GRAVITY * SED_GRAIN_DIAMETER);
+  const float excess = shields - SED_CRITICAL_SHIELDS;
+  if (!(excess > 0.0f)) return 0.0f;
+  // q = q* sqrt(R g D³) = q* sqrt(R D g) D, m² of grains per s; q·l·Δt of grains is q·l·Δt / (1 − p)
+  // of bed, in quanta of quantum·l².
+  const float q = SED_WONG_PARKER * excess * sqrt(excess) * sqrt(SED_SUBMERGED_RD * PIPE_GRAVITY) * SED_GRAIN_DIAMETER;
+  return q * dt / ((1.0f - SED_POROSITY) * cell * quantum);
+}
+
+__kernel void pipe_bedload(const __global float* depth, const __global float* flux, __global int* sent,
                            const int nx, const int ny, const float cell, const float dt, const float quantum,
                            const ulong key, const __global float* rock_erodibility,
                            const __global float* sediment_erodibility, const __global long* ground_sediment,
@@ -16,34 +36,33 @@ __kernel void pipe_bedload(const __global float* depth, const __global float* ve
   const int k = get_global_id(0), n = nx * ny;
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
-  const float d = depth[k], vx = velocity[k], vz = velocity[n + k];
-  const float speed = sqrt(vx * vx + vz * vz);
-  float quanta = 0.0f;  // bed quanta (grains and pores) the cell's load moves this step
-  // Water thinner than pipe.cfl_depth moves no grains: a film's flux over its depth is no speed of
-  // water over the bed (the same films the time step does not follow).
-  if (d > PIPE_CFL_DEPTH && speed > 0.0f) {
-    const float third = pipe_inverse_cbrt(d);  // d^(−1/3)
-    const float tau = 1000.0f * PIPE_GRAVITY_N2 * speed * speed * third;  // Pa
-    const float shields = tau / ((SED_GRAIN_DENSITY - 1000.0f) * PIPE_GRAVITY * SED_GRAIN_DIAMETER);
-    const float excess = shields - SED_CRITICAL_SHIELDS;
-    if (excess > 0.0f) {
-      // q = q* sqrt(R g D³) = q* sqrt(R D g) D, m² of grains per s.
-      const float q = SED_WONG_PARKER * excess * sqrt(excess) * sqrt(SED_SUBMERGED_RD * PIPE_GRAVITY) *
-                      SED_GRAIN_DIAMETER;
-      // q·l·dt of grains is q·l·dt / (1 − p) of bed, in quanta of quantum·l².
-      quanta = fmin(BED_DETACHMENT(q * dt / ((1.0f - SED_POROSITY) * cell * quantum), k), 1.0e9f);
-    }
+  const float d = depth[k];
+  // Faces L R T B: the net flux leaving through each, over the mean depth of its two cells (this
+  // cell's alone at the map's edge, where a closed edge carries no flux).
+  const int inside[4] = {i > 0, i < nx - 1, j > 0, j < ny - 1};
+  const int other[4] = {k - 1, k + 1, k - nx, k + nx};
+  float load[4];
+  float total = 0.0f;
+  for (int f = 0; f < 4; ++f) {
+    const int m = inside[f] ? other[f] : k;
+    const float q_out = flux[f * n + k] - (inside[f] ? flux[(f ^ 1) * n + m] : 0.0f);
+    const float h = inside[f] ? 0.5f * (d + depth[m]) : d;
+    load[f] = PIPE_CLOSED && !inside[f] ? 0.0f : face_bed_load(q_out, h, cell, dt, quantum);
+    total += load[f];
   }
-  const float ax = quanta * fabs(vx) / fmax(speed, 1e-30f), az = quanta * fabs(vz) / fmax(speed, 1e-30f);
+  const float most = PIPE_BEDLOAD_MOST_OF_DEPTH * d / quantum;
+  const float allowed = fmin(BED_DETACHMENT(fmin(total, most), k), 1.0e9f);
+  const float scale = total > 0.0f ? allowed / total : 0.0f;
+  // Systematic sampling: the faces' shares of the allowed load, cumulated, with one u.
   const float u = keyed_uniform(key, (uint)k);
-  const int to_x = (int)(ax + u) - (int)u, to_z = (int)(ax + az + u) - (int)(ax + u);
-  // Planes L R T B (pipe_send's); a closed edge lets nothing out.
-  const int right = vx > 0.0f, down = vz > 0.0f;
-  const int x_inside = right ? i < nx - 1 : i > 0, z_inside = down ? j < ny - 1 : j > 0;
-  const int sx = PIPE_CLOSED && !x_inside ? 0 : to_x, sz = PIPE_CLOSED && !z_inside ? 0 : to_z;
-  sent[0 * n + k] = right ? 0 : sx;
-  sent[1 * n + k] = right ? sx : 0;
-  sent[2 * n + k] = down ? 0 : sz;
-  sent[3 * n + k] = down ? sz : 0;
-  if (sx + sz > 0) atom_add(moved, (long)(sx + sz));
+  int before = (int)u, sum = 0;
+  float cumulative = 0.0f;
+  for (int f = 0; f < 4; ++f) {
+    cumulative += load[f] * scale;
+    const int at = (int)(cumulative + u);
+    sent[f * n + k] = at - before;
+    sum += at - before;
+    before = at;
+  }
+  if (sum > 0) atom_add(moved, (long)sum);
 }

@@ -24,12 +24,12 @@ void PipeModel::start_bed_load(ComputeContext& compute, cl::Program& program,
     talus_ = std::make_unique<ThermalRelaxation>(compute, state_.terrain(), thermal, bed());
 }
 
-void PipeModel::move_bed_load(cl::Buffer& depth, cl::Buffer& velocity, float dt) {
+void PipeModel::move_bed_load(cl::Buffer& depth, cl::Buffer& flux, float dt) {
   DeviceTerrain& terrain = state_.terrain();
   const int nx = terrain.nx(), ny = terrain.ny(), n = nx * ny;
   const std::size_t work = round_up_work(static_cast<std::size_t>(n));
   const auto seed = static_cast<std::uint64_t>(params_.integer("run.seed"));
-  bedload_kernel_.set("depth", depth).set("velocity", velocity).set("sent", bed_sent_);
+  bedload_kernel_.set("depth", depth).set("flux", flux).set("sent", bed_sent_);
   bedload_kernel_.set("nx", nx).set("ny", ny).set("cell", terrain.cell()).set("dt", dt);
   bedload_kernel_.set("quantum", static_cast<float>(terrain.quantum()));
   bedload_kernel_.set("key", static_cast<cl_ulong>(rng_key(seed, kPipeBedloadStream, steps())));

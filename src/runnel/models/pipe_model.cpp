@@ -41,6 +41,7 @@ const SettingsTable<PipeSettings> kPipeTable = {
       {"pipe.dt_max", "0.05", "s", 1e-9, 100, {}, "largest time step", &PipeSettings::dt_max},
       {"pipe.transport", "\"upwind\"", "", 0, 0, {"upwind", "semi-lagrangian"}, "sediment transport: upwind (mass-conserving, sediment leaves with the water) or semi-lagrangian (Mei 2007's advection; not conserving, the loss is reported as lost_volume)", &PipeSettings::transport},
       {"pipe.edges", "\"outflow\"", "", 0, 0, {"outflow", "closed"}, "outflow (outside cells have b = d = 0) or closed", &PipeSettings::edges},
+      {"pipe.flux", "\"pipes\"", "", 0, 0, {"pipes", "local-inertial"}, "the water's flux between cells: pipes (Mei 2007: two one-way pipes a face of cross-section pipe.area, whose waves travel at about sqrt(g A / l)) or local-inertial (Bates, Horritt & Fewtrell 2010: one signed flux a face over the water's own depth, waves at sqrt(g d) as in the shallow-water equations; docs/models.md, \"pipe\")", &PipeSettings::flux},
       {"pipe.law", "\"capacity\"", "", 0, 0, {"capacity", "bedload"}, "erosion law: capacity (Mei 2007: the water dissolves the bed up to a transport capacity and carries it in suspension) or bedload (Wong & Parker's Meyer-Peter & Müller from the Shields stress of the Manning bed shear, the bed by Exner with porosity, talus sliding at thermal.talus_angle every thermal.interval; sediment.* gives the grains)", &PipeSettings::law},
 };
 // clang-format on
@@ -77,8 +78,8 @@ const ModelInfo& PipeModel::model_info() {
        {kSurfaceWaterVelocity, FieldIntent::kOut},
        {kSedimentSuspended, FieldIntent::kOut}},
       {},
-      168};  // 120 under the capacity law; the bed-load law adds its sent planes, the next heights
-             // and the talus
+      184};  // 120 with Mei's pipes and law; the bed load adds its sent planes, the next heights
+             // and the talus, the local-inertial flux its copy of the fluxes
   return info;
 }
 
@@ -106,13 +107,19 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   compute.queue().enqueueFillBuffer(outflow_, cl_long{0}, 0, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(lost_, cl_long{0}, 0, sizeof(cl_long));
   std::vector<std::string> sources = {"cl/common.cl", "cl/models/pipe.cl"};
+  if (settings_.inertial()) sources.push_back("cl/models/pipe_inertial.cl");
   std::string options = settings_.build_options() + ground_defines(params);
   if (settings_.bedload()) {
     sources.push_back("cl/models/pipe_bedload.cl");
     options += SedimentSettings::from(params).build_options();
   }
   cl::Program& program = compute.program(sources, options);
-  flux_kernel_ = Kernel(compute, program, "pipe_flux");
+  flux_kernel_ =
+      Kernel(compute, program, settings_.inertial() ? "pipe_flux_inertial" : "pipe_flux");
+  if (settings_.inertial()) {
+    old_flux_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(float));
+    flux_kernel_.set("old_flux", old_flux_);
+  }
   water_kernel_ = Kernel(compute, program, "pipe_water");
   erode_kernel_ = Kernel(compute, program, "pipe_erode");
   send_kernel_ = Kernel(compute, program, "pipe_send");
@@ -134,7 +141,8 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
 
 double PipeModel::scratch_bytes() const {
   return buffer_bytes({&previous_depth_, &capacity_, &cfl_speed2_, &sediment_next_, &sent_, &stats_,
-                       &outflow_, &lost_, &sendable_, &bed_sent_, &height_next_, &bed_moved_}) +
+                       &outflow_, &lost_, &sendable_, &bed_sent_, &height_next_, &bed_moved_,
+                       &old_flux_}) +
          (talus_ ? talus_->device_bytes() : 0.0);
 }
 
@@ -154,6 +162,9 @@ double PipeModel::take_step() {
     if (k->has("quantum")) k->set("quantum", q);
   }
   flux_kernel_.set("height_view", terrain.height()).set("depth", depth).set("flux", flux);
+  if (settings_.inertial())  // every cell reads its neighbours' outflows as the step began
+    compute_.queue().enqueueCopyBuffer(flux, old_flux_, 0, 0,
+                                       4 * static_cast<std::size_t>(n) * sizeof(float));
   flux_kernel_.set("rain_on", rain_on());
   water_kernel_.set("rain_on", rain_on());
   water_kernel_.set("depth", depth).set("flux", flux).set("velocity", velocity);
@@ -171,7 +182,7 @@ double PipeModel::take_step() {
       .set("deposited_fraction", static_cast<float>(-std::expm1(-settings_.deposit * dt_)));
   if (settings_.bedload()) {
     for (Kernel* k : {&flux_kernel_, &water_kernel_}) k->launch(work);
-    move_bed_load(depth, velocity, dt);
+    move_bed_load(depth, flux, dt);
   } else {
     for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) k->launch(work);
     transport(sediment, flux, velocity, dt);
@@ -289,6 +300,7 @@ JsonObject PipeModel::diagnostics() {
       .add("water_volume_m3", water_volume())
       .add("initial_water_volume_m3", initial_water_volume())
       .add("law", settings_.law)
+      .add("flux", settings_.flux)
       .add("bed_load_moved_m3",
            static_cast<double>(bed_moved_quanta()) * state_.terrain().volume_quantum())
       .add("edges", settings_.edges)

@@ -36,6 +36,8 @@ struct PipeSettings {
   std::string transport;  // "upwind" or "semi-lagrangian"
   std::string edges;      // "outflow" or "closed"
   std::string law;        // "capacity" (Mei's suspended load) or "bedload" (Wong & Parker)
+  std::string flux;       // "pipes" (Mei) or "local-inertial" (Bates et al. 2010)
+  bool inertial() const { return flux == "local-inertial"; }
   bool bedload() const { return law == "bedload"; }
   bool closed() const { return edges == "closed"; }
   // Mei's advection (not conserving; the loss is reported)
@@ -81,9 +83,10 @@ class PipeModel final : public GridModel {
   // pipe.law = "bedload": the grains the flow rolls along the bed, moved between the cells'
   // heights.
   void start_bed_load(ComputeContext& compute, cl::Program& program, const Parameters& params);
-  void move_bed_load(cl::Buffer& depth, cl::Buffer& velocity, float dt);
+  void move_bed_load(cl::Buffer& depth, cl::Buffer& flux, float dt);
   void relax_talus(double dt);
   cl::Buffer bed_sent_, height_next_, bed_moved_;  // bed load only
+  cl::Buffer old_flux_;                            // local-inertial only: the step's copy
   Kernel bedload_kernel_;
   std::unique_ptr<ThermalRelaxation>
       talus_;  // bed load only: slopes above the angle of repose slide
