@@ -8,6 +8,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/terrain_source.hpp"
+#include "runnel/validation/mobile_bed.hpp"
 #include "runnel/validation/stream_power_validation.hpp"
 #include "runnel/validation/validation.hpp"
 
@@ -73,10 +74,11 @@ void validate(const ValidateFlags& opt, const CLI::App& cmd) {
     return;
   }
   ComputeContext compute(opt.device);
-  const ValidationResult r = opt.which == "hydrostatic" ? validate_hydrostatic(compute, v)
-                             : opt.which == "dambreak"  ? validate_dambreak(compute, v)
-                             : opt.which == "droplet"   ? validate_droplet(compute, v)
-                                                        : validate_erosion_convergence(compute, v);
+  const ValidationResult r = opt.which == "hydrostatic"  ? validate_hydrostatic(compute, v)
+                             : opt.which == "dambreak"   ? validate_dambreak(compute, v)
+                             : opt.which == "droplet"    ? validate_droplet(compute, v)
+                             : opt.which == "mobile-bed" ? validate_mobile_bed(compute, v)
+                                                         : validate_erosion_convergence(compute, v);
   std::cout << r.summary_json() << "\n";
 }
 
@@ -92,16 +94,18 @@ void add_validate_command(CLI::App& app) {
       "values) or erosion-convergence (the eroded volume against the time step, "
       "the particle size, the spawn height and the speed of sound), or stream-power (the "
       "stream-power model against its analytic steady states: a 1-D channel, a "
-      "2-D grid's slope-area relation, the diffusion hillslope)");
+      "2-D grid's slope-area relation, the diffusion hillslope), or mobile-bed (the pipe model's "
+      "bed load in the dam break over a sand bed of Soares-Frazao et al. 2012: gauges and final "
+      "bed against the experiment's repeats)");
   cmd->add_option("case", opt->which,
-                  "hydrostatic, dambreak, droplet, erosion-convergence or stream-power")
+                  "hydrostatic, dambreak, droplet, erosion-convergence, stream-power or mobile-bed")
       ->required()
-      ->check(CLI::IsMember(
-          {"hydrostatic", "dambreak", "droplet", "erosion-convergence", "stream-power"}));
+      ->check(CLI::IsMember({"hydrostatic", "dambreak", "droplet", "erosion-convergence",
+                             "stream-power", "mobile-bed"}));
   cmd->add_option("--resolution", opt->resolution,
                   "particles across the length scale (hydrostatic: layers in the "
                   "column, default 16; dambreak: across L, default 20); erosion-convergence: "
-                  "terrain vertices per side, default 65");
+                  "terrain vertices per side, default 65; mobile-bed: cells a metre, default 20");
   cmd->add_option(
       "--settle", opt->settle,
       "hydrostatic: seconds the column settles before the last quarter is averaged "
@@ -111,7 +115,9 @@ void add_validate_command(CLI::App& app) {
                   "raster GDAL reads; "
                   "default: 65 x 65 fBm hills with 2 m cells; --set terrain.cell=... for a file "
                   "without one); the storm scales with its cell size (60,000 mm/h on 2 m cells)");
-  cmd->add_option("--out", opt->out, "folder for pressure.csv / front.csv (created)");
+  cmd->add_option("--out", opt->out,
+                  "folder for pressure.csv / front.csv, or mobile-bed's flume, run and "
+                  "mobile_bed.png (created)");
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->callback([opt, cmd] { validate(*opt, *cmd); });

@@ -15,6 +15,7 @@
 #include "runnel/models/registry.hpp"
 #include "runnel/models/sph_model.hpp"
 #include "runnel/sim/run.hpp"
+#include "runnel/terrain/standing_water.hpp"
 
 namespace runnel::compare {
 
@@ -90,8 +91,10 @@ std::vector<Parameters> checked_parameters(ComputeContext& compute, const Parame
   if (!(scenario.real("run.sim_time") > 0))
     throw input_error("run.sim_time: must be positive for runnel compare");
   budget = rain_budget(compute, scenario, terrain);
-  if (!(budget.volume > 0))
-    throw input_error("rain.enabled: runnel compare needs rain (the budget is 0 m3)");
+  // Without rain the models compare on the scenario's standing water alone (a dam break).
+  if (!(budget.volume > 0) && !has_standing_water(scenario))
+    throw input_error(
+        "rain.enabled: runnel compare needs rain or standing water (the rain budget is 0 m3)");
   std::vector<Parameters> out;
   for (const std::string& m : options.models) {
     out.push_back(model_parameters(scenario, m, budget, terrain));
