@@ -41,7 +41,7 @@ const SettingsTable<PipeSettings> kPipeTable = {
       {"pipe.dt_max", "0.05", "s", 1e-9, 100, {}, "largest time step", &PipeSettings::dt_max},
       {"pipe.transport", "\"upwind\"", "", 0, 0, {"upwind", "semi-lagrangian"}, "sediment transport: upwind (mass-conserving, sediment leaves with the water) or semi-lagrangian (Mei 2007's advection; not conserving, the loss is reported as lost_volume)", &PipeSettings::transport},
       {"pipe.edges", "\"outflow\"", "", 0, 0, {"outflow", "closed"}, "outflow (outside cells have b = d = 0) or closed", &PipeSettings::edges},
-      {"pipe.flux", "\"pipes\"", "", 0, 0, {"pipes", "local-inertial"}, "the water's flux between cells: pipes (Mei 2007: two one-way pipes a face of cross-section pipe.area, whose waves travel at about sqrt(g A / l)) or local-inertial (Bates, Horritt & Fewtrell 2010: one signed flux a face over the water's own depth, waves at sqrt(g d) as in the shallow-water equations; docs/models.md, \"pipe\")", &PipeSettings::flux},
+      {"pipe.flux", "\"pipes\"", "", 0, 0, {"pipes", "local-inertial", "godunov"}, "the water's flux between cells: pipes (Mei 2007: two one-way pipes a face of cross-section pipe.area, whose waves travel at about sqrt(g A / l)), local-inertial (Bates, Horritt & Fewtrell 2010: one signed flux a face over the water's own depth, waves at sqrt(g d), no advection) or godunov (the shallow-water equations in finite volumes: HLL fluxes on Audusse's hydrostatic reconstruction, with advection, so supercritical flow runs as it does; docs/models.md, \"pipe\")", &PipeSettings::flux},
       {"pipe.law", "\"capacity\"", "", 0, 0, {"capacity", "bedload"}, "erosion law: capacity (Mei 2007: the water dissolves the bed up to a transport capacity and carries it in suspension) or bedload (Wong & Parker's Meyer-Peter & Müller from the Shields stress of the Manning bed shear, the bed by Exner with porosity, talus sliding at thermal.talus_angle every thermal.interval; sediment.* gives the grains)", &PipeSettings::law},
 };
 // clang-format on
@@ -78,8 +78,8 @@ const ModelInfo& PipeModel::model_info() {
        {kSurfaceWaterVelocity, FieldIntent::kOut},
        {kSedimentSuspended, FieldIntent::kOut}},
       {},
-      184};  // 120 with Mei's pipes and law; the bed load adds its sent planes, the next heights
-             // and the talus, the local-inertial flux its copy of the fluxes
+      200};  // 120 with Mei's pipes and law; the bed load adds its sent planes, the next heights
+             // and the talus, the godunov flux its faces' fluxes
   return info;
 }
 
@@ -108,19 +108,28 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   compute.queue().enqueueFillBuffer(lost_, cl_long{0}, 0, sizeof(cl_long));
   std::vector<std::string> sources = {"cl/common.cl", "cl/models/pipe.cl"};
   if (settings_.inertial()) sources.push_back("cl/models/pipe_inertial.cl");
+  if (settings_.godunov()) sources.push_back("cl/models/pipe_godunov.cl");
   std::string options = settings_.build_options() + ground_defines(params);
   if (settings_.bedload()) {
     sources.push_back("cl/models/pipe_bedload.cl");
     options += SedimentSettings::from(params).build_options();
   }
   cl::Program& program = compute.program(sources, options);
-  flux_kernel_ =
-      Kernel(compute, program, settings_.inertial() ? "pipe_flux_inertial" : "pipe_flux");
+  flux_kernel_ = Kernel(compute, program,
+                        settings_.inertial()  ? "pipe_flux_inertial"
+                        : settings_.godunov() ? "pipe_godunov_faces"
+                                              : "pipe_flux");
   if (settings_.inertial()) {
     old_flux_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(float));
     flux_kernel_.set("old_flux", old_flux_);
   }
-  water_kernel_ = Kernel(compute, program, "pipe_water");
+  water_kernel_ =
+      Kernel(compute, program, settings_.godunov() ? "pipe_godunov_update" : "pipe_water");
+  if (settings_.godunov()) {
+    face_flux_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 6 * n * sizeof(float));
+    flux_kernel_.set("face_flux", face_flux_);
+    water_kernel_.set("face_flux", face_flux_);
+  }
   erode_kernel_ = Kernel(compute, program, "pipe_erode");
   send_kernel_ = Kernel(compute, program, "pipe_send");
   receive_kernel_ = Kernel(compute, program, "pipe_receive");
@@ -142,7 +151,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
 double PipeModel::scratch_bytes() const {
   return buffer_bytes({&previous_depth_, &capacity_, &cfl_speed2_, &sediment_next_, &sent_, &stats_,
                        &outflow_, &lost_, &sendable_, &bed_sent_, &height_next_, &bed_moved_,
-                       &old_flux_}) +
+                       &old_flux_, &face_flux_}) +
          (talus_ ? talus_->device_bytes() : 0.0);
 }
 
@@ -161,7 +170,9 @@ double PipeModel::take_step() {
     if (k->has("dt")) k->set("dt", dt);
     if (k->has("quantum")) k->set("quantum", q);
   }
-  flux_kernel_.set("height_view", terrain.height()).set("depth", depth).set("flux", flux);
+  flux_kernel_.set("height_view", terrain.height()).set("depth", depth);
+  if (flux_kernel_.has("flux")) flux_kernel_.set("flux", flux);
+  if (flux_kernel_.has("velocity")) flux_kernel_.set("velocity", velocity);
   if (settings_.inertial())  // every cell reads its neighbours' outflows as the step began
     compute_.queue().enqueueCopyBuffer(flux, old_flux_, 0, 0,
                                        4 * static_cast<std::size_t>(n) * sizeof(float));

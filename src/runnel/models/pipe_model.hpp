@@ -36,8 +36,9 @@ struct PipeSettings {
   std::string transport;  // "upwind" or "semi-lagrangian"
   std::string edges;      // "outflow" or "closed"
   std::string law;        // "capacity" (Mei's suspended load) or "bedload" (Wong & Parker)
-  std::string flux;       // "pipes" (Mei) or "local-inertial" (Bates et al. 2010)
+  std::string flux;       // "pipes" (Mei), "local-inertial" (Bates et al. 2010) or "godunov" (HLL)
   bool inertial() const { return flux == "local-inertial"; }
+  bool godunov() const { return flux == "godunov"; }
   bool bedload() const { return law == "bedload"; }
   bool closed() const { return edges == "closed"; }
   // Mei's advection (not conserving; the loss is reported)
@@ -87,6 +88,7 @@ class PipeModel final : public GridModel {
   void relax_talus(double dt);
   cl::Buffer bed_sent_, height_next_, bed_moved_;  // bed load only
   cl::Buffer old_flux_;                            // local-inertial only: the step's copy
+  cl::Buffer face_flux_;  // godunov only: each cell's right and lower faces' HLL fluxes
   Kernel bedload_kernel_;
   std::unique_ptr<ThermalRelaxation>
       talus_;  // bed load only: slopes above the angle of repose slide

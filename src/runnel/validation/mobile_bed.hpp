@@ -23,7 +23,7 @@ Flume soares_frazao_flume(double cell);
 
 // Writes the flume as a scenario `runnel run` and `runnel compare --models pipe,sph` take:
 // terrain.asc, sand.npy and walls.npy into `data_dir`, and at `scenario_path` the scenario that
-// names them (relative to its folder): the pipe model's local-inertial flux and bed-load law, the
+// names them (relative to its folder): the pipe model's godunov flux and bed-load law, the
 // reservoir as a [[water.bodies]], the gauges and their mirror images as [[probes]].
 void write_flume_scenario(const Flume& flume, const std::string& data_dir,
                           const std::string& scenario_path);

@@ -83,7 +83,7 @@ void write_flume_scenario(const Flume& flume, const std::string& data_dir,
     << "# gate's centre, y from the flume's axis, heights above the fixed floor.\n"
     << "[terrain]\nfile = \"" << file("terrain.asc") << "\"\n\n"
     << "[run]\nmodel = \"pipe\"\nsim_time = 20\nprobe_every = 0.1\nreport_every = 1000\n\n"
-    << "[pipe]\nflux = \"local-inertial\"\nlaw = \"bedload\"\nrain = 0\nevaporation = 0\n"
+    << "[pipe]\nflux = \"godunov\"\nlaw = \"bedload\"\nrain = 0\nevaporation = 0\n"
     << "# Strickler's n for the grains, d^(1/6) / 21.1\nmanning_n = 0.0162\n\n"
     << "[sediment]\ngrain_diameter = 0.00161\ngrain_density = 2630\nporosity = 0.42\n\n"
     << "# The sand slides at its submerged angle of repose.\n"
