@@ -38,12 +38,16 @@ double resident_bytes() {
                    : -1;
 }
 
-// A model by name; "pipe-bedload" is the pipe model under its bed-load law (with the talus).
+// A model by name; "pipe-bedload" is the pipe model at its largest: the bed-load law with the
+// talus and the godunov flux.
 Parameters parameters(const std::string& model) {
   Parameters p = default_parameters();
   const bool bedload = model == "pipe-bedload";
   p.set("run.model", bedload ? std::string("pipe") : model);
-  if (bedload) p.set("pipe.law", std::string("bedload"));
+  if (bedload) {
+    p.set("pipe.law", std::string("bedload"));
+    p.set("pipe.flux", std::string("godunov"));
+  }
   return p;
 }
 
