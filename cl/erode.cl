@@ -29,7 +29,7 @@
 // load is kept in accelerated bed volume, c̃ = MF c, so the detachment rate and the capacity (c_T,
 // c_max) are multiplied by MF and the deposition w_s c̃ follows by itself; the water is unchanged.
 // The acidity model (EROSION_MODEL 1, Fritz 2016): each contact erodes `acidity`·cell² until the
-// particle has eroded `capacity_contacts` times.
+// particle has eroded `capacity_contacts` times. The bed-load model (EROSION_MODEL 2): see below.
 // Evaporation: at the end of its lifespan a particle deposits its load (deposit_fraction of it;
 // the rest is booked as lost) and is removed.
 //
@@ -146,6 +146,44 @@ __kernel void erode_exchange(const __global float* x, const __global float* y, c
       land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, q, 1,
                   exchange_random(seed, id[i], step_index, 1), 0, 1.0f);
       sediment[i] = (int)(carried - q);
+    }
+  }
+#elif EROSION_MODEL == 2
+  // Bed load: the flow over the particle's bed area V/D rolls q = q* sqrt(R g d³) of grains per metre
+  // of width (Wong & Parker's q* = 3.97 (θ − θc)^(3/2), θ the Shields stress of the Manning shear);
+  // the grains in motion over a unit of bed are q / u of grains, q / (u (1 − p)) of bed, so the
+  // particle's water carries c_B = MF q / (u D (1 − p)) of bed per volume at equilibrium. Its load
+  // relaxes to c_B over the adaptation length: the fraction 1 − exp(−Δt max(u, w_s) / L_a) of the
+  // difference each step (picked up at the footprint's erodibility, or dropped), so still water
+  // drops its load at the settling velocity's pace.
+  const float3 vel = (float3)(vx[i], vy[i], vz[i]);
+  const float3 along_bed = vel - dot(vel, s.normal) * s.normal;
+  const float speed = length(along_bed);
+  const float tau = EROSION_RHO_G_N2 * speed * speed / cbrt(water_depth);  // Pa
+  const float shields = tau / ((SED_GRAIN_DENSITY - EROSION_RHO0) * EROSION_GRAVITY * SED_GRAIN_DIAMETER);
+  const float excess = fmax(shields - SED_CRITICAL_SHIELDS, 0.0f);
+  const float q = SED_WONG_PARKER * excess * sqrt(excess) * sqrt(SED_SUBMERGED_RD * EROSION_GRAVITY) *
+                  SED_GRAIN_DIAMETER;  // m² of grains per s
+  const float capacity =
+      speed > 0.0f ? fmin(morphological_factor * q / (speed * water_depth * (1.0f - SED_POROSITY)),
+                          morphological_factor * EROSION_MAX_CONCENTRATION)
+                   : 0.0f;
+  const float load = (float)carried * EROSION_VOLUME_QUANTUM;  // m³ of bed
+  const float relaxed = -expm1(-dt * fmax(speed, EROSION_SETTLING) / SED_ADAPTATION_LENGTH);
+  const float difference = capacity * EROSION_PARTICLE_VOLUME - load;
+  if (difference > 0.0f) {
+    const long taken = stochastic_quanta(difference * relaxed * bed_factor, exchange_random(seed, id[i], step_index, 0));
+    if (taken > 0 && carried + taken < 0x7fffffffL) {
+      land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, taken, -1,
+                  exchange_random(seed, id[i], step_index, 1), bed_field, bed_factor);
+      sediment[i] = (int)(carried + taken);
+    }
+  } else {
+    const long dropped = min(carried, stochastic_quanta(-difference * relaxed, exchange_random(seed, id[i], step_index, 0)));
+    if (dropped > 0) {
+      land_quanta(delta, changed, tiles_x, tnx, tny, tcell, px, pz, dropped, 1,
+                  exchange_random(seed, id[i], step_index, 1), 0, 1.0f);
+      sediment[i] = (int)(carried - dropped);
     }
   }
 #else

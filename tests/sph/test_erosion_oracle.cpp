@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // erode_exchange against its plain C++ oracle (erosion_reference): detachment below the transport
-// capacity, deposition above it, evaporation with a partial deposit, and the acidity model, on a
+// capacity, deposition above it, evaporation with a partial deposit, the acidity and the bed-load
+// models, on a
 // rough terrain with the footprint spreading every amount.
 #include <gtest/gtest.h>
 
@@ -23,7 +24,7 @@ using test::compute;
 
 TEST(ErosionOracle, ExchangeMatchesThePlainCppReference) {
   const Heightmap rough = generate_terrain("diamond-square", 33, 29, 1.0, 7, {{"relief", 0.3}});
-  for (const char* model : {"stream-power", "acidity"}) {
+  for (const char* model : {"stream-power", "acidity", "bedload"}) {
     Parameters p = default_parameters();
     p.set("erosion.model", std::string(model));
     p.set("erosion.deposit_fraction", 0.75);

@@ -109,6 +109,12 @@ ParamValue validated_value(const ParamSpec& spec_ref, const ParamValue& value_in
   return value;
 }
 
+double entry_real(const EntryValues& entry, const std::string& key) {
+  const ParamValue& v = entry.at(key);
+  if (auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  return std::get<double>(v);
+}
+
 const ParamSpec* find_param(const ParameterTable& table, const std::string& key) {
   for (auto& p : table) {
     if (p.key == key) return &p;

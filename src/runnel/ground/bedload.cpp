@@ -18,6 +18,7 @@ const SettingsTable<SedimentSettings> kSedimentTable = {
       {"sediment.grain_density", "2650", "kg/m3", 1001, 2e4, {}, "ρs, the grains' density (quartz 2650)", &S::grain_density, "SED_GRAIN_DENSITY"},
       {"sediment.porosity", "0.4", "1", 0, 0.9, {}, "p, the bed's porosity: a volume V of grains moves V / (1 − p) of bed (Exner)", &S::porosity, "SED_POROSITY"},
       {"sediment.critical_shields", "0.0495", "1", 0, 1, {}, "θc, the Shields stress below which grains do not move (Wong & Parker 2006: 0.0495; Meyer-Peter & Müller: 0.047)", &S::critical_shields, "SED_CRITICAL_SHIELDS"},
+      {"sediment.adaptation_length", "0.05", "m", 1e-6, 1e3, {}, "SPH's bed load (erosion.model = \"bedload\"): the distance a particle's load takes to reach the flow's bed-load capacity (grains pick up and settle over a few saltation lengths)", &S::adaptation_length, "SED_ADAPTATION_LENGTH"},
 };
 // clang-format on
 

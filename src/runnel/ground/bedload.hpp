@@ -11,10 +11,11 @@ namespace runnel {
 // from the Shields stress θ = τ / ((ρs − ρ) g D) of the bed shear the model computes with Manning's
 // law, τ = ρ g n² |v|² / d^(1/3). The bed follows the Exner equation (1 − p) ∂z/∂t = −∇·q.
 struct SedimentSettings {
-  double grain_diameter;    // D, m
-  double grain_density;     // ρs, kg/m³
-  double porosity;          // p of the bed
-  double critical_shields;  // θc
+  double grain_diameter;     // D, m
+  double grain_density;      // ρs, kg/m³
+  double porosity;           // p of the bed
+  double critical_shields;   // θc
+  double adaptation_length;  // m: SPH's bed load relaxes to the flow's over this distance
   static SedimentSettings from(const Parameters& params);
   std::string build_options() const;  // the -D defines the bed-load kernels read
 };

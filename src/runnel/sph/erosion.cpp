@@ -18,7 +18,7 @@ namespace {
 // clang-format off
 const SettingsTable<ErosionSettings> kErosionTable = {
       // erosion: dissolving and depositing sediment (physics.md §4)
-      {"erosion.model", "\"stream-power\"", "", 0, 0, {"stream-power", "acidity"}, "stream-power: detachment driven by the power the flow spends on its bed against a transport capacity, coupled as Foster & Meyer 1975 (docs/erosion.md); acidity: Fritz 2016's fixed erosion per contact", &ErosionSettings::model},
+      {"erosion.model", "\"stream-power\"", "", 0, 0, {"stream-power", "acidity", "bedload"}, "stream-power: detachment driven by the power the flow spends on its bed against a transport capacity, coupled as Foster & Meyer 1975 (docs/erosion.md); acidity: Fritz 2016's fixed erosion per contact; bedload: Wong & Parker's Meyer-Peter & Müller from the Shields stress of the bed shear, each particle's load relaxing to the bed load its flow carries over sediment.adaptation_length (sediment.* gives the grains)", &ErosionSettings::model},
       {"erosion.erodibility", "0.001", "s^2/m^2", 0, 1e6, {}, "K_ω: detachment K_ω (ω − ω_c) in kg/m²/s, ω the stream power on the bed in W/m²", &ErosionSettings::erodibility},
       {"erosion.critical_power", "0", "W/m^2", 0, 1e9, {}, "ω_c, the stream power below which the flow detaches nothing", &ErosionSettings::critical_power, "EROSION_CRITICAL_POWER"},
       {"erosion.transport_efficiency", "0.02", "s^2/m", 0, 1e6, {}, "k_T: transport capacity k_T ω per unit width (kg/m/s, ω the stream power; Bagnold 1966: about 0.16 × his efficiency, 0.01–0.15), carried as the concentration k_T ρ0 g S / ρ_b (S the sine of the slope)", &ErosionSettings::transport},
@@ -51,13 +51,19 @@ ErosionSettings ErosionSettings::from(const Parameters& p, const SphSettings& sp
                       "contact of a step); use 0 with erosion.model = \"acidity\"");
   }
   e.footprint_radius = runnel::footprint_radius(sph, terrain_cell);
+  e.sediment = SedimentSettings::from(p);
   return e;
 }
 
 std::string ErosionSettings::build_options(const SphSettings& sph, double volume_quantum) const {
   // The raw values from the table; then what the kernel needs combined with the fluid's.
   std::string o = settings_defines(*this, kErosionTable);
-  o += std::string(" -DEROSION_MODEL=") + (model == "acidity" ? "1" : "0");
+  o += std::string(" -DEROSION_MODEL=") + (model == "acidity"   ? "1"
+                                           : model == "bedload" ? "2"
+                                                                : "0");
+  if (model == "bedload")
+    o += sediment.build_options() + float_define("EROSION_GRAVITY", sph.gravity) +
+         float_define("EROSION_RHO0", sph.rho0);
   const double volume = sph.spacing * sph.spacing * sph.spacing;
   o += float_define("EROSION_RHO_G_N2", sph.rho0 * sph.gravity * sph.manning_n * sph.manning_n);
   o += float_define("EROSION_DETACHMENT", erodibility / bed_density);

@@ -7,6 +7,7 @@
 #include "runnel/compute/kernel.hpp"
 #include "runnel/core/clock.hpp"
 #include "runnel/core/parameters.hpp"
+#include "runnel/ground/bedload.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/terrain/bed_fields.hpp"
@@ -18,7 +19,7 @@ namespace runnel {
 // power) or Fritz 2016's acidity model.
 struct ErosionSettings {
   // The erosion.* parameters (defaults, units, meaning: the table in erosion.cpp).
-  std::string model;         // "stream-power" or "acidity"
+  std::string model;         // "stream-power", "acidity" or "bedload"
   double erodibility;        // K_ω, s²/m²
   double critical_power;     // ω_c, W/m²
   double transport;          // k_T, s²/m
@@ -32,7 +33,8 @@ struct ErosionSettings {
   double height_quantum;     // m
   double exchange_interval;  // s; 0: every step
   // Resolved from the fluid and the terrain:
-  double footprint_radius;  // m, where an exchange is spread
+  double footprint_radius;    // m, where an exchange is spread
+  SedimentSettings sediment;  // the grains, for the bed-load law
 
   static ErosionSettings from(const Parameters& p, const SphSettings& sph, double terrain_cell);
   // OpenCL build options (-DEROSION_...) for cl/erode.cl.

@@ -108,6 +108,30 @@ Exchange exchange(const HostParticles& p, const std::vector<float>& depth, const
     const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
     const double along[3] = {v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]};
     const double speed = std::sqrt(along[0] * along[0] + along[1] * along[1] + along[2] * along[2]);
+    if (e.model == "bedload") {
+      const SedimentSettings& g = e.sediment;
+      const double q = bedload_rate(g, sph.manning_n, sph.gravity, D, speed);
+      const double capacity =
+          speed > 0 ? std::min(mf * q / (speed * D * (1 - g.porosity)), mf * e.max_concentration)
+                    : 0.0;
+      const double load = static_cast<double>(carried) * Q;
+      const double relaxed = -std::expm1(-dt * std::max(speed, e.settling) / g.adaptation_length);
+      const double difference = capacity * volume - load;
+      if (difference > 0) {
+        const std::int64_t q_taken = quanta(difference * relaxed);
+        if (q_taken > 0) {
+          spread(out.delta, t, R, x, z, q_taken, -1, u1);
+          out.sediment[i] = static_cast<std::int32_t>(carried + q_taken);
+        }
+      } else {
+        const std::int64_t dropped = std::min(carried, quanta(-difference * relaxed));
+        if (dropped > 0) {
+          spread(out.delta, t, R, x, z, dropped, 1, u1);
+          out.sediment[i] = static_cast<std::int32_t>(carried - dropped);
+        }
+      }
+      continue;
+    }
     const double tau =
         sph.rho0 * sph.gravity * sph.manning_n * sph.manning_n * speed * speed / std::cbrt(D);
     const double excess = std::max(tau * speed - e.critical_power, 0.0);

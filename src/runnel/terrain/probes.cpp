@@ -28,12 +28,6 @@ const std::vector<ParamSpec>& probe_keys() {
   return keys;
 }
 
-double real_of(const EntryValues& entry, const std::string& key) {
-  const ParamValue& v = entry.at(key);
-  if (auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
-  return std::get<double>(v);
-}
-
 bool plain_word(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
@@ -65,7 +59,7 @@ std::vector<Probe> probes_of(const Parameters& params, const Heightmap& terrain)
                         "' must be a non-empty word of letters, digits, _ and -");
     if (!names.insert(p.name).second)
       throw input_error(where + ".name: a probe named '" + p.name + "' is already defined");
-    const double mx = real_of(entries[k], "x"), my = real_of(entries[k], "y");
+    const double mx = entry_real(entries[k], "x"), my = entry_real(entries[k], "y");
     p.x = map.world_x(mx);
     p.z = map.world_z(my);
     if (p.x < 0 || p.x > width || p.z < 0 || p.z > depth)

@@ -28,18 +28,12 @@ const std::vector<ParamSpec>& body_keys() {
   return keys;
 }
 
-double real_of(const EntryValues& entry, const std::string& key) {
-  const ParamValue& v = entry.at(key);
-  if (auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
-  return std::get<double>(v);
-}
-
 void fill_body(const EntryValues& body, std::size_t index, const Heightmap& terrain,
                std::vector<float>& depth) {
   const std::string where = "water.bodies[" + std::to_string(index + 1) + "]";
-  const double x0 = real_of(body, "x0"), x1 = real_of(body, "x1");
-  const double y0 = real_of(body, "y0"), y1 = real_of(body, "y1");
-  const double level = real_of(body, "level");
+  const double x0 = entry_real(body, "x0"), x1 = entry_real(body, "x1");
+  const double y0 = entry_real(body, "y0"), y1 = entry_real(body, "y1");
+  const double level = entry_real(body, "level");
   if (!(x1 > x0) || !(y1 > y0))
     throw input_error(where + ": the rectangle needs x0 < x1 and y0 < y1 (map metres)");
   const MapFrame map(terrain);
