@@ -21,6 +21,7 @@ struct ValidateFlags {
   int resolution = 0;
   double settle = 0;
   std::vector<std::string> sets;
+  std::vector<std::string> models;
 };
 
 // The stream-power model against its analytic steady states, as JSON on stdout.
@@ -40,6 +41,20 @@ void print_stream_power_validation() {
             << "\n";
 }
 
+// The mobile-bed case once per model, each run in its own folder under --out; one JSON object
+// with a summary per run.
+void print_mobile_bed_runs(ComputeContext& compute, const ValidationOptions& base,
+                           const std::vector<std::string>& models) {
+  std::vector<JsonObject> runs;
+  for (const std::string& model : models) {
+    ValidationOptions v = base;
+    v.params.set("run.model", model, "--models");
+    if (!base.out_dir.empty()) v.out_dir = (std::filesystem::path(base.out_dir) / model).string();
+    runs.push_back(validate_mobile_bed(compute, v).summary().add("model", model));
+  }
+  std::cout << JsonObject().add("case", "mobile-bed").add("runs", runs).str() << "\n";
+}
+
 // The case's options from the flags (each checked), then the case, its summary on stdout.
 void validate(const ValidateFlags& opt, const CLI::App& cmd) {
   ValidationOptions v;
@@ -52,6 +67,8 @@ void validate(const ValidateFlags& opt, const CLI::App& cmd) {
     throw input_error("--settle: must be more than 0 and at most 10000 s");
   v.settle_time = opt.settle;
   apply_overrides(v.params, opt.sets);
+  if (cmd.count("--models") && opt.which != "mobile-bed")
+    throw input_error("--models: only mobile-bed runs with a choice of models");
   if (cmd.count("--terrain")) {
     if (opt.which != "erosion-convergence")
       throw input_error("--terrain: only erosion-convergence rains on a terrain");
@@ -74,6 +91,10 @@ void validate(const ValidateFlags& opt, const CLI::App& cmd) {
     return;
   }
   ComputeContext compute(opt.device);
+  if (opt.which == "mobile-bed" && !opt.models.empty()) {
+    print_mobile_bed_runs(compute, v, opt.models);
+    return;
+  }
   const ValidationResult r = opt.which == "hydrostatic"  ? validate_hydrostatic(compute, v)
                              : opt.which == "dambreak"   ? validate_dambreak(compute, v)
                              : opt.which == "droplet"    ? validate_droplet(compute, v)
@@ -119,6 +140,11 @@ void add_validate_command(CLI::App& app) {
                   "folder for pressure.csv / front.csv, or mobile-bed's flume, run and "
                   "mobile_bed.png (created)");
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
+  cmd->add_option("--models", opt->models,
+                  "mobile-bed: the models to run it with, each in DIR/MODEL (e.g. pipe,sph; "
+                  "default: the scenario's, pipe)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"pipe", "sph"}));
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->callback([opt, cmd] { validate(*opt, *cmd); });
 }

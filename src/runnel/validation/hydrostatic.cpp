@@ -165,7 +165,7 @@ ValidationResult validate_hydrostatic(ComputeContext& compute, const ValidationO
   return r;
 }
 
-std::string ValidationResult::summary_json() const {
+JsonObject ValidationResult::summary() const {
   JsonObject o;
   o.add("case", name)
       .add("particles", particles)
@@ -175,7 +175,7 @@ std::string ValidationResult::summary_json() const {
       .add("target", target)
       .add("passed", relative_error <= target)
       .add("details", details);
-  return o.str();
+  return o;
 }
 
 }  // namespace runnel

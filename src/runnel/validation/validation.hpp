@@ -31,7 +31,8 @@ struct ValidationResult {
   double relative_error = 0;
   double target = 0;  // the acceptance threshold for relative_error
   JsonObject details;
-  std::string summary_json() const;
+  JsonObject summary() const;
+  std::string summary_json() const { return summary().str(); }
 };
 
 // A water column of height H settles in a closed box; pressure against ρ0·g·d below the top three
