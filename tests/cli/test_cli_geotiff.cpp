@@ -138,7 +138,11 @@ TEST(CliGeoTiff, RastersRunnelCannotUseAreRefusedWithOneLine) {
   const std::vector<Case> cases = {
       {{"-a_srs", "EPSG:4326", "-a_ullr", "-84.5", "36.5", "-84.1", "36.2"},
        "geographic.tif",
-       "geographic coordinates"},
+       "UTM zone of its centre: gdalwarp -t_srs EPSG:32616"},
+      // South of the equator and east of Greenwich: the zone is the centre's, not a fixed one.
+      {{"-a_srs", "EPSG:4326", "-a_ullr", "150.0", "-33.0", "150.4", "-33.3"},
+       "sydney.tif",
+       "EPSG:32756"},
       {{"-a_srs", "EPSG:32616", "-a_ullr", "700000", "4000000", "740300", "3971448"},
        "rectangular.tif",
        "not square"},

@@ -4,6 +4,7 @@
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -53,16 +54,27 @@ Srs srs_from_wkt(const std::string& wkt) {
   return srs;
 }
 
+// The WGS 84 UTM zone of a longitude and latitude (degrees), as an EPSG code: 326ZZ north of the
+// equator, 327ZZ south.
+int utm_epsg(double longitude, double latitude) {
+  const int zone = std::clamp(static_cast<int>(std::floor((longitude + 180.0) / 6.0)) + 1, 1, 60);
+  return (latitude >= 0 ? 32600 : 32700) + zone;
+}
+
 // Heights and cells are metres in runnel's physics, so a CRS must be projected in metres (or
-// absent).
-void check_crs(const std::string& path, const std::string& wkt) {
+// absent). `centre` is the raster's centre in its own coordinates (degrees when geographic), for
+// the UTM zone a refusal suggests.
+void check_crs(const std::string& path, const std::string& wkt, const double centre[2]) {
   if (wkt.empty()) return;
   const Srs srs = srs_from_wkt(wkt);
   if (!srs) throw input_error(path + ": its coordinate reference system could not be read");
   if (OSRIsGeographic(srs.get())) {
-    throw input_error(path +
-                      ": geographic coordinates (degrees); runnel needs a projected CRS in metres: "
-                      "reproject it first, e.g. gdalwarp -t_srs EPSG:32616 in.tif out.tif");
+    const int epsg = utm_epsg(centre[0], centre[1]);
+    throw input_error(
+        path +
+        ": geographic coordinates (degrees); runnel needs a projected CRS in metres: "
+        "reproject it first, e.g. to the UTM zone of its centre: gdalwarp -t_srs EPSG:" +
+        std::to_string(epsg) + " in.tif out.tif");
   }
   if (OSRIsProjected(srs.get()) || OSRIsLocal(srs.get())) {
     char* unit = nullptr;
@@ -97,7 +109,11 @@ Heightmap read_gdal(const std::string& path, NodataPolicy nodata) {
   Heightmap terrain(static_cast<int>(nx), static_cast<int>(ny), 1.0);
   const char* wkt = GDALGetProjectionRef(dataset.get());
   terrain.georef.crs_wkt = wkt ? wkt : "";
-  check_crs(path, terrain.georef.crs_wkt);
+  // The centre in the raster's coordinates (GDAL's traditional order: x is the longitude).
+  const double centre[2] = {
+      georeferenced ? transform[0] + 0.5 * static_cast<double>(nx) * transform[1] : 0.0,
+      georeferenced ? transform[3] + 0.5 * static_cast<double>(ny) * transform[5] : 0.0};
+  check_crs(path, terrain.georef.crs_wkt, centre);
   if (georeferenced) {
     if (transform[2] != 0.0 || transform[4] != 0.0) {
       throw input_error(path + ": the raster is rotated (geotransform terms " +

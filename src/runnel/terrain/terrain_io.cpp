@@ -141,7 +141,8 @@ void apply_nodata_policy(const std::string& path, Heightmap& terrain, long long 
   if (holes == 0) return;
   if (policy == NodataPolicy::kRefuse) {
     throw input_error(path + ": " + std::to_string(holes) +
-                      " NODATA cells (fill them with --nodata fill)");
+                      " NODATA cells; fill them from their neighbours with terrain.nodata = "
+                      "\"fill\" (runnel convert: --nodata fill)");
   }
   if (fill_holes(terrain) < 0) throw input_error(path + ": every cell is NODATA");
   std::cerr << "runnel: " << terminal_safe(path) << ": filled " << holes
