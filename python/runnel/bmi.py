@@ -108,9 +108,10 @@ class RunnelBmi(Bmi):
         return "s" if self._model.clock == "s" else "1"
 
     def get_time_step(self):
-        # The model chooses its own steps (adaptive where it has a stability limit); the BMI step
-        # is the one it took last, or 1 iteration.
-        return float(self._last_step) if getattr(self, "_last_step", 0) else 1.0
+        # The model's next step: the one its stability limit chose (adaptive models), or its fixed
+        # one. SPH chooses its first step when it takes it: before that, 1.
+        step = float(self._model.step_size)
+        return step if step > 0 else 1.0
 
     # Getters and setters ---------------------------------------------------------------------
     def get_value_ptr(self, name):

@@ -341,6 +341,10 @@ PYBIND11_MODULE(_runnel, m) {
                                return self.get().info().clock == ModelClock::kSeconds ? "s" : "iterations";
                              })
       .def_property_readonly("time", [](PyModel& self) { return self.get().time(); })
+      .def_property_readonly(
+          "step_size", [](PyModel& self) { return self.get().step_size(); },
+          "The length of the next step in the model's clock units: the step an adaptive model's "
+          "stability limit chose after its latest step (SPH: 0 before its first), or its fixed one.")
       .def_property_readonly("steps", [](PyModel& self) { return self.get().steps(); })
       .def("terrain", [](PyModel& self) { return self.get().terrain(); })
       .def("initial_terrain", [](PyModel& self) { return self.get().initial_terrain(); })

@@ -23,6 +23,7 @@ class GridModel : public Model, public Interactive {
 
   double step() final;
   double time() const final { return time_; }
+  double step_size() const final { return next_dt(); }
   std::uint64_t steps() const final { return steps_; }
   const Parameters& parameters() const final { return params_; }
   Heightmap terrain() final;

@@ -62,6 +62,12 @@ class Model {
   void advance(double dt, const std::function<void()>& after_step = {});
 
   virtual double time() const = 0;
+  // The length of the next step, in clock units: the step an adaptive model's stability limit chose
+  // after its latest step (SPH: 0 before its first), or its fixed one (BMI's get_time_step).
+  virtual double step_size() const = 0;
+  // A seconds model whose step its stability limit chooses shortens its next step to at most
+  // `most` (so advance() lands on its target); a model of fixed steps takes its own.
+  virtual void limit_next_step(double most) { (void)most; }
   virtual std::uint64_t steps() const = 0;
   virtual const Parameters& parameters() const = 0;
 

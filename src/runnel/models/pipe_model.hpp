@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -58,6 +59,9 @@ class PipeModel final : public GridModel {
   const ModelInfo& info() const override { return model_info(); }
 
   double dt() const { return dt_; }
+  void limit_next_step(double most) override {
+    if (most > 0) dt_ = std::min(dt_, most);
+  }
   std::vector<float> depth() { return state_.download_float(kSurfaceWaterDepth); }
   long long outflow_quanta() override;
   long long lost_quanta() override;

@@ -20,6 +20,8 @@ class SphModel final : public Model, public Interactive {
 
   double step() override;
   double time() const override { return sim_->time(); }
+  double step_size() const override { return sim_->dt(); }
+  void limit_next_step(double most) override { sim_->solver().limit_dt(most); }
   std::uint64_t steps() const override { return sim_->steps(); }
   const Parameters& parameters() const override { return sim_->parameters(); }
   Heightmap terrain() override { return sim_->terrain(); }

@@ -89,6 +89,12 @@ class SphSolver {
 
   double time() const { return time_; }
   double dt() const { return dt_; }
+  // Shortens the next step to at most `most` s (a shorter step than the limits chose is stable);
+  // first computes the rates and the step the limits choose, as the step would.
+  void limit_dt(double most) {
+    if (!rates_ready_) prepare();
+    if (most > 0 && most < dt_) dt_ = most;
+  }
   std::uint64_t steps() const { return steps_; }
   void restore_clock(double time, double dt, std::uint64_t steps);
   const SphHealth& health() const { return health_; }
