@@ -56,9 +56,7 @@ ParamValue layer_value(const LayerValues& layer, const std::string& key) {
 }
 
 double layer_real(const LayerValues& layer, const std::string& key) {
-  const ParamValue v = layer_value(layer, key);
-  if (auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
-  return std::get<double>(v);
+  return real_value(layer_value(layer, key));
 }
 
 std::string layer_text(const LayerValues& layer, const std::string& key) {

@@ -109,8 +109,7 @@ ParamValue validated_value(const ParamSpec& spec_ref, const ParamValue& value_in
   return value;
 }
 
-double entry_real(const EntryValues& entry, const std::string& key) {
-  const ParamValue& v = entry.at(key);
+double real_value(const ParamValue& v) {
   if (auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
   return std::get<double>(v);
 }

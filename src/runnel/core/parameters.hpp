@@ -37,8 +37,12 @@ const ParamSpec* find_param(const ParameterTable& table, const std::string& key)
 using ParamValue = std::variant<double, std::int64_t, bool, std::string>;
 // One entry of a list of tables: every key of its spec's entry_keys, given or at its default.
 using EntryValues = std::map<std::string, ParamValue>;
-// A number of an entry (an integer read as a real).
-double entry_real(const EntryValues& entry, const std::string& key);
+// A number as a real (an integer read as one).
+double real_value(const ParamValue& value);
+// A number of an entry.
+inline double entry_real(const EntryValues& entry, const std::string& key) {
+  return real_value(entry.at(key));
+}
 
 // `value` checked against `spec` (an integer is accepted for a real): the type, the range, the
 // choices. Throws an input error starting with `where`.

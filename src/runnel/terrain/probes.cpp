@@ -72,14 +72,28 @@ std::vector<Probe> probes_of(const Parameters& params, const Heightmap& terrain)
   return probes;
 }
 
-ProbeReading read_probe(const Heightmap& bed, const std::vector<float>& depth, const Probe& probe) {
-  Heightmap water(bed.nx, bed.ny, bed.cell);
+namespace {
+
+// The depth field on the bed's grid, for surface_height; empty when the model has no water.
+Heightmap water_field(const Heightmap& bed, const std::vector<float>& depth) {
+  Heightmap water;
+  water.nx = bed.nx, water.ny = bed.ny, water.cell = bed.cell;
   water.h = depth;
+  return water;
+}
+
+ProbeReading read_on(const Heightmap& bed, const Heightmap& water, const Probe& probe) {
   ProbeReading r;
   r.bed = surface_height(bed, probe.x, probe.z);
-  r.depth = depth.empty() ? 0.0 : surface_height(water, probe.x, probe.z);
+  r.depth = water.h.empty() ? 0.0 : surface_height(water, probe.x, probe.z);
   r.surface = r.bed + r.depth;
   return r;
+}
+
+}  // namespace
+
+ProbeReading read_probe(const Heightmap& bed, const std::vector<float>& depth, const Probe& probe) {
+  return read_on(bed, water_field(bed, depth), probe);
 }
 
 ProbeRecorder::ProbeRecorder(std::vector<Probe> probes, double every)
@@ -91,8 +105,9 @@ void ProbeRecorder::record(double t, const Heightmap& bed, const std::vector<flo
     std::snprintf(text, sizeof text, "%.6f", v);
     return std::string(text);
   };
+  const Heightmap water = water_field(bed, depth);  // once for every gauge
   for (const Probe& p : probes_) {
-    const ProbeReading r = read_probe(bed, depth, p);
+    const ProbeReading r = read_on(bed, water, p);
     text_ += number(t) + "," + p.name + "," + number(r.surface) + "," + number(r.depth) + "," +
              number(r.bed) + "\n";
     ++rows_;
