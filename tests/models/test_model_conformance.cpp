@@ -180,6 +180,62 @@ TEST_P(ModelConformance, CheckpointRoundTripContinuesExactly) {
   expect_same_state(straight->checkpoint(), resumed->checkpoint());
 }
 
+// What a Landlab loop does between storms: read the heights, raise the interior (uplift), lower a
+// band (a hillslope process), write them back.
+std::vector<double> coupler_change(const Model& model, std::vector<double> z) {
+  const Heightmap& t = model.initial_terrain();
+  for (int j = 1; j < t.ny - 1; ++j)
+    for (int i = 1; i < t.nx - 1; ++i) z[j * t.nx + i] += (j < t.ny / 2 ? 0.25 : -0.1);
+  return z;
+}
+
+TEST_P(ModelConformance, ImposedHeightsAreAnExactExternalSource) {
+  auto model = make(GetParam());
+  const int n = busy_steps(*model) / 2;
+  for (int k = 0; k < n; ++k) model->step();
+  const std::vector<double> before = model->elevation();
+  model->set_elevation(before);
+  EXPECT_EQ(model->elevation(), before)
+      << "heights read back are exact: writing them changes nothing";
+  EXPECT_EQ(model->mass_balance().imposed, 0.0);
+
+  const MassBalance surface = model->mass_balance();
+  const std::vector<double> changed = coupler_change(*model, before);
+  model->set_elevation(changed);
+  const MassBalance after = model->mass_balance();
+  double expected = 0;  // the same change, summed independently in quanta
+  const double q = model->checkpoint().height_quantum, cell = model->initial_terrain().cell;
+  for (std::size_t k = 0; k < changed.size(); ++k)
+    expected += static_cast<double>(std::llround(changed[k] / q) - std::llround(before[k] / q));
+  EXPECT_GT(expected, 0.0);
+  EXPECT_DOUBLE_EQ(after.imposed, expected * q * cell * cell);
+  EXPECT_EQ(after.residual_quanta, 0) << "the imposed change is a source, not an error";
+  EXPECT_EQ(after.eroded, surface.eroded) << "nor erosion";
+  EXPECT_EQ(after.deposited, surface.deposited) << "nor deposition";
+
+  for (int k = 0; k < n; ++k) model->step();
+  EXPECT_EQ(model->mass_balance().residual_quanta, 0);
+  EXPECT_DOUBLE_EQ(model->mass_balance().imposed, after.imposed);
+}
+
+TEST_P(ModelConformance, ImposedHeightsSurviveACheckpoint) {
+  test::ScratchDir dir;
+  auto straight = make(GetParam()), first = make(GetParam());
+  const int n = busy_steps(*straight) / 2;
+  for (auto* m : {straight.get(), first.get()}) {
+    for (int k = 0; k < n; ++k) m->step();
+    m->set_elevation(coupler_change(*m, m->elevation()));
+  }
+  for (int k = 0; k < n; ++k) straight->step();
+  write_checkpoint(dir.path("mid.h5"), first->checkpoint());
+  first.reset();
+  auto resumed = make_model_from_checkpoint(compute(), read_checkpoint(dir.path("mid.h5")));
+  for (int k = 0; k < n; ++k) resumed->step();
+  expect_same_state(straight->checkpoint(), resumed->checkpoint());
+  EXPECT_EQ(resumed->mass_balance().imposed, straight->mass_balance().imposed);
+  EXPECT_EQ(resumed->mass_balance().residual_quanta, 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Registry, ModelConformance, ::testing::ValuesIn(model_names()),
                          [](const auto& info) { return test::param_name(info.param); });
 

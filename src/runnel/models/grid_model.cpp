@@ -176,7 +176,22 @@ double GridModel::water_volume() {
 MassBalance GridModel::mass_balance() {
   return mass_balance_of(state_.initial_fixed(), state_.terrain().download_fixed(),
                          suspended_quanta(), outflow_quanta(), lost_quanta(),
-                         state_.terrain().volume_quantum(), uplift_quanta(), uplift_per_vertex());
+                         state_.terrain().volume_quantum(), uplift_quanta(), uplift_per_vertex(),
+                         imposed_);
+}
+
+std::vector<double> GridModel::elevation() {
+  return heights_in_metres(state_.terrain().download_fixed(), state_.terrain().quantum());
+}
+
+void GridModel::set_elevation(const std::vector<double>& metres) {
+  if (ground_) throw input_error("set_elevation: not with a layer stack (ground.layers)");
+  DeviceTerrain& terrain = state_.terrain();
+  const std::vector<std::int64_t> before = terrain.download_fixed();
+  const std::vector<std::int64_t> after =
+      heights_in_quanta(metres, terrain.quantum(), before.size(), "set_elevation");
+  terrain.upload_fixed(after);
+  imposed_.add(before, after);
 }
 
 Heightmap GridModel::erosion_reference() {
@@ -185,6 +200,7 @@ Heightmap GridModel::erosion_reference() {
   for (std::size_t k = 0; k < uplift.size(); ++k)
     reference.h[k] +=
         static_cast<float>(static_cast<double>(uplift[k]) * state_.terrain().quantum());
+  imposed_.raise(reference, state_.terrain().quantum());
   return reference;
 }
 
@@ -210,6 +226,7 @@ CheckpointData GridModel::checkpoint() {
   if (ground_)
     for (StoredField& f : ground_->fields()) d.fields.push_back(std::move(f));
   rain_mask_.store(d.fields);
+  imposed_.store(d.fields);
   d.model_counters = counters();
   // What painting (runnel-viewer) adds to the state; absent from every run without it.
   if (painted_volume_ != 0 || paint_carry_ != 0 || rain_time_ != time_ || rain_accum_ != 0 ||
@@ -231,7 +248,10 @@ void GridModel::restore(const CheckpointData& d) {
     throw input_error("checkpoint: terrain size does not match the model");
   state_.set_initial_fixed(d.initial_fixed);
   state_.terrain().upload_fixed(d.height_fixed);
-  state_.upload(without_ground_fields(d.fields));
+  std::vector<StoredField> state_fields = without_ground_fields(d.fields);
+  std::erase_if(state_fields,
+                [](const StoredField& f) { return f.name == kImposedElevationChange; });
+  state_.upload(state_fields);
   if (ground_) ground_->restore(d.fields);
   restore_counters(d.model_counters);
   time_ = d.time;
@@ -248,6 +268,7 @@ void GridModel::restore(const CheckpointData& d) {
   }
   rain_mask_.restore(d.fields);
   if (rain_mask_.present()) sync_rain_weights();
+  imposed_.restore(d.fields);
 }
 
 std::int64_t counter_value(const std::vector<std::pair<std::string, std::int64_t>>& counters,

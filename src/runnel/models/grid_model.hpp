@@ -9,6 +9,7 @@
 #include "runnel/ground/ground.hpp"
 #include "runnel/ground/rain_mask.hpp"
 #include "runnel/models/grid_state.hpp"
+#include "runnel/models/imposed_change.hpp"
 #include "runnel/models/model.hpp"
 
 namespace runnel {
@@ -29,6 +30,8 @@ class GridModel : public Model, public Interactive {
   Heightmap terrain() final;
   const Heightmap& initial_terrain() const final { return state_.initial_terrain(); }
   MassBalance mass_balance() final;
+  std::vector<double> elevation() final;
+  void set_elevation(const std::vector<double>& metres) final;
   Heightmap erosion_reference() final;
   double rain_volume() override { return painted_volume_; }
   double initial_water_volume() const override { return initial_water_volume_; }
@@ -97,6 +100,7 @@ class GridModel : public Model, public Interactive {
   double rain_time() const { return rain_time_; }
   // m³ of painted water so far, and the fraction of a droplet or particle painting carries over.
   double initial_water_volume_ = 0;
+  ImposedChange imposed_;  // heights a coupler set (set_elevation)
   double painted_volume_ = 0, paint_carry_ = 0;
   // The scenario rain's volume before the last rain-mask change, and the rain time then.
   double rain_accum_ = 0, rain_mark_ = 0;

@@ -74,6 +74,13 @@ class Model {
   // The terrain as it is now (float view of the fixed-point state) and as it started.
   virtual Heightmap terrain() = 0;
   virtual const Heightmap& initial_terrain() const = 0;
+  // The terrain's exact heights in metres (row 0 the northern row; each a count of the height
+  // quantum times the quantum, exact in a double), and new heights from a coupler (Landlab's uplift
+  // or hillslope diffusion between storms): rounded to the quantum and booked in the mass balance
+  // as an imposed source (MassBalance::imposed), never as erosion or deposition. Refused with a
+  // layer stack, whose strata cannot tell what the coupler's change was made of.
+  virtual std::vector<double> elevation() = 0;
+  virtual void set_elevation(const std::vector<double>& metres) = 0;
   // The surface the erosion map and the eroded and deposited volumes are measured from: the
   // initial terrain, raised by the uplift so far in a model with tectonic uplift (stream-power),
   // so that they show what the surface processes did, not the rock's rise.

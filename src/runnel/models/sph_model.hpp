@@ -27,6 +27,9 @@ class SphModel final : public Model, public Interactive {
   Heightmap terrain() override { return sim_->terrain(); }
   const Heightmap& initial_terrain() const override { return sim_->initial_terrain(); }
   MassBalance mass_balance() override { return sim_->mass_balance(); }
+  std::vector<double> elevation() override { return sim_->elevation(); }
+  void set_elevation(const std::vector<double>& metres) override { sim_->set_elevation(metres); }
+  Heightmap erosion_reference() override { return sim_->erosion_reference(); }
   double rain_volume() override;
   double initial_water_volume() const override { return sim_->initial_water_volume(); }
   CheckpointData checkpoint() override { return sim_->checkpoint(); }

@@ -158,7 +158,29 @@ MassBalance Simulation::mass_balance() {
   }
   const SphCounters c = solver_->counters();
   return mass_balance_of(initial_fixed_, solver_->terrain().download_fixed(), suspended,
-                         c.outflow_sediment, c.lost_sediment, solver_->terrain().volume_quantum());
+                         c.outflow_sediment, c.lost_sediment, solver_->terrain().volume_quantum(),
+                         0, {}, imposed_);
+}
+
+std::vector<double> Simulation::elevation() {
+  return heights_in_metres(solver_->terrain().download_fixed(), solver_->terrain().quantum());
+}
+
+void Simulation::set_elevation(const std::vector<double>& metres) {
+  if (ground_) throw input_error("set_elevation: not with a layer stack (ground.layers)");
+  DeviceTerrain& terrain = solver_->terrain();
+  const std::vector<std::int64_t> before = terrain.download_fixed();
+  const std::vector<std::int64_t> after =
+      heights_in_quanta(metres, terrain.quantum(), before.size(), "set_elevation");
+  terrain.upload_fixed(after);
+  imposed_.add(before, after);
+  solver_->terrain_replaced();
+}
+
+Heightmap Simulation::erosion_reference() const {
+  Heightmap reference = initial_;
+  imposed_.raise(reference, solver_->terrain().quantum());
+  return reference;
 }
 
 CheckpointData Simulation::checkpoint() {
@@ -192,6 +214,7 @@ CheckpointData Simulation::checkpoint() {
   d.counters = solver_->counters();
   if (ground_) d.fields = ground_->fields();
   rain_mask_.store(d.fields);
+  imposed_.store(d.fields);
   return d;
 }
 
@@ -224,6 +247,7 @@ void Simulation::restore(const CheckpointData& d) {
   if (ground_) ground_->restore(d.fields);
   rain_mask_.restore(d.fields);
   if (rain_mask_.present()) rain_->set_weights(rain_mask_.weights(), initial_.nx);
+  imposed_.restore(d.fields);
 }
 
 bool Simulation::paint_rain_mask(const std::vector<int>& vertices, float value) {

@@ -11,6 +11,7 @@
 #include "runnel/ground/rain_mask.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/models/imposed_change.hpp"
 #include "runnel/models/mass_balance.hpp"
 #include "runnel/sph/erosion.hpp"
 #include "runnel/sph/rain_emitter.hpp"
@@ -34,6 +35,12 @@ class Simulation {
   void step();
 
   MassBalance mass_balance();
+  // Model::elevation() and set_elevation(): new heights put the particles they rose under back
+  // on the surface.
+  std::vector<double> elevation();
+  void set_elevation(const std::vector<double>& metres);
+  // The initial terrain raised by the heights imposed so far (Model::erosion_reference).
+  Heightmap erosion_reference() const;
   // The rain mask painted (runnel-viewer) on these vertices; false without ground.rain_mask.
   bool paint_rain_mask(const std::vector<int>& vertices, float value);
   bool has_rain_mask() const { return rain_mask_.present(); }
@@ -71,6 +78,7 @@ class Simulation {
   Parameters params_;
   Heightmap initial_;
   std::vector<std::int64_t> initial_fixed_;
+  ImposedChange imposed_;  // heights a coupler set (set_elevation)
   double reference_speed_ = 0;
   std::unique_ptr<SphSolver> solver_;
   RainMask rain_mask_;  // ground.rain_mask, as painted

@@ -262,6 +262,11 @@ void SphSolver::project_to_surface() {
   project_.set("counters", counters_buffer_).launch(round_up_work(n));
 }
 
+void SphSolver::terrain_replaced() {
+  project_to_surface();
+  hash_stale_ = true;
+}
+
 // The terrain boundary and the domain's extent (walls): what both neighbour passes see.
 void SphSolver::bind_domain(Kernel& k) {
   terrain_.bind(k);

@@ -84,6 +84,10 @@ class SphSolver {
   void measure_depth_every(double seconds);
   // Puts particles the terrain rose under back on its surface (after erosion and talus).
   void project_to_surface();
+  // After the terrain's heights were replaced between steps (a coupler's new heights): the
+  // particles go back on the surface and the next step rebuilds the cell tables, as a restored
+  // state does, so a run resumed from a checkpoint written here continues exactly.
+  void terrain_replaced();
   // Computes the accelerations and the next time step for the current state without advancing.
   void prepare();
 
