@@ -17,6 +17,11 @@ void RainMask::paint(const std::vector<int>& vertices, float value) {
   painted_ = true;
 }
 
+void RainMask::set(std::vector<float> weights) {
+  weights_ = std::move(weights);
+  painted_ = true;
+}
+
 void RainMask::store(std::vector<StoredField>& fields) const {
   if (painted_) fields.push_back({kGroundRainMask, 1, weights_, {}});
 }
@@ -25,7 +30,8 @@ void RainMask::restore(const std::vector<StoredField>& fields) {
   weights_ = scenario_;
   painted_ = false;
   for (const StoredField& f : fields) {
-    if (f.name == kGroundRainMask && f.f32.size() == weights_.size() && present()) {
+    // A run without a scenario mask takes the one a coupler set (the reader checked its size).
+    if (f.name == kGroundRainMask && (scenario_.empty() || f.f32.size() == weights_.size())) {
       weights_ = f.f32;
       painted_ = true;
     }

@@ -24,6 +24,8 @@ class RainMask {
   bool present() const { return !weights_.empty(); }
   const std::vector<float>& weights() const { return weights_; }
   void paint(const std::vector<int>& vertices, float value);
+  // Every vertex's weight at once (a coupler's rain field): a run without a scenario mask gets one.
+  void set(std::vector<float> weights);
   // Appends the painted mask to a checkpoint's fields; restore() takes it back (or the scenario's).
   void store(std::vector<StoredField>& fields) const;
   void restore(const std::vector<StoredField>& fields);

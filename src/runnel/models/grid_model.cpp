@@ -194,6 +194,15 @@ void GridModel::set_elevation(const std::vector<double>& metres) {
   imposed_.add(before, after);
 }
 
+void GridModel::set_rain_rates(const std::vector<float>& metres_per_second) {
+  // The kernels read rain weights only when built with a mask (RAIN_MASK in cl/common.cl).
+  if (rain_rate() > 0 && !rain_mask_.present())
+    throw input_error("rain rates: the " + info().name + " model takes a rain field only when " +
+                      "its scenario has a rain mask (ground.rain_mask)");
+  rain_mask_.set(rain_weights_for(metres_per_second, rain_rate(), state_.vertices(), info().name));
+  sync_rain_weights();
+}
+
 Heightmap GridModel::erosion_reference() {
   Heightmap reference = initial_terrain();
   const std::vector<std::int64_t> uplift = uplift_per_vertex();

@@ -32,6 +32,11 @@ class GridModel : public Model, public Interactive {
   MassBalance mass_balance() final;
   std::vector<double> elevation() final;
   void set_elevation(const std::vector<double>& metres) final;
+  // The rain of the models whose clock is in seconds (pipe); an iteration model's rain is no rate.
+  double rain_rate() final {
+    return info().clock == ModelClock::kSeconds ? scenario_rain_rate() : 0.0;
+  }
+  void set_rain_rates(const std::vector<float>& metres_per_second) final;
   Heightmap erosion_reference() final;
   double rain_volume() override { return painted_volume_; }
   double initial_water_volume() const override { return initial_water_volume_; }

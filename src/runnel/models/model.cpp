@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "runnel/core/error.hpp"
+
 namespace runnel {
 
 const char* clock_name(ModelClock clock) {
@@ -30,6 +32,28 @@ void Model::advance(double dt, const std::function<void()>& after_step) {
     limit_next_step(target - time());
     one_step();
   }
+}
+
+void Model::set_rain_rates(const std::vector<float>&) {
+  throw input_error("rain rates: the " + info().name + " model takes no rain field");
+}
+
+std::vector<float> rain_weights_for(const std::vector<float>& metres_per_second, double rate,
+                                    std::size_t vertices, const std::string& model) {
+  if (!(rate > 0))
+    throw input_error("rain rates: the " + model + " model's scenario has no rain to scale " +
+                      "(give it some, e.g. rain.intensity or pipe.rain)");
+  if (metres_per_second.size() != vertices)
+    throw input_error("rain rates: " + std::to_string(metres_per_second.size()) + " values for " +
+                      std::to_string(vertices) + " vertices");
+  std::vector<float> weights(vertices);
+  for (std::size_t k = 0; k < vertices; ++k) {
+    const float r = metres_per_second[k];
+    if (!(std::isfinite(r) && r >= 0))
+      throw input_error("rain rates: vertex " + std::to_string(k) + " is not a rate >= 0");
+    weights[k] = static_cast<float>(r / rate);
+  }
+  return weights;
 }
 
 namespace {

@@ -81,6 +81,12 @@ class Model {
   // layer stack, whose strata cannot tell what the coupler's change was made of.
   virtual std::vector<double> elevation() = 0;
   virtual void set_elevation(const std::vector<double>& metres) = 0;
+  // The scenario's rain as a rate over the whole terrain, m/s (0: the model takes no rain field),
+  // and a rain rate at every vertex in its place (BMI's atmosphere_rainfall_water__volume_flux),
+  // kept as the rain mask's weights against that rate: it needs a scenario with rain. Refused by
+  // a model whose rain is not a rate (the iteration models, the droplets).
+  virtual double rain_rate() { return 0.0; }
+  virtual void set_rain_rates(const std::vector<float>& metres_per_second);
   // The surface the erosion map and the eroded and deposited volumes are measured from: the
   // initial terrain, raised by the uplift so far in a model with tectonic uplift (stream-power),
   // so that they show what the surface processes did, not the rock's rise.
@@ -120,5 +126,11 @@ class Model {
   // painted rain, has no scenario rain or rain mask to switch, and shows no water.
   Interactive& interaction();
 };
+
+// A coupler's rain rates (m/s a vertex) as rain-mask weights against the model's own `rate` (m/s):
+// refused when the model has no rain, the count is not `vertices` or a rate is negative or not
+// finite.
+std::vector<float> rain_weights_for(const std::vector<float>& metres_per_second, double rate,
+                                    std::size_t vertices, const std::string& model);
 
 }  // namespace runnel

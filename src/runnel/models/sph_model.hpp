@@ -30,6 +30,10 @@ class SphModel final : public Model, public Interactive {
   std::vector<double> elevation() override { return sim_->elevation(); }
   void set_elevation(const std::vector<double>& metres) override { sim_->set_elevation(metres); }
   Heightmap erosion_reference() override { return sim_->erosion_reference(); }
+  double rain_rate() override { return sim_->rain_rate(); }
+  void set_rain_rates(const std::vector<float>& metres_per_second) override {
+    sim_->set_rain_rates(metres_per_second);
+  }
   double rain_volume() override;
   double initial_water_volume() const override { return sim_->initial_water_volume(); }
   CheckpointData checkpoint() override { return sim_->checkpoint(); }

@@ -10,6 +10,7 @@
 #include "runnel/core/text.hpp"
 #include "runnel/core/version.hpp"
 #include "runnel/ground/ground_settings.hpp"
+#include "runnel/models/model.hpp"
 #include "runnel/sph/standing_water_particles.hpp"
 #include "runnel/terrain/standing_water.hpp"
 
@@ -175,6 +176,17 @@ void Simulation::set_elevation(const std::vector<double>& metres) {
   terrain.upload_fixed(after);
   imposed_.add(before, after);
   solver_->terrain_replaced();
+}
+
+double Simulation::rain_rate() const {
+  const RainSettings& rain = rain_->scenario_rain();
+  const double terrain_area = solver_->terrain().extent_x() * solver_->terrain().extent_z();
+  return rain.intensity_mm_h / 3.6e6 * rain.area / terrain_area;
+}
+
+void Simulation::set_rain_rates(const std::vector<float>& metres_per_second) {
+  rain_mask_.set(rain_weights_for(metres_per_second, rain_rate(), initial_.h.size(), "sph"));
+  rain_->set_weights(rain_mask_.weights(), initial_.nx);
 }
 
 Heightmap Simulation::erosion_reference() const {

@@ -39,6 +39,9 @@ class Simulation {
   // on the surface.
   std::vector<double> elevation();
   void set_elevation(const std::vector<double>& metres);
+  // Model::rain_rate() and set_rain_rates(): the scenario's rain spread over the whole terrain.
+  double rain_rate() const;
+  void set_rain_rates(const std::vector<float>& metres_per_second);
   // The initial terrain raised by the heights imposed so far (Model::erosion_reference).
   Heightmap erosion_reference() const;
   // The rain mask painted (runnel-viewer) on these vertices; false without ground.rain_mask.

@@ -155,6 +155,11 @@ RainEmitter::RainEmitter(ComputeContext& compute, const RainSettings& settings, 
 void RainEmitter::set_weights(const std::vector<float>& rain_weights, int nx) {
   const auto [cdf, fraction] =
       rain_cell_cdf(rain_weights, nx, static_cast<int>(rain_weights.size()) / nx);
+  if (cdf.size() != static_cast<std::size_t>(cells_)) {  // a first mask, set while running
+    cells_ = static_cast<int>(cdf.size());
+    cell_cdf_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE, cdf.size() * sizeof(float));
+    kernel_.set("cell_cdf", cell_cdf_).set("cells", static_cast<cl_int>(cells_));
+  }
   masked_ = unmasked_;
   masked_.region = RainSettings::Region::kMask;
   masked_.rate *= fraction;

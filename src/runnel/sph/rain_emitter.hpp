@@ -84,6 +84,8 @@ class RainEmitter {
   // the mask's rain whatever the settings are now.
   void set_weights(const std::vector<float>& rain_weights, int nx);
   const RainSettings& masked_rain() const { return masked_; }
+  // The scenario's rain, without a mask.
+  const RainSettings& scenario_rain() const { return unmasked_; }
   std::uint64_t spawned() const { return spawned_; }
   // Drops the rain asked for that rain.max_particles kept from falling (the store was full).
   std::uint64_t held_back() const { return held_back_; }
