@@ -26,6 +26,45 @@ from ._runnel import (  # noqa: F401  (the public API)
     write_terrain,
 )
 
+def _from_landlab(grid, field="topographic__elevation"):
+    from .landlab import terrain_from_landlab
+
+    return terrain_from_landlab(grid, field)
+
+
+def _to_landlab(self, field="topographic__elevation"):
+    from .landlab import terrain_to_landlab
+
+    return terrain_to_landlab(self, field)
+
+
+_from_landlab.__doc__ = """A Terrain of a Landlab RasterModelGrid's node field (runnel.landlab).
+
+Parameters
+----------
+grid : landlab.RasterModelGrid
+    Square cells; rows counted northwards, as Landlab has them.
+field : str, optional
+    The node field of heights (default topographic__elevation).
+
+Returns
+-------
+Terrain
+"""
+_to_landlab.__doc__ = """A Landlab RasterModelGrid with the heights as a node field (runnel.landlab).
+
+Parameters
+----------
+field : str, optional
+    The node field to create (default topographic__elevation).
+
+Returns
+-------
+landlab.RasterModelGrid
+"""
+Terrain.from_landlab = staticmethod(_from_landlab)
+Terrain.to_landlab = _to_landlab
+
 __all__ = [
     "InputError",
     "Model",
@@ -42,9 +81,24 @@ __all__ = [
 
 
 def compare(terrain, models, steps, params=None):
-    """Runs each of ``models`` on ``terrain`` for ``steps`` steps with ``params`` (a dict of
-    parameter keys, docs/parameters.md) and returns {name: metrics}: the shared terrain metrics of
-    docs/metrics.md, the mass balance, steps and model time, as `runnel compare` reports them."""
+    """Runs several models on one terrain and compares them, as ``runnel compare`` reports them.
+
+    Parameters
+    ----------
+    terrain : Terrain
+    models : list of str
+        Model names (model_names()).
+    steps : int
+        Steps each model takes.
+    params : dict, optional
+        Parameter keys and values (docs/parameters.md), for every model.
+
+    Returns
+    -------
+    dict
+        {name: metrics}: the shared terrain metrics of docs/metrics.md, the mass balance, steps and
+        model time.
+    """
     results = {}
     for name in models:
         model = Model(name, terrain, params or {})

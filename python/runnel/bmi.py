@@ -5,20 +5,25 @@
     bmi = RunnelBmi()
     bmi.initialize("scenario.toml")       # a runnel scenario (docs/parameters.md)
     bmi.update_until(60.0)
-    z = bmi.get_value_ptr("topographic__elevation")
+    z = bmi.get_value_ptr("land_surface__elevation")   # or Landlab's "topographic__elevation"
 
-The grid is the terrain's uniform rectilinear grid of vertices (grid 0, rank 2, shape (ny, nx),
-row 0 the northern row, as in the terrain files). Variables are the model's vertex fields from the
-field dictionary (docs/fields.md). topographic__elevation is given in metres (the model keeps it as
-exact integer counts of erosion.height_quantum). The model runs on an OpenCL device, so a value is a
-copy of the device state: get_value_ptr returns an array that update() refreshes in place.
+The grid is the terrain's uniform rectilinear grid of vertices (grid 0, rank 2, shape (ny, nx)) in
+BMI's order: row 0 the southern row, rows counted northwards, the origin the south-west vertex at
+its pixel centre, as Landlab's RasterModelGrid has it. Variables carry CSDMS Standard Names, with
+Landlab's names as aliases, and UDUNITS units; vector fields are split into components
+(runnel/_bmi_variables.py, docs/python.md). The elevation (float64, exact) can be set for every
+model: the change is booked in the mass balance as an imposed source. The model runs on an OpenCL
+device, so a value is a copy of the device state: get_value_ptr returns an array that update()
+refreshes in place; set values with set_value.
 """
 import numpy as np
 from bmipy import Bmi
 
 from . import InputError, Model
+from ._bmi_variables import variables_of
 
 _GRID = 0
+_TIME_UNITS = {"s": "s", "yr": "yr", "iterations": "1"}
 
 
 class RunnelBmi(Bmi):
@@ -26,15 +31,24 @@ class RunnelBmi(Bmi):
 
     def __init__(self):
         self._model = None
-        self._end_time = 0.0
+        self._variables = {}
+        self._outputs = ()
+        self._inputs = ()
         self._pointers = {}
+        self._quantum = 0.0
 
     # Control ---------------------------------------------------------------------------------
     def initialize(self, config_file=None):
         """Builds the model of a scenario TOML file (None or "": the built-in defaults)."""
         self._model = Model.from_scenario(config_file or "")
-        self._end_time = _run_length(self._model)
+        variables = variables_of(self._model)
+        self._variables = {}
+        for v in variables:
+            self._variables[v.name] = self._variables[v.alias] = v
+        self._outputs = tuple(v.name for v in variables)
+        self._inputs = tuple(v.name for v in variables if v.input and self._settable(v))
         self._pointers = {}
+        self._quantum = _height_quantum(self._model)
 
     def update(self):
         self._model.step()
@@ -48,6 +62,7 @@ class RunnelBmi(Bmi):
 
     def finalize(self):
         self._model = None
+        self._variables = {}
         self._pointers = {}
 
     # Information -----------------------------------------------------------------------------
@@ -55,43 +70,37 @@ class RunnelBmi(Bmi):
         return f"runnel {self._model.name} ({self._model.class_name})"
 
     def get_input_item_count(self):
-        return len(self.get_input_var_names())
+        return len(self._inputs)
 
     def get_output_item_count(self):
-        return len(self.get_output_var_names())
+        return len(self._outputs)
 
     def get_input_var_names(self):
-        # What a coupler may set: the terrain's heights (in the model: after a restart) and the
-        # float fields a grid model keeps (water depth ...). Read-only counts are outputs only.
-        return tuple(name for name in self._vertex_fields() if self._settable(name))
+        return self._inputs
 
     def get_output_var_names(self):
-        return tuple(self._vertex_fields())
+        return self._outputs
 
     # Variables -------------------------------------------------------------------------------
     def get_var_grid(self, name):
-        self._check(name)
+        self._variable(name)
         return _GRID
 
     def get_var_type(self, name):
-        return str(self._dtype(name))
+        return self._variable(name).dtype
 
     def get_var_units(self, name):
-        self._check(name)
-        if name == "topographic__elevation":
-            return "m"
-        return self._model.field_info(name)["unit"]
+        return self._variable(name).units
 
     def get_var_itemsize(self, name):
-        return self._dtype(name).itemsize
+        return np.dtype(self._variable(name).dtype).itemsize
 
     def get_var_nbytes(self, name):
-        # From the field's description: asking for a type or a size does not copy the field off the device.
-        components = 1 if name == "topographic__elevation" else self._model.field_info(name)["components"]
-        return self._dtype(name).itemsize * components * self.get_grid_size(_GRID)
+        # From the description: asking for a size does not copy the field off the device.
+        return self.get_var_itemsize(name) * self.get_grid_size(_GRID)
 
     def get_var_location(self, name):
-        self._check(name)
+        self._variable(name)
         return "node"
 
     # Time ------------------------------------------------------------------------------------
@@ -102,42 +111,43 @@ class RunnelBmi(Bmi):
         return 0.0
 
     def get_end_time(self):
-        return float(self._end_time)
+        return float(self._model.run_length)
 
     def get_time_units(self):
-        return "s" if self._model.clock == "s" else "1"
+        return _TIME_UNITS[self._model.clock]
 
     def get_time_step(self):
         # The model's next step: the one its stability limit chose (adaptive models), or its fixed
-        # one. SPH chooses its first step when it takes it: before that, 1.
-        step = float(self._model.step_size)
-        return step if step > 0 else 1.0
+        # one. SPH chooses its first step when it takes it: before that, 0 (BMI: none yet known).
+        return float(self._model.step_size)
 
     # Getters and setters ---------------------------------------------------------------------
     def get_value_ptr(self, name):
-        self._check(name)
-        if name not in self._pointers:
-            self._pointers[name] = self._value(name).reshape(-1).copy()
-        return self._pointers[name]
+        variable = self._variable(name)
+        if variable.name not in self._pointers:
+            self._pointers[variable.name] = variable.read(self._model, self._quantum).copy()
+        return self._pointers[variable.name]
 
     def get_value(self, name, dest):
-        dest[:] = self._value(name).reshape(-1)
+        dest[:] = self._variable(name).read(self._model, self._quantum)
         return dest
 
     def get_value_at_indices(self, name, dest, inds):
-        dest[:] = self._value(name).reshape(-1)[inds]
+        dest[:] = self._variable(name).read(self._model, self._quantum)[inds]
         return dest
 
     def set_value(self, name, src):
-        self._check(name)
-        if not self._settable(name):
+        variable = self._variable(name)
+        if variable.name not in self._inputs:
             raise InputError(f"set_value: {name} is an output of the {self._model.name} model only")
-        values = np.asarray(src, dtype=np.float32).reshape(-1)
-        self._model.set_field(name, values)
+        values = np.asarray(src).reshape(-1)
+        if values.size != self.get_grid_size(_GRID):
+            raise InputError(f"set_value: {values.size} values for {self.get_grid_size(_GRID)} nodes")
+        variable.write(self._model, values)
         self._refresh()
 
     def set_value_at_indices(self, name, inds, src):
-        values = self._value(name).reshape(-1).astype(np.float32)
+        values = self._variable(name).read(self._model, self._quantum).copy()
         values[inds] = src
         self.set_value(name, values)
 
@@ -168,11 +178,11 @@ class RunnelBmi(Bmi):
         return spacing
 
     def get_grid_origin(self, grid, origin):
-        # BMI's origin is the first node in (row, column) order: the north-west vertex, at
-        # (origin_z + (ny - 1)·cell, origin_x) in the terrain file's coordinates. Rows count south.
+        # The first node in (row, column) order, rows counted northwards: the south-west vertex,
+        # at its pixel's centre, half a cell inside the raster's lower-left corner.
         self._check_grid(grid)
         t = self._model.initial_terrain()
-        origin[:] = (t.origin_z + (t.ny - 1) * t.cell, t.origin_x)
+        origin[:] = (t.origin_z + 0.5 * t.cell, t.origin_x + 0.5 * t.cell)
         return origin
 
     def get_grid_x(self, grid, x):
@@ -205,53 +215,36 @@ class RunnelBmi(Bmi):
     def get_grid_nodes_per_face(self, grid, nodes_per_face):
         raise NotImplementedError("get_grid_nodes_per_face: not an unstructured grid")
 
+    # Beyond BMI ------------------------------------------------------------------------------
+    @property
+    def model(self):
+        """The runnel.Model behind the component (its mass balance, checkpoints, fields)."""
+        return self._model
+
     # Helpers ---------------------------------------------------------------------------------
-    def _vertex_fields(self):
-        names = []
-        for name in self._model.field_names():
-            if name == "topographic__elevation" or self._model.field_info(name)["location"] == "vertex":
-                names.append(name)
-        return names
+    def _settable(self, variable):
+        # SPH's water is particles: its depth is no field to set.
+        return not (variable.field == "surface_water__depth" and self._model.name == "sph")
 
-    def _settable(self, name):
-        if name == "topographic__elevation":
-            return False  # exact integer state; a new terrain is a new model
-        return self._model.field_info(name)["type"] == "float32"
-
-    def _check(self, name):
+    def _variable(self, name):
         if self._model is None:
             raise InputError("the BMI component is not initialised (call initialize first)")
-        if name not in self._vertex_fields():
+        if name not in self._variables:
             raise InputError(f"{name}: not a variable of the {self._model.name} model "
-                             f"({', '.join(self._vertex_fields())})")
+                             f"({', '.join(self._outputs)})")
+        return self._variables[name]
 
     def _check_grid(self, grid):
         if grid != _GRID:
             raise InputError(f"grid {grid}: runnel has one grid, 0")
 
-    def _dtype(self, name):
-        self._check(name)
-        if name == "topographic__elevation":
-            return np.dtype(np.float32)  # metres, the float view of the exact integer state
-        return np.dtype(self._model.field_info(name)["type"])
-
-    def _value(self, name):
-        self._check(name)
-        return self._model.field(name)
-
     def _refresh(self):
         for name, array in self._pointers.items():
-            array[:] = self._value(name).reshape(-1)
+            array[:] = self._variables[name].read(self._model, self._quantum)
 
 
-def _run_length(model):
-    """The scenario's run length in the model's clock: run.sim_time or run.iterations (or
-    run.steps, at the model's current step size)."""
+def _height_quantum(model):
+    """erosion.height_quantum: metres a count of the integer height fields."""
     import tomllib
 
-    run = tomllib.loads(model.parameters_toml()).get("run", {})
-    if model.clock == "s" and run.get("sim_time", 0) > 0:
-        return float(run["sim_time"])
-    if model.clock != "s" and run.get("iterations", 0) > 0:
-        return float(run["iterations"])
-    return float(run.get("steps", 0))
+    return float(tomllib.loads(model.parameters_toml())["erosion"]["height_quantum"])

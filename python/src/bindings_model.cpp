@@ -50,7 +50,7 @@ py::object json_value(const std::string& text) {
   return py::module_::import("json").attr("loads")(text);
 }
 
-py::array particle_field(const HostParticles& p, const std::string& name) {
+py::object particle_field(const HostParticles& p, const std::string& name) {
   const auto n = static_cast<py::ssize_t>(p.size());
   const auto triple = [&](ParticleField a) {
     std::vector<float> v(3 * p.size());
@@ -347,6 +347,28 @@ Parameters
 heights : array_like
     ny x nx heights in metres, row 0 the northern row (as elevation() gives them).
 )doc")
+      .def_property_readonly(
+          "rain_rate", [](PyModel& self) { return self.get().rain_rate(); },
+          "The scenario's rain as a rate over the whole terrain, m/s (0: the model takes no rain "
+          "field).")
+      .def(
+          "set_rain_rates",
+          [](PyModel& self, const FloatArray& rates) {
+            const float* data = rates.data();
+            self.get().set_rain_rates(std::vector<float>(data, data + rates.size()));
+          },
+          py::arg("rates"),
+          R"doc(Rains a rate at every vertex in place of the scenario's rain.
+
+Kept as the rain mask's weights against rain_rate, so the scenario needs rain; the pipe model also
+needs a rain mask (ground.rain_mask), whose kernels read the weights. SPH takes one on any
+scenario with rain.
+
+Parameters
+----------
+rates : array_like
+    ny x nx rain rates, m/s, at least 0, row 0 the northern row.
+)doc")
       .def(
           "mass_balance", [](PyModel& self) { return balance_dict(self.get().mass_balance()); },
           R"doc(The mass balance, in m³ (docs/models.md, "Metrics").
@@ -411,7 +433,18 @@ values : array_like
             return info;
           },
           py::arg("name"),
-          "A field's description: location, type, components, unit and doc (docs/fields.md).");
+          R"doc(A field's description (docs/fields.md).
+
+Parameters
+----------
+name : str
+    A field of the dictionary.
+
+Returns
+-------
+dict
+    location, type, components, unit and doc.
+)doc");
 }
 
 }  // namespace runnel::python

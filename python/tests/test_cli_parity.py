@@ -65,7 +65,8 @@ def test_run_writes_what_the_cli_writes(scenario, run_cli, tmp_path):
     path = scenario(SCENARIOS["pipe"])
     r = run_cli("run", path, "--out", tmp_path / "cli", "--quiet")
     assert r.returncode == 0, r.stderr
-    metrics = json.loads(runnel.Model.from_scenario(str(path)).run(str(tmp_path / "py")))
+    metrics = runnel.Model.from_scenario(str(path)).run(str(tmp_path / "py"))
+    assert isinstance(metrics, dict), "run() returns metrics.json's contents"
     assert metrics["steps"] == 40
     for name in ("final.npy", "final.asc", "final.tif", "erosion.tif"):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
