@@ -16,7 +16,10 @@ packages=(
   libopenmpi-dev openmpi-bin  # mpirun -np K runnel sweep (optional at build time)
   python3 python3-numpy python3-h5py
   python3-dev python3-venv pybind11-dev python3-pybind11 python3-pytest python3-matplotlib  # the Python package
-  python3-vtk9 python3-meshio  # the tests read the PLY and XDMF outputs back with independent readers
+  # ParaView (pvpython and its Python, whose VTK has the XDMF3 and PLY readers) and meshio: the tests
+  # read the series and PLY outputs back with the readers users open them with. Not python3-vtk9,
+  # which Debian's python3-paraview conflicts with: installing runnel must not remove ParaView.
+  paraview python3-paraview python3-meshio
   xvfb xdotool x11-utils libgl1-mesa-dri
   clang-format
   clang libclang-rt-14-dev  # scripts/sanitize.sh: ASan + UBSan build and the libFuzzer targets

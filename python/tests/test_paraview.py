@@ -88,8 +88,10 @@ def test_the_particle_snapshots_match_the_checkpoint_and_keep_their_ids(sph_run)
     _, last = frames[-1]
     position = resolve(last.find("Geometry")[0], sph_run)
     attributes = {a.get("Name"): resolve(a[0], sph_run) for a in last.findall("Attribute")}
-    north = (ny - 1) * cell
-    assert np.array_equal(position[:, 0], p["x"].astype(np.float64))
+    # The map frame: column 0 and row 0 at their pixels' centres, half a cell inside the raster's
+    # corner (here at the map's origin).
+    west, north = 0.5 * cell, (ny - 0.5) * cell
+    assert np.array_equal(position[:, 0], west + p["x"].astype(np.float64))
     assert np.array_equal(position[:, 1], north - p["z"].astype(np.float64))
     assert np.array_equal(position[:, 2], p["y"].astype(np.float64))
     assert np.array_equal(attributes["id"], p["id"] & 0x7FFFFFFF)
@@ -112,14 +114,15 @@ def test_the_ply_frame_is_the_checkpoints_particles(sph_run, run_cli):
     with h5py.File(sph_run / "final.h5", "r") as f:
         x, y, z = (f["/particles/" + k][()] for k in ("x", "y", "z"))
         ids = f["/particles/id"][()] & 0x7FFFFFFF
-        north = (f["/terrain/height"].shape[0] - 1) * f["/terrain"].attrs["cell"]
+        cell = f["/terrain"].attrs["cell"]
+        west, north = 0.5 * cell, (f["/terrain/height"].shape[0] - 0.5) * cell
     reader = vtk.vtkPLYReader()
     reader.SetFileName(str(sph_run / "particles.ply"))
     reader.Update()
     points = reader.GetOutput().GetPoints()
     assert points.GetNumberOfPoints() == len(x)
     got = np.array([points.GetPoint(k) for k in range(len(x))])
-    assert np.allclose(got, np.stack([x, north - z, y], axis=1), atol=1e-5)
+    assert np.allclose(got, np.stack([west + x, north - z, y], axis=1), atol=1e-5)
     mesh = meshio.read(sph_run / "particles.ply")
     assert np.array_equal(mesh.point_data["id"], ids)
     assert set(mesh.point_data) >= {"vx", "vy", "vz", "density", "sediment", "age", "id"}

@@ -14,18 +14,23 @@
 namespace runnel::cli {
 namespace {
 
-// Wavefront OBJ: one vertex per grid point (x east, y up, z south, metres), vertex normals, and
-// two triangles per tile split along (i, j)–(i+1, j+1), wound counter-clockwise seen from above.
+// Wavefront OBJ: one vertex per grid point in the map frame of the series and PLY files (x east,
+// y north, z up, metres, the vertices at their pixels' centres), vertex normals, and two
+// triangles per tile split along (i, j)–(i+1, j+1), wound counter-clockwise seen from above.
 void write_obj(const std::string& path, const Heightmap& t) {
-  const std::vector<float> n = terrain_normals_reference(t);
+  const std::vector<float> n = terrain_normals_reference(t);  // world frame: x east, y up, z south
+  const MapFrame map(t);
   write_file_atomically(path, [&](std::FILE* f) {
-    std::fprintf(f, "# runnel terrain, %d x %d vertices, cell %.9g m\n", t.nx, t.ny, t.cell);
+    std::fprintf(f,
+                 "# runnel terrain, %d x %d vertices, cell %.9g m, map frame (x east, y north, "
+                 "z up)\n",
+                 t.nx, t.ny, t.cell);
     for (int j = 0; j < t.ny; ++j) {
       for (int i = 0; i < t.nx; ++i)
-        std::fprintf(f, "v %.9g %.9g %.9g\n", i * t.cell, t.at(i, j), j * t.cell);
+        std::fprintf(f, "v %.17g %.17g %.9g\n", map.x(i * t.cell), map.y(j * t.cell), t.at(i, j));
     }
     for (std::size_t k = 0; k < t.size(); ++k)
-      std::fprintf(f, "vn %.6f %.6f %.6f\n", n[3 * k], n[3 * k + 1], n[3 * k + 2]);
+      std::fprintf(f, "vn %.6f %.6f %.6f\n", n[3 * k], -n[3 * k + 2], n[3 * k + 1]);
     for (int j = 0; j + 1 < t.ny; ++j) {
       for (int i = 0; i + 1 < t.nx; ++i) {
         const long a = static_cast<long>(j) * t.nx + i + 1, b = a + 1, c = a + t.nx + 1,

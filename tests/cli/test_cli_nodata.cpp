@@ -3,20 +3,66 @@
 // that fill them, and following it works.
 #include <gtest/gtest.h>
 
+#include <gdal.h>
+
+#include "runnel/terrain/terrain_io.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
 namespace {
 
-TEST(CliNodata, TheRefusalNamesTheKeyThatFillsTheHolesAndTheKeyWorks) {
-  test::ScratchDir dir;
+// A 20 x 20 ramp with one NODATA hole, at column 7 of row 9.
+void write_holed_terrain(const std::string& path) {
   std::string asc =
       "ncols 20\nnrows 20\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n";
   for (int j = 0; j < 20; ++j) {
     for (int i = 0; i < 20; ++i) asc += (i == 7 && j == 9) ? "-9999 " : std::to_string(i + j) + " ";
     asc += "\n";
   }
-  test::write_text(dir.path("holes.asc"), asc);
+  test::write_text(path, asc);
+}
+
+// The value GDAL reads at (column, row) of a raster, and whether GDAL calls it NODATA.
+std::pair<double, bool> gdal_value(const std::string& path, int column, int row) {
+  GDALAllRegister();
+  GDALDatasetH d = GDALOpen(path.c_str(), GA_ReadOnly);
+  if (!d) return {0, false};
+  GDALRasterBandH band = GDALGetRasterBand(d, 1);
+  int has_nodata = 0;
+  const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+  double v = 0;
+  const CPLErr e = GDALRasterIO(band, GF_Read, column, row, 1, 1, &v, 1, 1, GDT_Float64, 0, 0);
+  GDALClose(d);
+  return {v, e == CE_None && has_nodata && v == nodata};
+}
+
+TEST(CliNodata, HolesComeBackAsNodataInEveryRasterAndTheMetricsLeaveThemOut) {
+  test::ScratchDir dir;
+  write_holed_terrain(dir.path("holes.asc"));
+  const auto r = test::run_cli({"run", "--terrain", dir.path("holes.asc"), "--model", "thermal",
+                                "--set", "run.iterations=3", "--quiet", "--out", dir.path("run")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* raster : {"final.tif", "final.asc", "erosion.tif"}) {
+    EXPECT_TRUE(gdal_value(dir.path("run/" + std::string(raster)), 7, 9).second)
+        << raster << ": the hole is NODATA again";
+    EXPECT_FALSE(gdal_value(dir.path("run/" + std::string(raster)), 8, 9).second)
+        << raster << ": its neighbour is data";
+  }
+  // A checkpoint keeps the holes: its export writes them back too.
+  const auto e = test::run_cli(
+      {"export", dir.path("run/final.h5"), "--format", "tif", "-o", dir.path("export.tif")});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_TRUE(gdal_value(dir.path("export.tif"), 7, 9).second);
+  // And runnel reads its own output's hole as a hole.
+  const Heightmap back = read_terrain(dir.path("run/final.tif"));
+  ASSERT_EQ(back.georef.holes.size(), back.h.size());
+  EXPECT_EQ(back.georef.holes[9 * 20 + 7], 1);
+  EXPECT_EQ(std::count(back.georef.holes.begin(), back.georef.holes.end(), 1), 1);
+}
+
+TEST(CliNodata, TheRefusalNamesTheKeyThatFillsTheHolesAndTheKeyWorks) {
+  test::ScratchDir dir;
+  write_holed_terrain(dir.path("holes.asc"));
   const std::vector<std::string> run = {"run",     "--terrain", dir.path("holes.asc"), "--model",
                                         "thermal", "--set",     "run.iterations=1",    "--quiet"};
   auto refuse = run;

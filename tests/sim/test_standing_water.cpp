@@ -26,6 +26,9 @@ Heightmap terrain_of(int n, double cell, F height) {
   Heightmap t(n, n, cell);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) t.at(i, j) = static_cast<float>(height(i * cell, j * cell));
+  // The raster's lower-left corner half a cell outside the first vertex: vertex (i, j) stands at
+  // map (i·cell, (n − 1 − j)·cell), its pixel's centre.
+  t.origin_x = t.origin_z = -0.5 * cell;
   return t;
 }
 
@@ -39,8 +42,8 @@ TEST(StandingWater, ABodyFillsTheTerrainBelowItsLevelInsideItsRectangleInMapMetr
   // A ramp rising 0.1 m a metre to the east, georeferenced at (1000, 2000); the body covers the
   // western half and the three northern rows (map y grows to the north, rows to the south).
   Heightmap t = terrain_of(11, 1.0, [](double x, double) { return 0.1 * x; });
-  t.origin_x = 1000;
-  t.origin_z = 2000;
+  t.origin_x = 1000 - 0.5;  // vertex (0, 10) at map (1000, 2000)
+  t.origin_z = 2000 - 0.5;
   const Parameters p =
       with_scenario("[[water.bodies]]\nx0 = 1000\nx1 = 1005\ny0 = 2008\ny1 = 2010\nlevel = 0.35\n");
   const std::vector<float> depth = initial_water_depth(p, t);
@@ -173,8 +176,8 @@ TEST(Probes, ReadTheBedAndTheWaterOnTheTerrainsTriangles) {
   // On a plane the triangles' interpolation is exact: the gauge reads the plane's height at the
   // point, whichever triangle holds it, from map coordinates.
   Heightmap plane = terrain_of(9, 0.5, [](double x, double z) { return 2 + 0.5 * x + 0.25 * z; });
-  plane.origin_x = 100;
-  plane.origin_z = 200;
+  plane.origin_x = 100 - 0.25;  // vertex (0, 8) at map (100, 200)
+  plane.origin_z = 200 - 0.25;
   const std::vector<float> depth(plane.size(), 0.125f);
   std::ostringstream toml;
   toml << "[[probes]]\nname = \"a\"\nx = 101.3\ny = " << 200 + 8 * 0.5 - 2.6 << "\n"
@@ -227,6 +230,7 @@ namespace {
 double seiche_crossings(const std::string& flux, int cells, double cell) {
   const double length = cells * cell;
   Heightmap channel(cells + 1, 5, cell, 0.0f);
+  channel.origin_x = channel.origin_z = -0.5 * cell;  // column 0 at x = 0, the last row at y = 0
   std::ostringstream toml;
   toml << "[pipe]\nrain = 0\nevaporation = 0\nedges = \"closed\"\nmanning_n = 0\ncapacity = 0\n"
        << "flux = \"" << flux << "\"\n"

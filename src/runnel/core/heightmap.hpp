@@ -13,6 +13,11 @@ namespace runnel {
 struct Georeference {
   std::string crs_wkt;           // OGC WKT; empty: not georeferenced
   std::optional<double> nodata;  // the source's NODATA value, written back as the rasters' own
+  // 1 where the source had NODATA (nx × ny, row-major; empty: no holes). The holes are filled so
+  // a model can run over them, and written back as NODATA in every raster with a NODATA value
+  // (GeoTIFF, ASC); the metrics leave them out (docs/terrain-formats.md).
+  std::vector<std::uint8_t> holes;
+  bool hole(std::size_t k) const { return !holes.empty() && holes[k] != 0; }
   bool operator==(const Georeference&) const = default;
 };
 
@@ -46,15 +51,17 @@ struct Heightmap {
 
 // The map frame every exported geometry uses, so ParaView, a GIS and splashsurf see one scene:
 // X east and Y north in the terrain's coordinates (its CRS when it has one), Z up. runnel's world
-// frame has x east from the first column, z south from the northern row, y up.
+// frame has x east from the first column, z south from the northern row, y up. A vertex stands
+// at its pixel's centre, as GDAL, QGIS and Landlab place a raster's values: column 0 half a cell
+// east of the raster's western edge (origin_x), row 0 half a cell south of its northern edge.
 struct MapFrame {
-  double origin_x = 0, north_edge = 0;  // map X of column 0, map Y of row 0 (the northern row)
+  double west = 0, north = 0;  // map X of column 0, map Y of row 0 (the northern row)
   explicit MapFrame(const Heightmap& t)
-      : origin_x(t.origin_x), north_edge(t.origin_z + (t.ny - 1) * t.cell) {}
-  double x(double world_x) const { return origin_x + world_x; }
-  double y(double world_z) const { return north_edge - world_z; }
-  double world_x(double map_x) const { return map_x - origin_x; }
-  double world_z(double map_y) const { return north_edge - map_y; }
+      : west(t.origin_x + 0.5 * t.cell), north(t.origin_z + (t.ny - 0.5) * t.cell) {}
+  double x(double world_x) const { return west + world_x; }
+  double y(double world_z) const { return north - world_z; }
+  double world_x(double map_x) const { return map_x - west; }
+  double world_z(double map_y) const { return north - map_y; }
 };
 
 // after − before per vertex (m; negative where the terrain was eroded, positive where deposited),

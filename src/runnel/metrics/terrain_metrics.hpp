@@ -47,7 +47,8 @@ double spectral_slope(const Heightmap& t);
 
 // Spearman rank correlation of eroded depth (h0 − h, eroded vertices only) with log drainage area.
 double erosion_flow_correlation(const Heightmap& before, const Heightmap& after);
-// The same with the drainage area of `after` already computed (flow_accumulation(after)).
+// The same with the drainage area of `after` already computed (flow_accumulation(after)). Where
+// `after` has NODATA holes (its georef), their heights are taken as `before`'s: no change there.
 double erosion_flow_correlation(const Heightmap& before, const Heightmap& after,
                                 const std::vector<double>& area);
 

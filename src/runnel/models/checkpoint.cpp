@@ -191,6 +191,9 @@ void write_terrain_group(H5File& f, const CheckpointData& d) {
   // The source's georeferencing (absent when it had none): the CRS as OGC WKT, its NODATA value.
   if (!t.georef.crs_wkt.empty()) f.attribute("/terrain", "crs_wkt", t.georef.crs_wkt);
   if (t.georef.nodata) f.attribute("/terrain", "nodata", *t.georef.nodata);
+  if (!t.georef.holes.empty())  // where the source had NODATA (1), filled to run
+    f.write("/terrain/nodata_holes",
+            std::vector<std::int32_t>(t.georef.holes.begin(), t.georef.holes.end()), grid);
   f.attribute("/terrain", "height_quantum", d.height_quantum);
 }
 
@@ -332,6 +335,12 @@ std::vector<hsize_t> read_terrain_group(const H5File& f, const std::string& path
     d.terrain.georef.crs_wkt = f.read_string_attribute("/terrain", "crs_wkt");
   if (f.has_attribute("/terrain", "nodata"))
     d.terrain.georef.nodata = f.read_double_attribute("/terrain", "nodata");
+  if (f.exists("/terrain/nodata_holes")) {
+    for (std::int32_t v : f.read_int32("/terrain/nodata_holes", grid)) {
+      if (v != 0 && v != 1) throw input_error(path + ": /terrain/nodata_holes is not 0 or 1");
+      d.terrain.georef.holes.push_back(static_cast<std::uint8_t>(v));
+    }
+  }
   d.height_quantum = f.read_double_attribute("/terrain", "height_quantum");
   if (!(d.height_quantum > 0))
     throw input_error(path + ": /terrain@height_quantum is not positive");

@@ -137,6 +137,7 @@ Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
   terrain.origin_z = header.count("yllcenter") ? header["yllcenter"] - half : header["yllcorner"];
   const bool has_nodata = header.count("nodata_value") > 0;
   const double nodata_value = has_nodata ? header["nodata_value"] : 0.0;
+  if (has_nodata) terrain.georef.nodata = nodata_value;  // written back as the rasters' own
 
   long long holes = 0;
   const long long expected = static_cast<long long>(terrain.size());
@@ -172,16 +173,19 @@ Heightmap read_asc(const std::string& path, NodataPolicy nodata) {
 }
 
 void write_asc(const std::string& path, const Heightmap& terrain) {
+  const float nodata = static_cast<float>(terrain.georef.nodata.value_or(-9999.0));
   write_file_atomically(path, [&](std::FILE* f) {
     std::fprintf(f,
                  "ncols %d\nnrows %d\nxllcorner %.17g\nyllcorner %.17g\ncellsize "
-                 "%.17g\nNODATA_value -9999\n",
-                 terrain.nx, terrain.ny, terrain.origin_x, terrain.origin_z, terrain.cell);
+                 "%.17g\nNODATA_value %.9g\n",
+                 terrain.nx, terrain.ny, terrain.origin_x, terrain.origin_z, terrain.cell,
+                 static_cast<double>(nodata));
     // %.9g round-trips every float exactly.
+    const std::vector<float> h = heights_with_holes(terrain, nodata);
     for (int j = 0; j < terrain.ny; ++j) {
       for (int i = 0; i < terrain.nx; ++i) {
         std::fprintf(f, i + 1 < terrain.nx ? "%.9g " : "%.9g\n",
-                     static_cast<double>(terrain.at(i, j)));
+                     static_cast<double>(h[static_cast<std::size_t>(j) * terrain.nx + i]));
       }
     }
     if (std::ferror(f)) throw runtime_error(path + ": write failed");

@@ -186,9 +186,12 @@ void write_geotiff(const std::string& path, const Heightmap& terrain) {
         GDALSetProjection(dataset.get(), terrain.georef.crs_wkt.c_str());
       GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
       if (terrain.georef.nodata) GDALSetRasterNoDataValue(band, *terrain.georef.nodata);
-      if (GDALRasterIO(band, GF_Write, 0, 0, terrain.nx, terrain.ny,
-                       const_cast<float*>(terrain.h.data()), terrain.nx, terrain.ny, GDT_Float32, 0,
-                       0) != CE_None) {
+      std::vector<float> heights =
+          terrain.georef.nodata
+              ? heights_with_holes(terrain, static_cast<float>(*terrain.georef.nodata))
+              : terrain.h;
+      if (GDALRasterIO(band, GF_Write, 0, 0, terrain.nx, terrain.ny, heights.data(), terrain.nx,
+                       terrain.ny, GDT_Float32, 0, 0) != CE_None) {
         throw runtime_error(path + ": write failed (" + gdal_message() + ")");
       }
     }  // closing the dataset writes the rest

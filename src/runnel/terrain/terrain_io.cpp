@@ -136,6 +136,13 @@ void check_finite_heights(const std::string& path, const Heightmap& terrain) {
   }
 }
 
+std::vector<float> heights_with_holes(const Heightmap& terrain, float nodata) {
+  std::vector<float> h = terrain.h;
+  for (std::size_t k = 0; k < h.size(); ++k)
+    if (terrain.georef.hole(k)) h[k] = nodata;
+  return h;
+}
+
 void apply_nodata_policy(const std::string& path, Heightmap& terrain, long long holes,
                          NodataPolicy policy) {
   if (holes == 0) return;
@@ -144,6 +151,9 @@ void apply_nodata_policy(const std::string& path, Heightmap& terrain, long long 
                       " NODATA cells; fill them from their neighbours with terrain.nodata = "
                       "\"fill\" (runnel convert: --nodata fill)");
   }
+  terrain.georef.holes.assign(terrain.h.size(), 0);
+  for (std::size_t k = 0; k < terrain.h.size(); ++k)
+    terrain.georef.holes[k] = std::isnan(terrain.h[k]) ? 1 : 0;
   if (fill_holes(terrain) < 0) throw input_error(path + ": every cell is NODATA");
   std::cerr << "runnel: " << terminal_safe(path) << ": filled " << holes
             << " NODATA cells from their neighbours\n";

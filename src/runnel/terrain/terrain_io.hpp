@@ -86,6 +86,8 @@ void check_finite_heights(const std::string& path, const Heightmap& terrain);
 long long fill_holes(Heightmap& terrain);
 // What a reader does with the `holes` NODATA cells it marked as NaN: refuses the file, or fills
 // them and says so on stderr.
+// The heights as a raster with a NODATA value writes them: `nodata` where the source had holes.
+std::vector<float> heights_with_holes(const Heightmap& terrain, float nodata);
 void apply_nodata_policy(const std::string& path, Heightmap& terrain, long long holes,
                          NodataPolicy policy);
 

@@ -40,8 +40,10 @@ Flume soares_frazao_flume(double cell) {
   const int ny = 2 * static_cast<int>(std::ceil((kTankHalfWidth + cell) / cell - 1e-9)) + 1;
   Flume f;
   f.terrain = Heightmap(nx, ny, cell);
-  f.terrain.origin_x = kUpstreamEnd;
-  f.terrain.origin_z = -0.5 * (ny - 1) * cell;
+  // The raster's lower-left corner, half a cell outside the first vertex (MapFrame): the
+  // upstream end at x = kUpstreamEnd, the flume's axis at y = 0.
+  f.terrain.origin_x = kUpstreamEnd - 0.5 * cell;
+  f.terrain.origin_z = -0.5 * ny * cell;
   f.sand.assign(f.terrain.size(), 0.0f);
   f.walls.assign(f.terrain.size(), 0.0f);
   const MapFrame map(f.terrain);
