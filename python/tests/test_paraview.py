@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 """The ParaView-ready outputs, read back by independent readers and compared with the checkpoint:
-series.xmf (resolved here from its XML and series.h5 with h5py, the way an XDMF reader does:
-HDF references and hyperslabs), and the PLY particle frame (VTK's vtkPLYReader and meshio)."""
+series.xmf (resolved here from its XML and series.h5 with h5py, the way an XDMF reader does; ParaView's
+own readers are in test_paraview_readers.py), and the PLY particle frame (VTK's vtkPLYReader and meshio)."""
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -60,17 +60,25 @@ def grids(folder, collection):
 
 def test_the_terrain_series_is_the_runs_heightmaps(sph_run):
     frames = grids(sph_run, "terrain")
-    assert len(frames) == 3, "steps 20, 40 and 60"
+    assert len(frames) == 4, "the start (step 0) and steps 20, 40 and 60"
     with h5py.File(sph_run / "final.h5", "r") as f:
         final = f["/terrain/height"][()]
         time = f["/state"].attrs["time"] if "time" in f["/state"].attrs else None
         cell = f["/terrain"].attrs["cell"]
-    t_last, last = frames[-1]
-    x, y, z = (resolve(item, sph_run) for item in last.find("Geometry"))
-    assert np.array_equal(z, final), "the last frame is the final terrain"
-    assert np.array_equal(resolve(last.find("Attribute")[0], sph_run), final)
+    (t_first, first), (t_last, last) = frames[0], frames[-1]
+    assert t_first == 0.0, "the series starts from the initial state"
+    points = resolve(last.find("Geometry")[0], sph_run)
     ny, nx = final.shape
+    assert points.shape == (nx * ny, 3)
+    assert np.array_equal(points[:, 2].reshape(ny, nx), final), "the last frame is the final terrain"
+    attributes = {a.get("Name"): resolve(a[0], sph_run) for a in last.findall("Attribute")}
+    assert np.array_equal(attributes["height"], final)
+    x, y = points[:, 0].reshape(ny, nx), points[:, 1].reshape(ny, nx)
     assert x[0, 1] - x[0, 0] == cell and y[0, 0] - y[1, 0] == cell, "x east, y north"
+    with h5py.File(sph_run / "series.h5", "r") as f:
+        initial = f["/height"][0]
+    assert np.allclose(attributes["dh"], final - initial, atol=1e-6), "Δh from the initial terrain"
+    assert "depth" in attributes, "the water binned onto the vertices"
     quads = resolve(last.find("Topology")[0], sph_run)
     assert quads.shape == ((nx - 1) * (ny - 1), 4) and quads.max() == nx * ny - 1
     if time is not None:

@@ -39,9 +39,11 @@ TEST(CliCheckpoint, RollingCheckpointsSeriesAndExactResume) {
     kept.push_back(e.path().filename());
   std::sort(kept.begin(), kept.end());
   EXPECT_EQ(kept, (std::vector<std::string>{"step_00000080.h5", "step_00000100.h5"}));
-  // Four frames in the series.
+  // Five frames in the series: the start (step 0) and steps 25, 50, 75 and 100.
   const H5File series = H5File::open_read(dir.path("half/series.h5"));
-  EXPECT_EQ(series.dims("/height"), (std::vector<hsize_t>{4, 49, 49}));
+  EXPECT_EQ(series.dims("/height"), (std::vector<hsize_t>{5, 49, 49}));
+  EXPECT_EQ(series.read_int64("/height_step", {5}),
+            (std::vector<std::int64_t>{0, 25, 50, 75, 100}));
   // Resuming the checkpoint of step 100 for 100 steps ends where the uninterrupted run ended.
   r = run_cli({"resume", dir.path("half/checkpoints/step_00000100.h5"), "--steps", "100", "--out",
                dir.path("resumed"), "--quiet"});

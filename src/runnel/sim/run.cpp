@@ -198,7 +198,7 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
     if (probes.due(model.time())) read_gauges(model, probes);
     progress.update(fraction, status, report);
   }
-  series.finish();
+  series.finish(model);
   compute.queue().finish();
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
@@ -320,6 +320,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   SeriesWriter series(out, options.series_every, options.particles_every, model.initial_terrain());
   ProbeRecorder probes(probes_of(model.parameters(), model.initial_terrain()),
                        model.parameters().real("run.probe_every"));
+  series.start(model);
   const Stepped stepped =
       step_until_done(compute, model, options, checkpoints, series, probes, progress);
   if (probes.active()) write_text_atomically((out / "probes.csv").string(), probes.csv());

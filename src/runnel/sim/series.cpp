@@ -6,6 +6,8 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/models/fields.hpp"
+#include "runnel/models/grid_model.hpp"
 #include "runnel/sph/particle_store.hpp"
 
 namespace runnel {
@@ -63,26 +65,74 @@ SeriesWriter::SeriesWriter(const fs::path& out, long long height_every, long lon
   file_->write("/grid/quads", quads, {(nx - 1) * (ny - 1), 4});
   file_->attribute("/grid", "crs_wkt", grid_.georef.crs_wkt);
   file_->create_group("/particles");
+  file_->create_group("/terrain");
 }
 
 SeriesWriter::~SeriesWriter() = default;
 
+void SeriesWriter::start(Model& model) {
+  if (!file_) return;
+  if (height_every_ > 0) write_terrain(model);
+  if (particle_every_ > 0) write_particles(model);
+}
+
 void SeriesWriter::after_step(Model& model) {
   if (!file_) return;
   const std::uint64_t step = model.steps();
-  if (height_every_ > 0 && step % static_cast<std::uint64_t>(height_every_) == 0) {
-    const Heightmap t = model.terrain();
-    file_->append_frame("/height", t.h, t.ny, t.nx);
-    height_frames_.push_back({step, model.time(), 0});
-  }
-  if (particle_every_ > 0 && step % static_cast<std::uint64_t>(particle_every_) == 0) {
-    const CheckpointData d = model.checkpoint();
-    write_particles(d, step);
-    particle_frames_.push_back({step, model.time(), d.particles.size()});
+  if (height_every_ > 0 && step % static_cast<std::uint64_t>(height_every_) == 0)
+    write_terrain(model);
+  if (particle_every_ > 0 && step % static_cast<std::uint64_t>(particle_every_) == 0)
+    write_particles(model);
+}
+
+void SeriesWriter::write_terrain(Model& model) {
+  const std::uint64_t step = model.steps();
+  const Heightmap t = model.terrain();
+  const Heightmap reference = model.erosion_reference();
+  file_->append_frame("/height", t.h, t.ny, t.nx);
+  height_frames_.push_back({step, model.time(), 0});
+  // The frame's own surface and fields: what ParaView's XDMF3 reader reads (it skips hyperslabs
+  // and X_Y_Z geometries, so the surface's points are stored whole, in the map frame).
+  const std::string group = "/terrain/" + step_name(step);
+  const auto nx = static_cast<std::size_t>(t.nx), ny = static_cast<std::size_t>(t.ny);
+  const MapFrame map(t);
+  std::vector<double> points(3 * nx * ny);
+  std::vector<float> change(nx * ny);
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) {
+      const std::size_t k = j * nx + i;
+      points[3 * k] = map.x(static_cast<double>(i) * t.cell);
+      points[3 * k + 1] = map.y(static_cast<double>(j) * t.cell);
+      points[3 * k + 2] = t.h[k];
+      change[k] = t.h[k] - reference.h[k];
+    }
+  file_->create_group(group);
+  file_->attribute(group, "time", model.time());
+  file_->write(group + "/points", points, {nx * ny, 3});
+  file_->write(group + "/height", t.h, {ny, nx});
+  file_->write(group + "/dh", change, {ny, nx});
+  const WaterView water = model.interaction().water_view();
+  has_water_depth_ = !water.depth.empty();
+  has_speed_ = !water.speed.empty();
+  if (has_water_depth_) file_->write(group + "/depth", water.depth, {ny, nx});
+  if (has_speed_) file_->write(group + "/speed", water.speed, {ny, nx});
+  auto* grid = dynamic_cast<GridModel*>(&model);
+  has_velocity_ = grid && grid->state().has(kSurfaceWaterVelocity);
+  if (has_velocity_) {  // depth-averaged (x east, z south) → the map frame's (east, north, up)
+    const std::vector<float> v = grid->state().download_float(kSurfaceWaterVelocity);
+    std::vector<float> velocity(3 * nx * ny, 0.0f);
+    for (std::size_t k = 0; k < nx * ny; ++k) {
+      velocity[3 * k] = v[2 * k];
+      velocity[3 * k + 1] = -v[2 * k + 1];
+    }
+    file_->write(group + "/velocity", velocity, {nx * ny, 3});
   }
 }
 
-void SeriesWriter::write_particles(const CheckpointData& d, std::uint64_t step) {
+void SeriesWriter::write_particles(Model& model) {
+  const CheckpointData d = model.checkpoint();
+  const std::uint64_t step = model.steps();
+  particle_frames_.push_back({step, model.time(), d.particles.size()});
   const HostParticles& p = d.particles;
   const std::size_t n = p.size();
   const MapFrame map(grid_);
@@ -109,8 +159,13 @@ void SeriesWriter::write_particles(const CheckpointData& d, std::uint64_t step) 
   file_->write(group + "/id", id, {n});
 }
 
-void SeriesWriter::finish() {
+void SeriesWriter::finish(Model& model) {
   if (!file_) return;
+  if (height_every_ > 0 && (height_frames_.empty() || height_frames_.back().step != model.steps()))
+    write_terrain(model);
+  if (particle_every_ > 0 &&
+      (particle_frames_.empty() || particle_frames_.back().step != model.steps()))
+    write_particles(model);
   for (auto [frames, name] :
        {std::pair{&height_frames_, "height"}, std::pair{&particle_frames_, "particle"}}) {
     std::vector<double> time;
@@ -135,27 +190,30 @@ void SeriesWriter::write_xdmf() const {
   const std::string quads = std::to_string(static_cast<long long>(grid_.nx - 1) * (grid_.ny - 1));
   const std::string frames = std::to_string(height_frames_.size());
   std::string x = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n";
-  // The terrain: one quad surface per height frame, its z the frame's heights (a hyperslab of
-  // /height), x and y the grid's map coordinates.
+  // The terrain: one quad surface per height frame, its points and fields the frame's own.
   if (!height_frames_.empty()) {
+    const std::string points = std::to_string(static_cast<long long>(grid_.nx) * grid_.ny);
     x += "<Grid Name=\"terrain\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (std::size_t k = 0; k < height_frames_.size(); ++k) {
-      const std::string slab = "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" + grid +
-                               "\" Type=\"HyperSlab\">"
-                               "<DataItem Dimensions=\"3 3\" Format=\"XML\">" +
-                               std::to_string(k) + " 0 0 1 1 1 1 " + grid + "</DataItem>" +
-                               hdf_item(frames + " " + grid, "Float", 4, "/height") + "</DataItem>";
+    for (const Frame& f : height_frames_) {
+      const std::string group = "/terrain/" + step_name(f.step);
       char time[64];
-      std::snprintf(time, sizeof time, "%.17g", height_frames_[k].time);
-      x += " <Grid Name=\"terrain_" + step_name(height_frames_[k].step) +
-           "\" GridType=\"Uniform\">\n";
+      std::snprintf(time, sizeof time, "%.17g", f.time);
+      x += " <Grid Name=\"terrain_" + step_name(f.step) + "\" GridType=\"Uniform\">\n";
       x += "  <Time Value=\"" + std::string(time) + "\"/>\n";
       x += "  <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" + quads + "\">" +
            hdf_item(quads + " 4", "Int", 4, "/grid/quads") + "</Topology>\n";
-      x += "  <Geometry GeometryType=\"X_Y_Z\">" + hdf_item(grid, "Float", 8, "/grid/x") +
-           hdf_item(grid, "Float", 8, "/grid/y") + slab + "</Geometry>\n";
-      x += "  <Attribute Name=\"height\" AttributeType=\"Scalar\" Center=\"Node\">" + slab +
-           "</Attribute>\n </Grid>\n";
+      x += "  <Geometry GeometryType=\"XYZ\">" +
+           hdf_item(points + " 3", "Float", 8, group + "/points") + "</Geometry>\n";
+      std::vector<std::string> scalars = {"height", "dh"};
+      if (has_water_depth_) scalars.push_back("depth");
+      if (has_speed_) scalars.push_back("speed");
+      for (const std::string& name : scalars)
+        x += "  <Attribute Name=\"" + name + "\" AttributeType=\"Scalar\" Center=\"Node\">" +
+             hdf_item(grid, "Float", 4, group + "/" + name) + "</Attribute>\n";
+      if (has_velocity_)
+        x += "  <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" +
+             hdf_item(points + " 3", "Float", 4, group + "/velocity") + "</Attribute>\n";
+      x += " </Grid>\n";
     }
     x += "</Grid>\n";
   }

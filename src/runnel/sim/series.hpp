@@ -14,20 +14,26 @@
 namespace runnel {
 
 // A run's time series (docs/series.md): series.h5 with the heightmap every `height_every` steps
-// (/height, frames × ny × nx, as before) and SPH particle snapshots every `particle_every` steps
-// (/particles/STEP/...), the frames' steps and times, the grid's map coordinates and quads; and
-// series.xmf, the XDMF index ParaView and VisIt open as a time series of a terrain surface and a
-// particle cloud. Written as series.h5.partial during the run, renamed when it ends.
+// (/height, frames × ny × nx) and each terrain frame's surface and fields (/terrain/STEP/: its
+// points in the map frame, height, Δh and the water's depth, speed or velocity where the model
+// has water), SPH particle snapshots every `particle_every` steps (/particles/STEP/...), the
+// frames' steps and times, the grid's map coordinates and quads; and series.xmf, the XDMF index
+// ParaView (its XDMF3 and legacy readers) and VisIt open as a time series of a terrain surface and
+// a particle cloud. The first frame is the state the run starts from and the last its end, whatever
+// the interval. Written as series.h5.partial during the run, renamed when it ends.
 class SeriesWriter {
  public:
   SeriesWriter(const std::filesystem::path& out, long long height_every, long long particle_every,
                const Heightmap& initial);
   ~SeriesWriter();
   bool active() const { return file_ != nullptr; }
+  // The frames of the state the run starts from (t = 0, or where it resumes).
+  void start(Model& model);
   // Appends the frames due after the model's latest step.
   void after_step(Model& model);
-  // Writes the frame tables, renames series.h5.partial to series.h5 and writes series.xmf.
-  void finish();
+  // The frames of the final state (unless the interval just wrote them), the frame tables; renames
+  // series.h5.partial to series.h5 and writes series.xmf.
+  void finish(Model& model);
 
  private:
   struct Frame {
@@ -35,8 +41,11 @@ class SeriesWriter {
     double time;
     std::size_t count;  // particles (particle frames)
   };
-  void write_particles(const CheckpointData& d, std::uint64_t step);
+  void write_terrain(Model& model);
+  void write_particles(Model& model);
   void write_xdmf() const;
+  // The terrain frame's fields beyond the height: which the model has (the same every frame).
+  bool has_water_depth_ = false, has_speed_ = false, has_velocity_ = false;
   std::filesystem::path out_;
   long long height_every_, particle_every_;
   Heightmap grid_;  // the initial terrain: the grid and its georeferencing

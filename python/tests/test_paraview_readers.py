@@ -1,0 +1,63 @@
+# SPDX-License-Identifier: MIT
+"""ParaView itself opens the series: pvpython (Debian's paraview) reads series.xmf with its default
+XDMF3 reader and with the legacy XDMF reader, and finds every frame's points and fields, the first
+frame at t = 0 and the last at the run's end, for a grid model (water depth, velocity, Δh) and SPH."""
+import json
+import shutil
+import subprocess
+
+import pytest
+
+from conftest import RUNNEL_BINARY
+
+PVPYTHON = shutil.which("pvpython")
+pytestmark = pytest.mark.skipif(PVPYTHON is None, reason="ParaView's pvpython is not installed (scripts/setup.sh)")
+
+# Runs inside pvpython: every time step through each reader, as ParaView's GUI would load them.
+READ = r"""
+import json, sys
+from paraview import simple, servermanager
+out = {}
+for name, make in (("xdmf3", lambda f: simple.Xdmf3ReaderS(FileName=[f])),
+                   ("legacy", lambda f: simple.XDMFReader(FileNames=[f]))):
+    reader = make(sys.argv[1])
+    frames = []
+    for t in reader.TimestepValues:
+        reader.UpdatePipeline(time=t)
+        data = servermanager.Fetch(reader)
+        if data.IsA("vtkMultiBlockDataSet"):
+            data = data.GetBlock(0)
+        point_data = data.GetPointData()
+        arrays = [point_data.GetArrayName(i) for i in range(point_data.GetNumberOfArrays())]
+        frames.append({"time": t, "points": data.GetNumberOfPoints(), "arrays": arrays})
+    out[name] = frames
+print(json.dumps(out))
+"""
+
+
+def read_with_paraview(xmf, tmp_path):
+    script = tmp_path / "read.py"
+    script.write_text(READ)
+    r = subprocess.run([PVPYTHON, str(script), str(xmf)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-3000:]
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+@pytest.mark.parametrize("model, fields", [("pipe", {"height", "dh", "depth", "speed", "velocity"}),
+                                           ("sph", {"height", "dh", "depth", "speed"})])
+def test_paraview_reads_every_frame_with_both_readers(tmp_path, model, fields):
+    out = tmp_path / "run"
+    r = subprocess.run([RUNNEL_BINARY, "run", "--generate", "fbm", "--set", "terrain.size=33", "--model", model,
+                        "--set", "run.steps=7", "--series-every", "3", "--quiet", "--out", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    end = json.loads((out / "metrics.json").read_text())["sim_time"]
+    frames = read_with_paraview(out / "series.xmf", tmp_path)
+    for reader in ("xdmf3", "legacy"):
+        got = frames[reader]
+        assert [f["time"] for f in got][0] == 0.0, f"{reader}: the first frame is t = 0"
+        assert got[-1]["time"] == pytest.approx(end), f"{reader}: the last frame is the run's end"
+        assert len(got) == 4, f"{reader}: steps 0, 3, 6 and 7"
+        for f in got:
+            assert f["points"] == 33 * 33, f"{reader} at t = {f['time']}"
+            assert fields <= set(f["arrays"]), f"{reader} at t = {f['time']}: {f['arrays']}"
