@@ -62,6 +62,20 @@ Returns
 -------
 landlab.RasterModelGrid
 """
+def _to_xarray(self):
+    from .xarray import model_to_xarray
+
+    return model_to_xarray(self)
+
+
+_to_xarray.__doc__ = """The model's state now as an xarray Dataset (runnel.xarray; the conventions of
+``runnel export --format netcdf``: CF-1.8, x and y at the pixels' centres, spatial_ref).
+
+Returns
+-------
+xarray.Dataset
+"""
+Model.to_xarray = _to_xarray
 Terrain.from_landlab = staticmethod(_from_landlab)
 Terrain.to_landlab = _to_landlab
 

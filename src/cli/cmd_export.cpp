@@ -7,8 +7,12 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/io/hdf5_file.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/models/fields.hpp"
+#include "runnel/models/registry.hpp"
 #include "runnel/sim/series.hpp"
+#include "runnel/terrain/netcdf_io.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
 
 namespace runnel::cli {
@@ -43,6 +47,64 @@ void write_obj(const std::string& path, const Heightmap& t) {
   });
 }
 
+// A checkpoint as one NetCDF time: the heights, their change from the initial terrain and, for a
+// grid model with water, its depth.
+void write_checkpoint_netcdf(const std::string& path, const CheckpointData& d) {
+  NetcdfFrame frame;
+  frame.time = d.time;
+  frame.fields.emplace_back("height", d.terrain.h);
+  std::vector<float> change(d.terrain.h.size());  // from the exact heights: no cancellation
+  for (std::size_t k = 0; k < change.size(); ++k)
+    change[k] = static_cast<float>(static_cast<double>(d.height_fixed[k] - d.initial_fixed[k]) *
+                                   d.height_quantum);
+  frame.fields.emplace_back("dh", change);
+  for (const StoredField& f : d.fields)
+    if (f.name == kSurfaceWaterDepth) frame.fields.emplace_back("water_depth", f.f32);
+  write_netcdf(path, d.terrain, time_units(model_entry(d.model).info().clock), {frame});
+}
+
+// A run's series.h5 as one NetCDF with a time axis: every terrain frame's height, Δh and water
+// depth (docs/series.md).
+void write_series_netcdf(const std::string& path, const std::string& series_path) {
+  const H5File series = H5File::open_read(series_path);
+  const std::vector<hsize_t> dims = series.dims("/grid/x");
+  if (dims.size() != 2 || dims[0] < 2 || dims[1] < 2)
+    throw input_error(series_path + ": /grid/x is not a grid");
+  const std::vector<double> x = series.read_double("/grid/x", dims),
+                            y = series.read_double("/grid/y", dims);
+  Heightmap grid(static_cast<int>(dims[1]), static_cast<int>(dims[0]), x[1] - x[0]);
+  grid.origin_x = x[0] - 0.5 * grid.cell;  // the vertices stand at their pixels' centres
+  grid.origin_z = y.back() - 0.5 * grid.cell;
+  grid.georef.crs_wkt = series.read_string_attribute("/grid", "crs_wkt");
+  const std::vector<std::int64_t> steps = series.read_int64("/height_step");
+  const std::vector<double> times = series.read_double("/height_time", {steps.size()});
+  std::vector<NetcdfFrame> frames;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    char group[48];
+    std::snprintf(group, sizeof group, "/terrain/%010lld", static_cast<long long>(steps[k]));
+    NetcdfFrame frame;
+    frame.time = times[k];
+    for (auto [stored, name] : {std::pair{"height", "height"}, std::pair{"dh", "dh"},
+                                std::pair{"depth", "water_depth"}}) {
+      const std::string dataset = std::string(group) + "/" + stored;
+      if (series.exists(dataset)) frame.fields.emplace_back(name, series.read_float(dataset, dims));
+    }
+    if (frame.fields.empty())
+      throw input_error(series_path + ": frame " + std::to_string(steps[k]) + " has no " +
+                        std::string(group) + " (a series written before frames had their own)");
+    frames.push_back(std::move(frame));
+  }
+  const std::string units = series.has_attribute("/", "time_units")
+                                ? series.read_string_attribute("/", "time_units")
+                                : "s";
+  write_netcdf(path, grid, units, frames);
+}
+
+bool is_series(const std::string& path) {
+  const H5File file = H5File::open_read(path);
+  return file.exists("/height_step") && file.exists("/grid");
+}
+
 }  // namespace
 
 void add_export_command(CLI::App& app) {
@@ -52,13 +114,16 @@ void add_export_command(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
       "export",
-      "Export the terrain of a checkpoint (.h5) as asc, png, npy, tif or obj, or its SPH particles "
-      "as ply (binary PLY in the map frame, for splashsurf and ParaView)");
-  cmd->add_option("checkpoint", opt->file, "checkpoint file (.h5)")->required();
+      "Export the terrain of a checkpoint (.h5) as asc, png, npy, tif, obj or netcdf, or its SPH "
+      "particles as ply (binary PLY in the map frame, for splashsurf and ParaView); or a run's "
+      "series.h5 as one NetCDF with a time axis (--format netcdf)");
+  cmd->add_option("checkpoint", opt->file, "checkpoint file (.h5), or series.h5 for netcdf")
+      ->required();
   cmd->add_option("--format", opt->format,
-                  "asc, png, npy, tif (GeoTIFF), obj (a triangle mesh) or ply (the particles)")
+                  "asc, png, npy, tif (GeoTIFF), obj (a triangle mesh), netcdf (CF-1.8 NetCDF-4, "
+                  ".nc: height, dh, water depth; xarray, GDAL, QGIS) or ply (the particles)")
       ->required()
-      ->check(CLI::IsMember({"asc", "png", "npy", "tif", "obj", "ply"}));
+      ->check(CLI::IsMember({"asc", "png", "npy", "tif", "obj", "ply", "netcdf"}));
   cmd->add_option("-o,--output", opt->output, "file to write")->required();
   cmd->add_option("--range", opt->range, "png: heights MIN:MAX in metres mapped to 0..65535");
   cmd->callback([opt] {
@@ -66,6 +131,17 @@ void add_export_command(CLI::App& app) {
       throw input_error("--range: only a png export has a height range (--format " + opt->format +
                         ")");
     check_output_paths({{"checkpoint", opt->file}}, {{"-o", opt->output}});
+    if (opt->format == "netcdf") {
+      if (std::filesystem::path(opt->output).extension() != ".nc")
+        throw input_error("-o " + opt->output + ": a NetCDF file is named .nc");
+      if (is_series(opt->file)) {
+        write_series_netcdf(opt->output, opt->file);
+      } else {
+        write_checkpoint_netcdf(opt->output, read_checkpoint(opt->file));
+      }
+      std::fprintf(stderr, "runnel: wrote %s\n", terminal_safe(opt->output).c_str());
+      return;
+    }
     const CheckpointData data = read_checkpoint(opt->file);
     if (opt->format == "ply") {
       write_particles_ply(opt->output, data);

@@ -308,6 +308,9 @@ std::vector<T> H5File::read_typed(const std::string& name, const std::vector<hsi
 std::vector<float> H5File::read_float(const std::string& n, const std::vector<hsize_t>& e) const {
   return read_typed<float>(n, e, H5T_NATIVE_FLOAT);
 }
+std::vector<double> H5File::read_double(const std::string& n, const std::vector<hsize_t>& e) const {
+  return read_typed<double>(n, e, H5T_NATIVE_DOUBLE);
+}
 std::vector<std::int64_t> H5File::read_int64(const std::string& n,
                                              const std::vector<hsize_t>& e) const {
   return read_typed<std::int64_t>(n, e, H5T_NATIVE_INT64);

@@ -62,6 +62,8 @@ class H5File {
   bool is_integer(const std::string& name) const;
   std::vector<float> read_float(const std::string& name,
                                 const std::vector<hsize_t>& expected = {}) const;
+  std::vector<double> read_double(const std::string& name,
+                                  const std::vector<hsize_t>& expected = {}) const;
   std::vector<std::int64_t> read_int64(const std::string& name,
                                        const std::vector<hsize_t>& expected = {}) const;
   std::vector<std::int32_t> read_int32(const std::string& name,

@@ -11,6 +11,10 @@ const char* clock_name(ModelClock clock) {
   return clock == ModelClock::kSeconds ? "s" : clock == ModelClock::kYears ? "yr" : "iterations";
 }
 
+const char* time_units(ModelClock clock) {
+  return clock == ModelClock::kSeconds ? "s" : clock == ModelClock::kYears ? "yr" : "1";
+}
+
 const char* clock_suffix(ModelClock clock) {
   return clock == ModelClock::kSeconds ? " s" : clock == ModelClock::kYears ? " yr" : "";
 }

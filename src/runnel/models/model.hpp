@@ -23,6 +23,8 @@ class Ground;
 enum class ModelClock { kSeconds, kIterations, kYears };
 // "s", "yr" or "iterations" (metrics.json's "clock").
 const char* clock_name(ModelClock clock);
+// The clock's units as UDUNITS writes them (NetCDF, BMI): "s", "yr" or "1" (iterations).
+const char* time_units(ModelClock clock);
 // What follows a time in a progress line: " s", " yr" or "".
 const char* clock_suffix(ModelClock clock);
 

@@ -72,6 +72,7 @@ SeriesWriter::~SeriesWriter() = default;
 
 void SeriesWriter::start(Model& model) {
   if (!file_) return;
+  file_->attribute("/", "time_units", std::string(time_units(model.info().clock)));
   if (height_every_ > 0) write_terrain(model);
   if (particle_every_ > 0) write_particles(model);
 }

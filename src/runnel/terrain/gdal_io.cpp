@@ -12,26 +12,12 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/terrain/gdal_support.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
 
 namespace {
-
-// GDAL reports through a global handler; runnel reports through exceptions. Registering the drivers
-// and silencing the handler happen once per process.
-void init_gdal() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    GDALAllRegister();
-    CPLSetErrorHandler(CPLQuietErrorHandler);
-  });
-}
-
-std::string gdal_message() {
-  const char* message = CPLGetLastErrorMsg();
-  return message && *message ? message : "GDAL gave no reason";
-}
 
 struct DatasetCloser {
   void operator()(void* dataset) const {

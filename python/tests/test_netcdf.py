@@ -1,0 +1,101 @@
+# SPDX-License-Identifier: MIT
+"""NetCDF out, read by the real clients: `runnel export --format netcdf` of a checkpoint and of a
+series, and Model.to_xarray(), opened with xarray and with GDAL and georeferenced as the input
+GeoTIFF (made with GDAL) is."""
+import subprocess
+
+import numpy as np
+import pytest
+
+gdal = pytest.importorskip("osgeo.gdal", reason="GDAL's Python bindings are not installed (python3-gdal)")
+osr = pytest.importorskip("osgeo.osr")
+xr = pytest.importorskip("xarray", reason="xarray is not installed (scripts/setup-python.sh)")
+pytest.importorskip("netCDF4", reason="netCDF4 is not installed (scripts/setup-python.sh)")
+
+import runnel  # noqa: E402
+from conftest import RUNNEL_BINARY  # noqa: E402
+
+TRANSFORM = (700000.0, 83.0, 0.0, 4000000.0, 0.0, -83.0)
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("nc")
+    dem = folder / "dem.tif"
+    ds = gdal.GetDriverByName("GTiff").Create(str(dem), 24, 20, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform(TRANSFORM)
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(32616)
+    ds.SetProjection(srs.ExportToWkt())
+    j, i = np.mgrid[0:20, 0:24]
+    ds.GetRasterBand(1).WriteArray((300 + 2.0 * i + 5.0 * j + 3 * np.sin(i)).astype(np.float32))
+    ds = None
+    out = folder / "run"
+    r = subprocess.run([RUNNEL_BINARY, "run", "--terrain", str(dem), "--model", "pipe", "--set", "run.steps=5",
+                        "--series-every", "2", "--quiet", "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    for source, target in (("final.h5", "final.nc"), ("series.h5", "series.nc")):
+        r = subprocess.run([RUNNEL_BINARY, "export", str(out / source), "--format", "netcdf", "-o",
+                            str(folder / target)], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+    return folder
+
+
+def pixel_centres():
+    x = TRANSFORM[0] + (np.arange(24) + 0.5) * TRANSFORM[1]
+    y = TRANSFORM[3] + (np.arange(20) + 0.5) * TRANSFORM[5]
+    return x, y
+
+
+def test_xarray_reads_the_checkpoint_at_the_pixel_centres(run):
+    with xr.open_dataset(run / "final.nc") as d:
+        x, y = pixel_centres()
+        assert np.array_equal(d.x.values, x) and np.array_equal(d.y.values, y)
+        assert d.height.dims == ("time", "y", "x") and d.height.attrs["units"] == "m"
+        assert d.height.attrs["grid_mapping"] == "spatial_ref"
+        assert "UTM zone 16N" in d.spatial_ref.attrs["crs_wkt"]
+        assert d.attrs["Conventions"] == "CF-1.8"
+        final = runnel.read_terrain(str(run / "run" / "final.tif"))
+        assert np.array_equal(d.height.values[0], final.heights)
+        assert "water_depth" in d and float(d.water_depth.max()) > 0
+
+
+def test_gdal_reads_the_input_geotiffs_georeferencing_back(run):
+    nc = gdal.Open(f'NETCDF:"{run / "final.nc"}":height')
+    tif = gdal.Open(str(run / "dem.tif"))
+    assert nc.GetGeoTransform() == pytest.approx(tif.GetGeoTransform(), abs=1e-6)
+    a, b = osr.SpatialReference(), osr.SpatialReference()
+    a.ImportFromWkt(nc.GetProjection())
+    b.ImportFromWkt(tif.GetProjection())
+    assert a.IsSame(b)
+
+
+def test_a_series_is_one_netcdf_with_a_time_axis(run):
+    with xr.open_dataset(run / "series.nc") as d:
+        assert d.time.values.tolist() == pytest.approx([0.0, 0.1, 0.2, 0.25])
+        assert d.time.attrs["units"] == "s"
+        assert d.height.shape == (4, 20, 24)
+        with xr.open_dataset(run / "final.nc") as final:
+            assert np.array_equal(d.height.values[-1], final.height.values[0]), "the last frame is the end"
+        assert float(np.abs(d.dh.values[0]).max()) == 0.0, "no change at t = 0"
+
+
+def test_to_xarray_matches_the_netcdf_export(run, tmp_path):
+    model = runnel.Model.load_checkpoint(str(run / "run" / "final.h5"))
+    d = model.to_xarray()
+    with xr.open_dataset(run / "final.nc") as exported:
+        assert np.array_equal(d.x.values, exported.x.values) and np.array_equal(d.y.values, exported.y.values)
+        assert np.allclose(d.height.values, exported.height.values, rtol=0, atol=1e-4)  # float32 at 400 m
+        # The export's Δh is exact; Python's takes the initial heights' float32 view (3e-5 m at 400 m).
+        assert np.allclose(d.dh.values, exported.dh.values, rtol=0, atol=3e-5)
+        assert d.spatial_ref.attrs["crs_wkt"] == exported.spatial_ref.attrs["crs_wkt"]
+    d.to_netcdf(tmp_path / "from_python.nc")
+    assert gdal.Open(f'NETCDF:"{tmp_path / "from_python.nc"}":height').GetGeoTransform() == \
+        pytest.approx(TRANSFORM, abs=1e-6)
+
+
+def test_a_netcdf_export_is_named_nc(run, tmp_path):
+    r = subprocess.run([RUNNEL_BINARY, "export", str(run / "run" / "final.h5"), "--format", "netcdf", "-o",
+                        str(tmp_path / "final.h5.out")], capture_output=True, text=True)
+    assert r.returncode == 2 and ".nc" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "final.h5.out").exists()

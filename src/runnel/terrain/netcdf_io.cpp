@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: MIT
+// NetCDF out through GDAL's multidimensional API (its netCDF driver): no other library needed.
+#include "runnel/terrain/netcdf_io.hpp"
+
+#include <gdal_priv.h>
+
+#include <cmath>
+#include <memory>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+#include "runnel/terrain/gdal_support.hpp"
+
+namespace runnel {
+
+namespace {
+
+struct FieldMeta {
+  const char* name;
+  const char* units;
+  const char* long_name;
+  const char* standard_name;  // CF standard name, or ""
+};
+
+constexpr FieldMeta kFields[] = {
+    {"height", "m", "terrain height", "surface_altitude"},
+    {"dh", "m", "height change from the initial terrain (erosion < 0, deposition > 0)", ""},
+    {"water_depth", "m", "depth of the water on the surface", ""},
+};
+
+const FieldMeta& meta_of(const std::string& name) {
+  for (const FieldMeta& m : kFields)
+    if (name == m.name) return m;
+  throw runtime_error("netcdf: no description of the field " + name);
+}
+
+void text_attribute(GDALIHasAttribute& owner, const std::string& name, const std::string& value) {
+  auto attribute = owner.CreateAttribute(name, {}, GDALExtendedDataType::CreateString());
+  if (!attribute || !attribute->Write(value.c_str()))
+    throw runtime_error("netcdf: cannot write the attribute " + name + " (" + gdal_message() + ")");
+}
+
+void number_attribute(GDALIHasAttribute& owner, const std::string& name, double value,
+                      GDALDataType type = GDT_Float64) {
+  auto attribute = owner.CreateAttribute(name, {}, GDALExtendedDataType::Create(type));
+  if (!attribute || !attribute->Write(value))
+    throw runtime_error("netcdf: cannot write the attribute " + name + " (" + gdal_message() + ")");
+}
+
+std::shared_ptr<GDALMDArray> coordinate(GDALGroup& root, const std::shared_ptr<GDALDimension>& dim,
+                                        const std::vector<double>& values, const char* units,
+                                        const char* standard_name, const char* axis) {
+  auto array = root.CreateMDArray(dim->GetName(), {dim}, GDALExtendedDataType::Create(GDT_Float64));
+  if (!array) throw runtime_error("netcdf: cannot create " + dim->GetName());
+  const GUInt64 start = 0;
+  const size_t count = values.size();
+  if (!array->Write(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64),
+                    values.data()))
+    throw runtime_error("netcdf: cannot write " + dim->GetName() + " (" + gdal_message() + ")");
+  text_attribute(*array, "units", units);
+  if (*standard_name) text_attribute(*array, "standard_name", standard_name);
+  text_attribute(*array, "axis", axis);
+  return array;
+}
+
+void write_file(const std::string& path, const Heightmap& grid, const std::string& time_units,
+                const std::vector<NetcdfFrame>& frames) {
+  init_gdal();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("netCDF");
+  if (!driver) throw runtime_error(path + ": this GDAL has no netCDF driver");
+  const char* options[] = {"FORMAT=NC4", nullptr};
+  std::unique_ptr<GDALDataset> dataset(
+      driver->CreateMultiDimensional(path.c_str(), nullptr, const_cast<char**>(options)));
+  if (!dataset) throw runtime_error(path + ": cannot create (" + gdal_message() + ")");
+  auto root = dataset->GetRootGroup();
+  text_attribute(*root, "Conventions", "CF-1.8");
+  text_attribute(*root, "title", "runnel terrain");
+  text_attribute(*root, "source", "runnel");
+
+  const auto nx = static_cast<GUInt64>(grid.nx), ny = static_cast<GUInt64>(grid.ny);
+  auto time = root->CreateDimension("time", GDAL_DIM_TYPE_TEMPORAL, "", frames.size());
+  auto y = root->CreateDimension("y", GDAL_DIM_TYPE_HORIZONTAL_Y, "", ny);
+  auto x = root->CreateDimension("x", GDAL_DIM_TYPE_HORIZONTAL_X, "", nx);
+  if (!time || !y || !x) throw runtime_error(path + ": cannot create the dimensions");
+  const MapFrame map(grid);
+  std::vector<double> xs(grid.nx), ys(grid.ny), times;
+  for (int i = 0; i < grid.nx; ++i) xs[i] = map.x(i * grid.cell);
+  for (int j = 0; j < grid.ny; ++j) ys[j] = map.y(j * grid.cell);
+  for (const NetcdfFrame& f : frames) times.push_back(f.time);
+  const bool projected = !grid.georef.crs_wkt.empty();
+  coordinate(*root, x, xs, "m", projected ? "projection_x_coordinate" : "", "X");
+  coordinate(*root, y, ys, "m", projected ? "projection_y_coordinate" : "", "Y");
+  auto t = coordinate(*root, time, times, time_units.c_str(), "", "T");
+  text_attribute(*t, "long_name", "model time");
+
+  // The CRS as CF's grid mapping variable, named as rioxarray and GDAL name it.
+  if (projected) {
+    auto crs = root->CreateMDArray("spatial_ref", {}, GDALExtendedDataType::Create(GDT_Int32));
+    if (!crs) throw runtime_error(path + ": cannot create spatial_ref");
+    text_attribute(*crs, "crs_wkt", grid.georef.crs_wkt);
+    text_attribute(*crs, "spatial_ref", grid.georef.crs_wkt);
+  }
+  if (frames.empty()) return;
+  const float fill = static_cast<float>(grid.georef.nodata.value_or(NAN));
+  for (std::size_t k = 0; k < frames.front().fields.size(); ++k) {
+    const std::string& name = frames.front().fields[k].first;
+    const FieldMeta& meta = meta_of(name);
+    auto array = root->CreateMDArray(name, {time, y, x}, GDALExtendedDataType::Create(GDT_Float32));
+    if (!array) throw runtime_error(path + ": cannot create " + name);
+    if (!grid.georef.holes.empty()) {
+      number_attribute(*array, "_FillValue", fill, GDT_Float32);
+    }
+    text_attribute(*array, "units", meta.units);
+    text_attribute(*array, "long_name", meta.long_name);
+    if (*meta.standard_name) text_attribute(*array, "standard_name", meta.standard_name);
+    if (projected) text_attribute(*array, "grid_mapping", "spatial_ref");
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      if (frames[f].fields.size() <= k || frames[f].fields[k].first != name)
+        throw runtime_error(path + ": frame " + std::to_string(f) + " lacks the field " + name);
+      std::vector<float> values = frames[f].fields[k].second;
+      for (std::size_t v = 0; v < values.size(); ++v)
+        if (grid.georef.hole(v)) values[v] = fill;
+      const GUInt64 start[3] = {f, 0, 0};
+      const size_t count[3] = {1, static_cast<size_t>(ny), static_cast<size_t>(nx)};
+      if (!array->Write(start, count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32),
+                        values.data()))
+        throw runtime_error(path + ": cannot write " + name + " (" + gdal_message() + ")");
+    }
+  }
+}
+
+}  // namespace
+
+void write_netcdf(const std::string& path, const Heightmap& grid, const std::string& time_units,
+                  const std::vector<NetcdfFrame>& frames) {
+  write_path_atomically(path, [&](const std::string& temporary) {
+    CPLErrorReset();
+    write_file(temporary, grid, time_units, frames);  // the dataset is closed when it returns
+    if (CPLGetLastErrorType() == CE_Failure)
+      throw runtime_error(path + ": write failed (" + gdal_message() + ")");
+  });
+}
+
+}  // namespace runnel
