@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 # runnel from Python, notebook style: a real DEM, two erosion models, their metrics, one figure.
-# Run it from the repository root: python docs/python/example.py [OUTPUT.png]
+# Run it from the repository root: python docs/python/example.py [OUTPUT.png]; it needs Matplotlib
+# (pip install "runnel-erosion[plot]").
 # (The suite runs it: docs/python/test_example.py.)
 import sys
 
