@@ -191,16 +191,27 @@ def test_an_iteration_model_counts_iterations(scenario):
     bmi.finalize()
 
 
+SCENARIOS_FOR_THE_TESTER = {
+    "pipe": PIPE,
+    "sph": PIPE.replace('model = "pipe"', 'model = "sph"').replace("[pipe]\nrain = 0.02", "[rain]\nintensity = 3600.0"),
+    "stream-power": PIPE.replace('model = "pipe"', 'model = "stream-power"').replace("sim_time = 3.0", "sim_years = 5000.0"),
+}
+
+
 @pytest.mark.skipif(shutil.which("bmi-test") is None and
                     subprocess.run([sys.executable, "-c", "import bmi_tester"]).returncode != 0,
                     reason="bmi-tester is not installed (scripts/setup-python.sh installs it)")
-def test_bmi_tester_passes(scenario, tmp_path):
+@pytest.mark.parametrize("model", sorted(SCENARIOS_FOR_THE_TESTER))
+def test_bmi_tester_passes_with_its_units_check(scenario, tmp_path, model):
     import os
 
     import runnel
 
-    config = scenario(PIPE)
-    # The package as imported here, whatever the working directory of the tester.
+    from bmi_tester.api import WITH_GIMLI_UNITS
+    assert WITH_GIMLI_UNITS, "gimli.units 0.3 installed: the tester checks every unit"
+    config = scenario(SCENARIOS_FOR_THE_TESTER[model])
+    # The package as imported here, whatever the working directory of the tester. (The tester's own
+    # pytest puts site-packages first on sys.path: it tests the installed package.)
     env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(os.path.abspath(runnel.__file__))))
     r = subprocess.run([sys.executable, "-m", "bmi_tester", "runnel.bmi:RunnelBmi",
                         "--config-file", config.name, "--root-dir", str(tmp_path), "--quiet"],
