@@ -32,8 +32,11 @@ std::string flume(double level) {
          std::to_string(level) + "\n";
 }
 
+// Vertex (i, j) at map (0.05 i, 2 − 0.05 j): the raster's corner half a cell outside.
 Heightmap flat_bed(double height) {
-  return Heightmap(121, 41, 0.05, static_cast<float>(height));
+  Heightmap bed(121, 41, 0.05, static_cast<float>(height));
+  bed.origin_x = bed.origin_z = -0.025;
+  return bed;
 }
 
 TEST(Bedload, TheRateIsWongAndParkersMeyerPeterMuller) {
