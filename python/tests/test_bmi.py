@@ -160,6 +160,9 @@ def test_stream_power_counts_years_to_its_own_end(scenario):
     assert bmi.get_time_units() == "yr" and bmi.get_end_time() == 50000.0
     bmi.update()
     assert bmi.get_current_time() == bmi.get_time_step() > 1.0, "a step of years, not 1"
+    bmi.update_until(2500.0)
+    assert bmi.get_current_time() == 2500.0, "the last step shortened to land on the target"
+    assert bmi.model.mass_balance()["residual_quanta"] == 0
     bmi.finalize()
 
 

@@ -92,6 +92,32 @@ TEST(StreamPower, TheModelBooksUpliftAndOutflowExactly) {
   EXPECT_DOUBLE_EQ(model->time(), 20 * 1000.0);
 }
 
+TEST(StreamPower, AShortenedStepLandsOnItsTargetWithItsOwnUplift) {
+  // update_until(2,500 yr) with steps of 1,000 yr: two whole steps and one of 500 yr, whose uplift
+  // is the rate times 500 yr; the interior rose by U t in all, the balance exact.
+  Parameters p = default_parameters();
+  p.set("run.model", std::string("stream-power"));
+  p.set("stream_power.k", 1e-4);
+  auto model =
+      make_model(test::compute(), p, generate_terrain("fbm", 33, 33, 20.0, 2, {{"relief", 0.1}}));
+  model->advance(2500.0);
+  EXPECT_DOUBLE_EQ(model->time(), 2500.0);
+  EXPECT_EQ(model->steps(), 3u);
+  EXPECT_DOUBLE_EQ(model->step_size(), 1000.0) << "the next step is a whole one again";
+  const MassBalance m = model->mass_balance();
+  EXPECT_EQ(m.residual_quanta, 0);
+  const double interior = 31.0 * 31.0 * 20.0 * 20.0;  // m², the edges are base level
+  EXPECT_NEAR(m.uplift, interior * 1e-3 * 2500.0, 1e-9 * m.uplift) << "U = 1 mm/yr over 2,500 yr";
+  const std::vector<double> risen = [&] {
+    std::vector<double> r;
+    const Heightmap reference = model->erosion_reference(), initial = model->initial_terrain();
+    for (std::size_t k = 0; k < initial.h.size(); ++k) r.push_back(reference.h[k] - initial.h[k]);
+    return r;
+  }();
+  EXPECT_NEAR(risen[16 * 33 + 16], 2.5, 1e-4) << "the erosion maps' surface rose by U t";
+  EXPECT_EQ(risen[0], 0.0) << "not the base level";
+}
+
 TEST(StreamPower, ErosionIsMeasuredFromTheUpliftedSurface) {
   // Detachment-limited incision without diffusion only ever lowers a vertex below where the uplift
   // put it, and all it removes leaves the map: measured from the uplifted surface, nothing is

@@ -236,6 +236,7 @@ CheckpointData GridModel::checkpoint() {
     for (StoredField& f : ground_->fields()) d.fields.push_back(std::move(f));
   rain_mask_.store(d.fields);
   imposed_.store(d.fields);
+  store_own_fields(d.fields);
   d.model_counters = counters();
   // What painting (runnel-viewer) adds to the state; absent from every run without it.
   if (painted_volume_ != 0 || paint_carry_ != 0 || rain_time_ != time_ || rain_accum_ != 0 ||
@@ -258,8 +259,9 @@ void GridModel::restore(const CheckpointData& d) {
   state_.set_initial_fixed(d.initial_fixed);
   state_.terrain().upload_fixed(d.height_fixed);
   std::vector<StoredField> state_fields = without_ground_fields(d.fields);
-  std::erase_if(state_fields,
-                [](const StoredField& f) { return f.name == kImposedElevationChange; });
+  std::erase_if(state_fields, [](const StoredField& f) {
+    return f.name == kImposedElevationChange || f.name.rfind("model__", 0) == 0;
+  });
   state_.upload(state_fields);
   if (ground_) ground_->restore(d.fields);
   restore_counters(d.model_counters);
@@ -278,6 +280,7 @@ void GridModel::restore(const CheckpointData& d) {
   rain_mask_.restore(d.fields);
   if (rain_mask_.present()) sync_rain_weights();
   imposed_.restore(d.fields);
+  restore_own_fields(d.fields);
 }
 
 std::int64_t counter_value(const std::vector<std::pair<std::string, std::int64_t>>& counters,

@@ -80,6 +80,10 @@ class GridModel : public Model, public Interactive {
   // Fills the water depth field with the scenario's standing water (a model whose constructor
   // created that field calls it); returns whether there was any.
   bool start_standing_water(const Parameters& params);
+  // Per-vertex state of the model's own beyond the state's fields, named "model__...", kept in
+  // checkpoints.
+  virtual void store_own_fields(std::vector<StoredField>&) {}
+  virtual void restore_own_fields(const std::vector<StoredField>&) {}
   // Integer counters an exact restart needs, by name.
   virtual std::vector<std::pair<std::string, std::int64_t>> counters() { return {}; }
   virtual void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>&) {}

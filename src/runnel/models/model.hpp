@@ -57,18 +57,18 @@ class Model {
   // One step of the model's own size (adaptive where the model has a stability limit); returns
   // the step taken, in the model's clock units.
   virtual double step() = 0;
-  // Advances the clock by `dt` (s or iterations): steps until the clock reaches time() + dt.
-  // Iteration models take round(dt) whole steps; seconds models never step past the target by
-  // more than their last step. dt = 0 changes nothing. `after_step`, if given, runs after each
-  // step (a validation watching the state as it goes).
+  // Advances the clock by `dt` (s, yr or iterations): steps until the clock reaches time() + dt.
+  // Iteration models take round(dt) whole steps; the models in seconds or years land on the
+  // target, their last step shortened to it (limit_next_step). dt = 0 changes nothing.
+  // `after_step`, if given, runs after each step (a validation watching the state as it goes).
   void advance(double dt, const std::function<void()>& after_step = {});
 
   virtual double time() const = 0;
   // The length of the next step, in clock units: the step an adaptive model's stability limit chose
   // after its latest step (SPH: 0 before its first), or its fixed one (BMI's get_time_step).
   virtual double step_size() const = 0;
-  // A seconds model whose step its stability limit chooses shortens its next step to at most
-  // `most` (so advance() lands on its target); a model of fixed steps takes its own.
+  // A model in seconds or years shortens its next step to at most `most`, so advance() lands on
+  // its target; an iteration model takes its own.
   virtual void limit_next_step(double most) { (void)most; }
   virtual std::uint64_t steps() const = 0;
   virtual const Parameters& parameters() const = 0;

@@ -12,6 +12,11 @@
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
+
+namespace {
+// The uplift of the steps shortened to land on a target, in checkpoints.
+constexpr const char* kPartialUplift = "model__partial_uplift";
+}  // namespace
 namespace {
 
 using S = StreamPowerSettings;
@@ -76,11 +81,15 @@ StreamPowerModel::StreamPowerModel(ComputeContext& compute, const Parameters& pa
                           std::to_string(u) + "; an uplift rate must be finite and ≥ 0 mm/yr");
   }
   uplift_per_step_.assign(rate.size(), 0);
+  uplift_rate_.assign(rate.size(), 0.0f);
+  next_dt_ = settings_.dt;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
-      if (!is_base_level(i, j, nx, ny, base_))
-        uplift_per_step_[static_cast<std::size_t>(j) * nx + i] =
-            std::llround(rate[static_cast<std::size_t>(j) * nx + i] * 1e-3 * settings_.dt / q);
+      if (!is_base_level(i, j, nx, ny, base_)) {
+        const std::size_t k = static_cast<std::size_t>(j) * nx + i;
+        uplift_rate_[k] = rate[k];
+        uplift_per_step_[k] = std::llround(rate[k] * 1e-3 * settings_.dt / q);
+      }
   k_.assign(rate.size(), settings_.k);
 }
 
@@ -89,25 +98,38 @@ double StreamPowerModel::take_step() {
   const int nx = terrain.nx(), ny = terrain.ny();
   const double q = terrain.quantum();
   terrain.download_fixed(fixed_);
+  const double dt = next_dt_;
+  next_dt_ = settings_.dt;
+  // A whole step's uplift, or a shortened step's own (kept apart for uplift_per_vertex()).
+  std::vector<std::int64_t> shortened;
+  if (dt != settings_.dt) {
+    shortened.resize(uplift_rate_.size());
+    for (std::size_t k = 0; k < shortened.size(); ++k)
+      shortened[k] = std::llround(uplift_rate_[k] * 1e-3 * dt / q);
+    if (uplift_partial_.empty()) uplift_partial_.assign(shortened.size(), 0);
+    for (std::size_t k = 0; k < shortened.size(); ++k) uplift_partial_[k] += shortened[k];
+    ++partial_steps_;
+  }
+  const std::vector<std::int64_t>& uplift = shortened.empty() ? uplift_per_step_ : shortened;
   std::vector<double>& h = height_;
   h.resize(fixed_.size());
   for (std::size_t k = 0; k < fixed_.size(); ++k) {
-    fixed_[k] += uplift_per_step_[k];
-    uplift_ += uplift_per_step_[k];
+    fixed_[k] += uplift[k];
+    uplift_ += uplift[k];
     h[k] = static_cast<double>(fixed_[k]) * q;
   }
   if (ground_) {  // the strata rise with the rock; K × the exposed rock's erodibility
-    ground_->raise(uplift_per_step_);
+    ground_->raise(uplift);
     const std::vector<float> e = ground_->rock_erodibility();
     for (std::size_t k = 0; k < k_.size(); ++k) k_[k] = settings_.k * e[k];
   }
   const FlowRouting& routing = router_.route(h);
   if (settings_.deposition > 0) before_ = h;
-  erode_stream_power(h, routing, k_, settings_.m, settings_.n, settings_.dt);
+  erode_stream_power(h, routing, k_, settings_.m, settings_.n, dt);
   if (settings_.deposition > 0)
     deposit_sediment_flux(h, before_, routing, settings_.deposition,
                           terrain.cell() * terrain.cell());
-  diffuse(h, nx, ny, terrain.cell(), settings_.diffusivity, settings_.dt, base_);
+  diffuse(h, nx, ny, terrain.cell(), settings_.diffusivity, dt, base_);
   // Back to whole quanta; what the interior lost left the map over the base level.
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
@@ -118,25 +140,43 @@ double StreamPowerModel::take_step() {
       fixed_[k] = now;
     }
   terrain.upload_fixed(fixed_);
-  return settings_.dt;
+  return dt;
 }
 
 std::vector<std::int64_t> StreamPowerModel::uplift_per_vertex() {
-  // The rate is the same every step, so the uplift so far is the rate times the steps (a resumed
-  // run included).
+  // The rate is the same every step, so the uplift so far is the rate times the whole steps (a
+  // resumed run included), and what the shortened ones added.
   std::vector<std::int64_t> total(uplift_per_step_);
-  for (std::int64_t& u : total) u *= static_cast<std::int64_t>(steps());
+  const auto whole = static_cast<std::int64_t>(steps()) - partial_steps_;
+  for (std::size_t k = 0; k < total.size(); ++k)
+    total[k] = total[k] * whole + (uplift_partial_.empty() ? 0 : uplift_partial_[k]);
   return total;
 }
 
 std::vector<std::pair<std::string, std::int64_t>> StreamPowerModel::counters() {
-  return {{"outflow_quanta", outflow_}, {"uplift_quanta", uplift_}};
+  std::vector<std::pair<std::string, std::int64_t>> c = {{"outflow_quanta", outflow_},
+                                                         {"uplift_quanta", uplift_}};
+  if (partial_steps_ > 0) c.emplace_back("partial_steps", partial_steps_);
+  return c;
+}
+
+void StreamPowerModel::store_own_fields(std::vector<StoredField>& fields) {
+  if (!uplift_partial_.empty()) fields.push_back({kPartialUplift, 1, {}, uplift_partial_});
+}
+
+void StreamPowerModel::restore_own_fields(const std::vector<StoredField>& fields) {
+  uplift_partial_.clear();
+  for (const StoredField& f : fields)
+    if (f.name == kPartialUplift) uplift_partial_ = f.i64;
 }
 
 void StreamPowerModel::restore_counters(
     const std::vector<std::pair<std::string, std::int64_t>>& c) {
   outflow_ = counter_value(c, "outflow_quanta");
   uplift_ = counter_value(c, "uplift_quanta");
+  partial_steps_ = 0;
+  for (const auto& [name, value] : c)
+    if (name == "partial_steps") partial_steps_ = value;
 }
 
 JsonObject StreamPowerModel::diagnostics() {

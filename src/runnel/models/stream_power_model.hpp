@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -39,17 +40,28 @@ class StreamPowerModel final : public GridModel {
   long long uplift_quanta() override { return uplift_; }
   std::vector<std::int64_t> uplift_per_vertex() override;
   JsonObject diagnostics() override;
-  double next_dt() const override { return settings_.dt; }
+  double next_dt() const override { return next_dt_; }
+  // advance() and BMI's update_until land on their target: the last step is shortened to it,
+  // its uplift the rate times its own length (kept per vertex, so the balance stays exact).
+  void limit_next_step(double most) override { next_dt_ = std::min(settings_.dt, most); }
 
  protected:
   double take_step() override;
   std::vector<std::pair<std::string, std::int64_t>> counters() override;
   void restore_counters(const std::vector<std::pair<std::string, std::int64_t>>& c) override;
+  void restore_next_dt(double dt) override { next_dt_ = dt; }
+  void store_own_fields(std::vector<StoredField>& fields) override;
+  void restore_own_fields(const std::vector<StoredField>& fields) override;
 
  private:
   StreamPowerSettings settings_;
   std::vector<std::int64_t> uplift_per_step_;  // quanta per vertex and step (0 on the edges)
-  std::vector<double> k_;                      // K per vertex
+  std::vector<float> uplift_rate_;             // mm/yr per vertex (0 on the edges)
+  double next_dt_ = 0;                         // yr: settings_.dt, or less to land on a target
+  // The uplift of the shortened steps, quanta per vertex (empty: none), and how many there were.
+  std::vector<std::int64_t> uplift_partial_;
+  long long partial_steps_ = 0;
+  std::vector<double> k_;  // K per vertex
   BaseLevel base_;
   D8Router router_;
   // Per-step working memory, kept: fresh pages for them every step were a tenth of its time.
