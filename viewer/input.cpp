@@ -106,6 +106,7 @@ void Viewer::handle_keys(bool can_paint) {
   if (pressed(GLFW_KEY_G) && !session_->replaying())
     session_->set_global_rain(!session_->global_rain());
   if (pressed(GLFW_KEY_H)) help_ = !help_;
+  if (pressed(GLFW_KEY_HOME)) frame_camera();
   if (pressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window_, 1);
 }
 

@@ -22,7 +22,8 @@ constexpr const char* kAbout =
     "wheel zooms (ctrl/shift + wheel: brush radius); F places a water source, D a sink, C clears "
     "them, "
     "G switches the scenario's rain, ctrl+Z undoes the last stroke, space pauses, N steps, R "
-    "resets, S saves a checkpoint, P takes a screenshot, V records, H helps, Esc quits.";
+    "resets, Home frames the whole terrain again, S saves a checkpoint, P takes a screenshot, V "
+    "records, H helps, Esc quits.";
 
 // Every flag, with its help and its check.
 void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::string& size,

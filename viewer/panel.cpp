@@ -139,6 +139,7 @@ void Viewer::draw_help() {
   ImGui::Text("wheel: zoom   ctrl/shift + wheel: brush radius");
   ImGui::Text("F: water source at the brush   D: sink   C: clear both   G: scenario rain on/off");
   ImGui::Text("ctrl+Z: undo the last stroke   space: play/pause   N: step   R: reset");
+  ImGui::Text("Home: frame the whole terrain again (the panel's Reset view)");
   ImGui::Text("S: save checkpoint   P: screenshot   V: record   H: this help   Esc: quit");
   ImGui::End();
 }

@@ -43,11 +43,14 @@ void main() {
   vec3 n = normalize(normal);
   float h = clamp((world.y - min_height) / max(max_height - min_height, 1e-6), 0.0, 1.0);
   // Texture splatting after Fritz 2016: sand, grass, rock, snow by height; rock on steep slopes.
+  // The bands by height follow the terrain's relief in metres: bare rock above the grass only on
+  // relief of a few hundred metres, snow on the tops only of mountains (not on a 30-m hill).
+  float relief = max_height - min_height;
   vec3 sand = vec3(0.76, 0.70, 0.50), grass = vec3(0.35, 0.55, 0.25), rock = vec3(0.48, 0.45, 0.42),
        snow = vec3(0.95, 0.96, 0.98);
   vec3 base = mix(sand, grass, smoothstep(0.02, 0.15, h));
-  base = mix(base, rock, smoothstep(0.55, 0.75, h));
-  base = mix(base, snow, smoothstep(0.82, 0.95, h));
+  base = mix(base, rock, smoothstep(0.55, 0.75, h) * smoothstep(150.0, 400.0, relief));
+  base = mix(base, snow, smoothstep(0.82, 0.95, h) * smoothstep(800.0, 1500.0, relief));
   float steep = smoothstep(0.25, 0.45, 1.0 - n.y);
   base = mix(base, rock, steep);
   if (overlay == 1) base = mix(base, diverging(clamp(dh / overlay_scale, -1.0, 1.0)), 0.85);

@@ -99,10 +99,16 @@ void Viewer::open(const std::string& path) {
 
 void Viewer::frame_camera() {
   const Heightmap& t = session_->model().initial_terrain();
-  const float extent = static_cast<float>(std::max(t.nx - 1, t.ny - 1) * t.cell);
-  camera_.frame(glm::vec3(0.5f * (t.nx - 1) * t.cell, 0.5f * (min_height_ + max_height_),
-                          0.5f * (t.ny - 1) * t.cell),
-                extent);
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  // The vertices of the edges and of a grid of at most 64 × 64 inside: the terrain's silhouette.
+  std::vector<glm::vec3> points;
+  const int step = std::max(1, std::max(t.nx, t.ny) / 64);
+  for (int j = 0; j < t.ny; ++j)
+    for (int i = 0; i < t.nx; ++i)
+      if ((i % step == 0 && j % step == 0) || i == 0 || j == 0 || i == t.nx - 1 || j == t.ny - 1)
+        points.emplace_back(i * t.cell, t.at(i, j), j * t.cell);
+  camera_.frame(points, h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 1.6f);
 }
 
 void Viewer::save_checkpoint() {

@@ -150,10 +150,53 @@ TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
     mean2 += l * l;
   }
   const double n = p.rgb.size() / 3.0;
-  EXPECT_LT(sky / n, 0.7) << "the terrain covers the view";
+  EXPECT_LT(sky / n, 0.8) << "the terrain covers the view (framed whole, a diamond in the window)";
   EXPECT_GT(greenish / n, 0.15) << "grass-coloured terrain is visible";
   EXPECT_GT(std::sqrt(mean2 / n - (mean / n) * (mean / n)), 10.0)
       << "shading varies across the picture";
+}
+
+// The default view frames the whole terrain with a margin, in a landscape and a portrait window:
+// the picture's border is sky all round; and the 31-m hills of the default scenario get no snow.
+TEST(Viewer, TheDefaultViewFramesTheWholeTerrainAndASmallReliefHasNoSnow) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  for (const char* size : {"640x480", "400x640"}) {
+    const std::string shot = dir.path(std::string(size) + ".png");
+    const std::string cmd = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
+                            "/data/scenarios/default.toml --no-rain --frames 2 --size " + size +
+                            " --screenshot " + shot + " > " + dir.path("log.txt") + " 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << test::read_text(dir.path("log.txt"));
+    const Picture p = read_rgb_png(shot);
+    ASSERT_GT(p.width, 0);
+    auto is_sky = [&](int i, int j) {
+      const std::size_t k = 3 * (static_cast<std::size_t>(j) * p.width + i);
+      return std::abs(p.rgb[k] - 140) < 6 && std::abs(p.rgb[k + 1] - 173) < 6 &&
+             std::abs(p.rgb[k + 2] - 209) < 6;
+    };
+    int edge_terrain = 0, terrain = 0, snow = 0;
+    int left = p.width, right = -1, top = p.height, bottom = -1;  // the terrain's extent
+    for (int j = 0; j < p.height; ++j)
+      for (int i = 0; i < p.width; ++i) {
+        const bool edge = i < 4 || j < 4 || i >= p.width - 4 || j >= p.height - 4;
+        if (is_sky(i, j)) continue;
+        ++terrain;
+        edge_terrain += edge;
+        left = std::min(left, i);
+        right = std::max(right, i);
+        top = std::min(top, j);
+        bottom = std::max(bottom, j);
+        const std::size_t k = 3 * (static_cast<std::size_t>(j) * p.width + i);
+        snow += p.rgb[k] > 215 && p.rgb[k + 1] > 215 && p.rgb[k + 2] > 215;
+      }
+    EXPECT_EQ(edge_terrain, 0) << size << ": the terrain touches the picture's edge";
+    // Framed tight: across 85 % of the picture's width or of its height.
+    EXPECT_TRUE(right - left > 0.85 * p.width || bottom - top > 0.85 * p.height)
+        << size << ": the terrain spans " << right - left << " x " << bottom - top << " pixels";
+    EXPECT_LT(snow, terrain / 500) << size << ": white caps on a 31-m relief";
+  }
 }
 
 // One stats line of the viewer ({"frame": ..., "particles": ..., "painting": ...}), by key.
