@@ -9,11 +9,12 @@ struct ViewerOptions {
   std::string model;  // start with this model instead of the scenario's run.model
   std::string device;
   int width = 1280, height = 800;
-  long long frames = 0;       // 0: until the window closes (or the replay ends)
-  std::string screenshot;     // PNG of the scene at exit
-  int screenshot_scale = 1;   // screenshots at this multiple of the window size
-  long long stats_every = 0;  // JSON line on stdout every K frames
-  bool rain = true;           // the scenario's rain at start
+  long long frames = 0;           // 0: until the window closes (or the replay ends)
+  std::string screenshot;         // PNG of the scene at exit
+  int screenshot_scale = 1;       // screenshots at this multiple of the window size
+  bool screenshot_panel = false;  // --screenshot: the window as it looks, panel included
+  long long stats_every = 0;      // JSON line on stdout every K frames
+  bool rain = true;               // the scenario's rain at start
   int overlay = 0;  // terrain overlay at start: 0 none, 1 erosion, 2 water depth, 3 flow speed
   bool particles = false;      // SPH particles as dots over the water surface
   bool paused = false;         // start paused (space plays)

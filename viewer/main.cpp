@@ -35,6 +35,10 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
   app.add_option("--frames", o.frames, "run this many frames, then exit")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--screenshot", o.screenshot, "save the scene at exit as PNG");
+  app.add_flag(
+      "--screenshot-panel", o.screenshot_panel,
+      "--screenshot: the window as it looks, the panel included (for a bug report), at the "
+      "window's size");
   app.add_option("--screenshot-scale", o.screenshot_scale,
                  "screenshots (P, --screenshot) at N times the window size, for print")
       ->check(CLI::Range(1, 8))

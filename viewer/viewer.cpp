@@ -237,9 +237,21 @@ void Viewer::render_scene(int w, int h, bool with_brush) {
   }
 }
 
+// The window as drawn this frame, panel included (--screenshot-panel), before it is shown.
+void Viewer::screenshot_window(int w, int h) {
+  glReadBuffer(GL_BACK);
+  try {
+    write_png_rgb(options_.screenshot, read_framebuffer(w, h));
+    window_shot_taken_ = true;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "runnel-viewer: %s\n", e.what());
+    failed_ = true;
+  }
+}
+
 // At exit: the session's end in its log, the log and the final state where asked for.
 void Viewer::finish() {
-  if (!options_.screenshot.empty()) screenshot(options_.screenshot);
+  if (!options_.screenshot.empty() && !window_shot_taken_) screenshot(options_.screenshot);
   if (!session_->replaying()) session_->end();
   if (!options_.log.empty()) write_session_log(options_.log, session_->log());
   if (!options_.save_at_exit.empty())
@@ -293,6 +305,9 @@ int Viewer::loop() {
     if (options_.stats_every > 0 && frame % options_.stats_every == 0) print_stats(frame, fps);
     const bool last = (options_.frames > 0 && frame >= options_.frames) ||
                       (session_->replaying() && session_->replay_finished());
+    if ((last || glfwWindowShouldClose(window_)) && options_.screenshot_panel &&
+        !options_.screenshot.empty())
+      screenshot_window(w, h);
     glfwSwapBuffers(window_);
     if (last) break;
   }

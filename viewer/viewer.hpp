@@ -47,6 +47,7 @@ class Viewer {
   void save_checkpoint();
   void frame_camera();
   void screenshot(const std::string& path);
+  void screenshot_window(int width, int height);
   void toggle_recording();
   void handle_input();
   bool handle_brush(double x, double y, int w, int h, bool mouse_on_panel);
@@ -81,6 +82,7 @@ class Viewer {
   std::unique_ptr<ParticleRenderer> particles_;
   std::unique_ptr<FrameRecorder> recorder_;
   OrbitCamera camera_;
+  bool window_shot_taken_ = false;  // --screenshot-panel: the window's shot is written
   Brush brush_;
   std::vector<RainDisc> sources_;
   // What the brush paints: rain, or the ground's erodibility mask (layered ground only).

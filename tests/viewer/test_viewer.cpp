@@ -199,6 +199,32 @@ TEST(Viewer, TheDefaultViewFramesTheWholeTerrainAndASmallReliefHasNoSnow) {
   }
 }
 
+// --screenshot-panel takes the window as it looks, the panel (ImGui's dark window, top left)
+// included; a plain --screenshot is the scene alone.
+TEST(Viewer, AScreenshotCanIncludeThePanel) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  auto dark_share = [&](const std::string& flags) {
+    const std::string cmd = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
+                            "/data/scenarios/default.toml --no-rain --frames 2 --size 800x600 " +
+                            flags + " > " + dir.path("log.txt") + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << test::read_text(dir.path("log.txt"));
+    const Picture p = read_rgb_png(dir.path("shot.png"));
+    if (p.width != 800) return -1.0;
+    int dark = 0, all = 0;
+    for (int j = 20; j < 300; ++j)  // inside where the panel opens
+      for (int i = 20; i < 300; ++i, ++all) {
+        const std::size_t k = 3 * (static_cast<std::size_t>(j) * p.width + i);
+        dark += p.rgb[k] + p.rgb[k + 1] + p.rgb[k + 2] < 150;
+      }
+    return static_cast<double>(dark) / all;
+  };
+  EXPECT_GT(dark_share("--screenshot " + dir.path("shot.png") + " --screenshot-panel"), 0.5);
+  EXPECT_LT(dark_share("--screenshot " + dir.path("shot.png")), 0.05);
+}
+
 // One stats line of the viewer ({"frame": ..., "particles": ..., "painting": ...}), by key.
 struct StatsLine {
   std::string text;
