@@ -102,6 +102,14 @@ void Viewer::panel_brush_controls(Model& model) {
   ImGui::Combo("terrain overlay", &overlay,
                "none\0erosion / deposition\0water depth\0flow speed\0");
   overlay_ = static_cast<TerrainOverlay>(overlay);
+  // What the overlay's colours mean, with its scale.
+  const double cell = session_->model().initial_terrain().cell;
+  if (overlay_ == TerrainOverlay::kErosion)
+    ImGui::Text("red eroded, blue deposited: full colour at %.3g m", erosion_overlay_scale());
+  if (overlay_ == TerrainOverlay::kWaterDepth)
+    ImGui::Text("blue: water depth, full colour at %.3g m", cell);
+  if (overlay_ == TerrainOverlay::kFlowSpeed)
+    ImGui::Text("blue slow to yellow fast: full colour at 15 m/s");
   ImGui::Checkbox("particles", &show_particles_);
   if (show_particles_) {
     ImGui::Combo("particle colour", &colour, "sediment load\0flow speed\0");

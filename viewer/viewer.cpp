@@ -97,6 +97,10 @@ void Viewer::open(const std::string& path) {
   }
 }
 
+float Viewer::erosion_overlay_scale() const {
+  return static_cast<float>(std::max(1e-3, 0.02 * (max_height_ - min_height_)));
+}
+
 void Viewer::frame_camera() {
   const Heightmap& t = session_->model().initial_terrain();
   int w = 0, h = 0;
@@ -225,8 +229,7 @@ void Viewer::render_scene(int w, int h, bool with_brush) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   const glm::mat4 vp = camera_.projection(static_cast<float>(w) / std::max(h, 1)) * camera_.view();
-  const float scale = static_cast<float>(std::max(1e-3, 0.02 * (max_height_ - min_height_)));
-  terrain_->draw(vp, min_height_, max_height_, overlay_, scale,
+  terrain_->draw(vp, min_height_, max_height_, overlay_, erosion_overlay_scale(),
                  glm::vec3(brush_.x, brush_.z, brush_.radius), with_brush && brush_.over_terrain);
   const Heightmap& t = session_->model().initial_terrain();
   // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.

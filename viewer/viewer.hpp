@@ -46,6 +46,8 @@ class Viewer {
   void on_new_model();
   void save_checkpoint();
   void frame_camera();
+  // The height change the erosion overlay shows in full colour: 2 % of the relief, m.
+  float erosion_overlay_scale() const;
   void screenshot(const std::string& path);
   void screenshot_window(int width, int height);
   void toggle_recording();
