@@ -14,6 +14,7 @@ struct ViewerOptions {
   int screenshot_scale = 1;       // screenshots at this multiple of the window size
   bool screenshot_panel = false;  // --screenshot: the window as it looks, panel included
   long long stats_every = 0;      // JSON line on stdout every K frames
+  bool bench = false;             // time the frames after the first few, print one JSON line
   bool rain = true;               // the scenario's rain at start
   int overlay = 0;  // terrain overlay at start: 0 none, 1 erosion, 2 water depth, 3 flow speed
   bool particles = false;      // SPH particles as dots over the water surface
@@ -25,6 +26,10 @@ struct ViewerOptions {
   double record_interval = 0;  // model clock per recorded frame; 0: 0.1 s or 1 iteration
   double record_fps = 25;
 };
+
+// --bench leaves out the first frames (the GL's first draws, the model's first steps) from its
+// timing.
+inline constexpr long long kBenchWarmupFrames = 5;
 
 // Runs the viewer; returns the process exit code.
 int run_viewer(const ViewerOptions& options);

@@ -45,6 +45,11 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
       ->capture_default_str();
   app.add_option("--stats-every", o.stats_every, "print a JSON line of statistics every K frames")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--bench", o.bench,
+               "benchmark the painting loop: run --frames frames (default 60), simulating and "
+               "drawing, and print one JSON line: frames per second and simulated seconds per wall "
+               "second over all frames but the first 5 (bench/viewer.sh runs it at 20,000 and "
+               "200,000 particles)");
   app.add_flag("--no-rain", no_rain, "start with the scenario's rain off (paint it)");
   app.add_flag("--particles", o.particles, "draw the SPH particles as dots over the water");
   app.add_flag("--paused", o.paused, "start paused (space plays)");
@@ -93,6 +98,13 @@ int main(int argc, char** argv) {
       throw runnel::input_error("--size " + size + ": out of range");
     }
     o.rain = !no_rain;
+    if (o.bench && o.frames == 0) o.frames = 60;
+    using runnel::viewer::kBenchWarmupFrames;
+    if (o.bench && o.frames <= kBenchWarmupFrames)
+      throw runnel::input_error("--frames " + std::to_string(o.frames) +
+                                ": --bench times the "
+                                "frames after the first " +
+                                std::to_string(kBenchWarmupFrames));
     // Files and names are checked before a window opens: a bad one is refused without a display.
     if (!o.input.empty()) runnel::require_regular_input(o.input, "input");
     if (!o.replay.empty()) runnel::read_session_log(o.replay);

@@ -152,6 +152,29 @@ void Viewer::draw_help() {
   ImGui::End();
 }
 
+void Viewer::print_bench(long long frames) {
+  Model& m = session_->model();
+  const double wall = std::chrono::duration<double>(Clock::now() - bench_start_.wall).count();
+  const long long timed = frames - kBenchWarmupFrames;
+  std::printf("%s\n",
+              JsonObject()
+                  .add("model", m.info().name)
+                  .add("solver", m.info().name == "sph" ? m.parameters().text("sph.solver") : "")
+                  .add("particles", static_cast<long long>(particles_shown_))
+                  .add("width", static_cast<long long>(options_.width))
+                  .add("height", static_cast<long long>(options_.height))
+                  .add("frames", timed)
+                  .add("wall_seconds", wall)
+                  .add("fps", timed / std::max(wall, 1e-9))
+                  .add("simulated_seconds_per_wall_second",
+                       (m.time() - bench_start_.time) / std::max(wall, 1e-9))
+                  .add("steps_per_second",
+                       static_cast<double>(m.steps() - bench_start_.steps) / std::max(wall, 1e-9))
+                  .str()
+                  .c_str());
+  std::fflush(stdout);
+}
+
 void Viewer::print_stats(long long frame, double fps) {
   Model& m = session_->model();
   std::printf("%s\n", JsonObject()

@@ -299,6 +299,8 @@ int Viewer::loop() {
 
     ++frame;
     ++fps_frames;
+    if (options_.bench && frame == kBenchWarmupFrames)
+      bench_start_ = {Clock::now(), session_->model().time(), session_->model().steps()};
     const double since = std::chrono::duration<double>(Clock::now() - fps_start).count();
     if (since >= 0.5) {
       fps = fps_frames / since;
@@ -314,6 +316,7 @@ int Viewer::loop() {
     glfwSwapBuffers(window_);
     if (last) break;
   }
+  if (options_.bench) print_bench(frame);
   finish();
   return failed_ ? 1 : 0;
 }

@@ -67,6 +67,13 @@ class Viewer {
   void panel_readout(Model& model);
   void draw_help();
   void print_stats(long long frame, double fps);
+  // --bench: the timed frames' rates, as one JSON line.
+  void print_bench(long long frames);
+  struct BenchStart {
+    Clock::time_point wall;
+    double time = 0;
+    std::uint64_t steps = 0;
+  } bench_start_;
   void finish();
   double record_interval() const;
   // A key that went down since the last frame, from the key events (key_presses()): polling the

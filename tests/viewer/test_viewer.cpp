@@ -225,6 +225,26 @@ TEST(Viewer, AScreenshotCanIncludeThePanel) {
   EXPECT_LT(dark_share("--screenshot " + dir.path("shot.png")), 0.05);
 }
 
+// --bench prints one JSON line with the painting loop's rates (their values are benchmarks, not
+// tested); too few frames to time are refused before a window opens.
+TEST(Viewer, BenchPrintsTheLoopsRates) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  const std::string viewer = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + test::source_dir() +
+                             "/data/scenarios/default.toml --size 320x240 --bench";
+  ASSERT_EQ(std::system((viewer + " --frames 12 > " + dir.path("out.txt") + " 2>&1").c_str()), 0)
+      << test::read_text(dir.path("out.txt"));
+  const std::string out = test::read_text(dir.path("out.txt"));
+  for (const char* key : {"\"fps\": ", "\"simulated_seconds_per_wall_second\": ", "\"frames\": 7",
+                          "\"solver\": \"wcsph\""})
+    EXPECT_NE(out.find(key), std::string::npos) << key << " in " << out;
+  const int refused =
+      std::system((viewer + " --frames 3 > " + dir.path("no.txt") + " 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(refused), 2) << test::read_text(dir.path("no.txt"));
+}
+
 // One stats line of the viewer ({"frame": ..., "particles": ..., "painting": ...}), by key.
 struct StatsLine {
   std::string text;
