@@ -11,19 +11,23 @@ namespace {
 const char* kWaterVertex = R"(#version 330 core
 layout(location = 0) in vec2 grid;     // x, z
 layout(location = 1) in vec3 dynamic;  // ground height, water depth, sediment load
+layout(location = 2) in vec3 surface_normal;
 uniform mat4 view_projection;
 out vec3 world;
+out vec3 normal;
 out float depth;
 out float load;
 void main() {
   depth = dynamic.y;
   load = dynamic.z;
+  normal = surface_normal;
   world = vec3(grid.x, dynamic.x + dynamic.y, grid.y);
   gl_Position = view_projection * vec4(world, 1.0);
 })";
 
 const char* kWaterFragment = R"(#version 330 core
 in vec3 world;
+in vec3 normal;
 in float depth;
 in float load;
 uniform vec3 eye;
@@ -31,26 +35,32 @@ uniform float min_depth;
 out vec4 colour;
 void main() {
   if (depth < min_depth) discard;
-  // The facet normal from the screen-space derivatives of the surface position.
-  vec3 n = normalize(cross(dFdx(world), dFdy(world)));
-  if (n.y < 0.0) n = -n;
+  // The surface's own normal, smooth across the mesh (WaterRenderer::update): no facets.
+  vec3 n = normalize(normal);
   vec3 v = normalize(eye - world);
   float cos_view = max(dot(n, v), 0.0);
   float fresnel = 0.02 + 0.98 * pow(1.0 - cos_view, 5.0);  // Schlick, water's F0
-  vec3 clear = vec3(0.08, 0.30, 0.62), muddy = vec3(0.42, 0.28, 0.12);
-  vec3 body = mix(clear, muddy, clamp(load * 8.0, 0.0, 1.0));  // 12 % load: full mud
-  float absorbed = 1.0 - exp(-depth / 0.25);  // Beer–Lambert over a 25 cm absorption length
+  // Beer–Lambert over a 25 cm absorption length: thin water clear and pale, deep water blue-green
+  // and opaque. The sediment clouds it, but never past half its colour: it stays water.
+  float absorbed = 1.0 - exp(-depth / 0.25);
+  vec3 shallow = vec3(0.14, 0.46, 0.54), deep = vec3(0.03, 0.20, 0.34),
+       muddy = vec3(0.46, 0.36, 0.22);
+  vec3 body = mix(mix(shallow, deep, absorbed), muddy, 0.5 * clamp(load * 8.0, 0.0, 1.0));
   vec3 sky = vec3(0.72, 0.82, 0.93);
   vec3 sun = normalize(vec3(-0.5, 0.8, -0.3));
-  float highlight = pow(max(dot(n, normalize(sun + v)), 0.0), 90.0);
-  vec3 c = mix(body * (0.55 + 0.45 * max(dot(n, sun), 0.0)), sky, fresnel) + 0.25 * highlight;
+  float highlight = pow(max(dot(n, normalize(sun + v)), 0.0), 120.0);
+  vec3 c = mix(body * (0.65 + 0.35 * max(dot(n, sun), 0.0)), sky, 0.7 * fresnel) + 0.3 * highlight;
   float shore = smoothstep(min_depth, 3.0 * min_depth, depth);  // thin edges fade out
-  colour = vec4(c, shore * clamp(0.45 + 0.5 * absorbed + fresnel, 0.0, 0.95));
+  colour = vec4(c, shore * clamp(0.35 + 0.6 * absorbed + fresnel, 0.0, 0.93));
 })";
 
 }  // namespace
 
-WaterRenderer::WaterRenderer(const Heightmap& t) : program_(kWaterVertex, kWaterFragment) {
+WaterRenderer::WaterRenderer(const Heightmap& t)
+    : program_(kWaterVertex, kWaterFragment),
+      nx_(t.nx),
+      ny_(t.ny),
+      cell_(static_cast<float>(t.cell)) {
   const std::vector<float> grid = grid_positions(t, false);
   const std::vector<GLuint> index = grid_triangles(t.nx, t.ny);  // the terrain's, so shores match
   indices_ = static_cast<GLsizei>(index.size());
@@ -62,6 +72,9 @@ WaterRenderer::WaterRenderer(const Heightmap& t) : program_(kWaterVertex, kWater
   dynamic_vbo_ =
       make_buffer(GL_ARRAY_BUFFER, t.size() * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
   float_attribute(1, 3);
+  normal_vbo_ =
+      make_buffer(GL_ARRAY_BUFFER, t.size() * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+  float_attribute(2, 3);
   ibo_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
                      GL_STATIC_DRAW);
   glBindVertexArray(0);
@@ -70,6 +83,7 @@ WaterRenderer::WaterRenderer(const Heightmap& t) : program_(kWaterVertex, kWater
 WaterRenderer::~WaterRenderer() {
   glDeleteBuffers(1, &grid_vbo_);
   glDeleteBuffers(1, &dynamic_vbo_);
+  glDeleteBuffers(1, &normal_vbo_);
   glDeleteBuffers(1, &ibo_);
   glDeleteVertexArrays(1, &vao_);
 }
@@ -84,6 +98,32 @@ void WaterRenderer::update(const std::vector<float>& ground, const std::vector<f
   }
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_vbo_);
   glBufferSubData(GL_ARRAY_BUFFER, 0, interleaved_.size() * sizeof(float), interleaved_.data());
+  surface_normals();
+  glBindBuffer(GL_ARRAY_BUFFER, normal_vbo_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, normals_.size() * sizeof(float), normals_.data());
+}
+
+// The water surface's normal at each vertex, from central differences of its height (ground +
+// depth) over the wet neighbours (a dry neighbour counts as level with the vertex, so a shore does
+// not tilt the water towards the bank).
+void WaterRenderer::surface_normals() {
+  normals_.assign(interleaved_.size(), 0.0f);
+  const auto surface = [&](int i, int j, float own) {
+    if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return own;
+    const std::size_t k = static_cast<std::size_t>(j) * nx_ + i;
+    return interleaved_[3 * k + 1] > 0.0f ? interleaved_[3 * k] + interleaved_[3 * k + 1] : own;
+  };
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * nx_ + i;
+      const float own = interleaved_[3 * k] + interleaved_[3 * k + 1];
+      const float dx = (surface(i + 1, j, own) - surface(i - 1, j, own)) / (2.0f * cell_);
+      const float dz = (surface(i, j + 1, own) - surface(i, j - 1, own)) / (2.0f * cell_);
+      const glm::vec3 n = glm::normalize(glm::vec3(-dx, 1.0f, -dz));
+      normals_[3 * k] = n.x;
+      normals_[3 * k + 1] = n.y;
+      normals_[3 * k + 2] = n.z;
+    }
 }
 
 void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_depth) const {

@@ -12,8 +12,9 @@ namespace runnel::viewer {
 
 // The water as a surface over the terrain (docs/viewer.md): a mesh on the terrain's grid whose
 // height is the ground plus the model's water depth at each vertex, drawn where the depth exceeds
-// a threshold, with Beer–Lambert absorption (deeper is less transparent), a Fresnel reflection of
-// the sky, a sun highlight and a tint from clear blue to muddy brown by the sediment load.
+// a threshold, shaded with the surface's smooth vertex normals: Beer–Lambert absorption (thin
+// water clear and pale, deep water blue-green and opaque), a Fresnel reflection of the sky, a sun
+// highlight, and turbidity from the sediment load that never takes more than half the colour.
 class WaterRenderer {
  public:
   explicit WaterRenderer(const Heightmap& initial);
@@ -24,10 +25,13 @@ class WaterRenderer {
   void draw(const glm::mat4& view_projection, const glm::vec3& eye, float min_depth) const;
 
  private:
+  void surface_normals();
   GlProgram program_;
-  GLuint vao_ = 0, grid_vbo_ = 0, dynamic_vbo_ = 0, ibo_ = 0;
+  int nx_, ny_;
+  float cell_;
+  GLuint vao_ = 0, grid_vbo_ = 0, dynamic_vbo_ = 0, normal_vbo_ = 0, ibo_ = 0;
   GLsizei indices_ = 0;
-  std::vector<float> interleaved_;
+  std::vector<float> interleaved_, normals_;
 };
 
 }  // namespace runnel::viewer

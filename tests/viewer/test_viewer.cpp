@@ -352,6 +352,7 @@ void paint(ViewerProcess& v, int x, int y, double volume) {
 // `radius` of (x, y) and beyond `far` of it.
 struct WaterPixels {
   long near = 0, far = 0;
+  long brown = 0;  // changed pixels under the brush that are brown (red above blue), not water
 };
 WaterPixels new_water(const Picture& before, const Picture& after, int x, int y, int radius,
                       int far) {
@@ -362,8 +363,9 @@ WaterPixels new_water(const Picture& before, const Picture& after, int x, int y,
       const int r = after.rgb[k], g = after.rgb[k + 1], b = after.rgb[k + 2];
       const int changed = std::abs(r - before.rgb[k]) + std::abs(g - before.rgb[k + 1]) +
                           std::abs(b - before.rgb[k + 2]);
-      if (changed < 40 || b < r + 25 || b < g) continue;
       const double d = std::hypot(i - x, j - y);
+      if (changed >= 40 && d <= radius && r > b + 15) ++w.brown;
+      if (changed < 40 || b < r + 25 || b < g) continue;
       w.near += d <= radius;
       w.far += d > far;
     }
@@ -401,6 +403,7 @@ TEST_P(ViewerPaints, WaterAppearsWhereTheBrushRained) {
   const WaterPixels w = new_water(before, after, 480, 330, 100, 250);
   EXPECT_GT(w.near, 1500) << "water-coloured pixels under the brush";
   EXPECT_LT(w.far, w.near / 10) << "little water far from where it rained";
+  EXPECT_LT(w.brown, w.near / 5) << "the water under the brush reads as water, not as brown soil";
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, ViewerPaints, ::testing::Values("sph", "pipe"));
