@@ -47,9 +47,9 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--bench", o.bench,
                "benchmark the painting loop: run --frames frames (default 60), simulating and "
-               "drawing, and print one JSON line: frames per second and simulated seconds per wall "
-               "second over all frames but the first 5 (bench/viewer.sh runs it at 20,000 and "
-               "200,000 particles)");
+               "drawing, and print one JSON line: frames per second, simulated seconds per wall "
+               "second and the share of the time spent drawing, over all frames but the first 5 "
+               "(bench/viewer.sh runs it at 20,000 and 200,000 particles)");
   app.add_flag("--no-rain", no_rain, "start with the scenario's rain off (paint it)");
   app.add_flag("--particles", o.particles, "draw the SPH particles as dots over the water");
   app.add_flag("--paused", o.paused, "start paused (space plays)");

@@ -166,6 +166,7 @@ void Viewer::print_bench(long long frames) {
                   .add("frames", timed)
                   .add("wall_seconds", wall)
                   .add("fps", timed / std::max(wall, 1e-9))
+                  .add("draw_share", bench_draw_seconds_ / std::max(wall, 1e-9))
                   .add("simulated_seconds_per_wall_second",
                        (m.time() - bench_start_.time) / std::max(wall, 1e-9))
                   .add("steps_per_second",

@@ -74,6 +74,7 @@ class Viewer {
     double time = 0;
     std::uint64_t steps = 0;
   } bench_start_;
+  double bench_draw_seconds_ = 0;  // drawing the timed frames (terrain, water, panel), s
   void finish();
   double record_interval() const;
   // A key that went down since the last frame, from the key events (key_presses()): polling the

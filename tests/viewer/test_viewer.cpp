@@ -237,8 +237,8 @@ TEST(Viewer, BenchPrintsTheLoopsRates) {
   ASSERT_EQ(std::system((viewer + " --frames 12 > " + dir.path("out.txt") + " 2>&1").c_str()), 0)
       << test::read_text(dir.path("out.txt"));
   const std::string out = test::read_text(dir.path("out.txt"));
-  for (const char* key : {"\"fps\": ", "\"simulated_seconds_per_wall_second\": ", "\"frames\": 7",
-                          "\"solver\": \"wcsph\""})
+  for (const char* key : {"\"fps\": ", "\"simulated_seconds_per_wall_second\": ",
+                          "\"draw_share\": ", "\"frames\": 7", "\"solver\": \"wcsph\""})
     EXPECT_NE(out.find(key), std::string::npos) << key << " in " << out;
   const int refused =
       std::system((viewer + " --frames 3 > " + dir.path("no.txt") + " 2>&1").c_str());
