@@ -208,7 +208,7 @@ void Viewer::upload() {
   const Heightmap t = model.terrain();
   terrain_->update(t.h, terrain_normals_reference(t));
   const WaterView w = model.interaction().water_view();
-  water_->update(t.h, w.depth, w.load);
+  water_->update(t.h, w.depth, w.load, w.velocity);
   std::vector<float> depth_speed(2 * t.size(), 0.0f);
   for (std::size_t k = 0; k < w.depth.size(); ++k) {
     depth_speed[2 * k] = w.depth[k];
@@ -233,7 +233,9 @@ void Viewer::render_scene(int w, int h, bool with_brush) {
                  glm::vec3(brush_.x, brush_.z, brush_.radius), with_brush && brush_.over_terrain);
   const Heightmap& t = session_->model().initial_terrain();
   // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.
-  water_->draw(vp, camera_.eye(), static_cast<float>(0.01 * t.cell));
+  // The streaks move on the model's clock: they pause with it, and a recording is reproducible.
+  water_->draw(vp, camera_.eye(), static_cast<float>(0.01 * t.cell),
+               static_cast<float>(session_->model().time()));
   if (show_particles_) {
     const double spacing = 0.5 * t.cell;
     particles_->draw(vp, static_cast<float>(spacing), static_cast<float>(h), particle_colour_);

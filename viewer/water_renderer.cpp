@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "water_renderer.hpp"
 
+#include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "grid_mesh.hpp"
@@ -12,15 +13,18 @@ const char* kWaterVertex = R"(#version 330 core
 layout(location = 0) in vec2 grid;     // x, z
 layout(location = 1) in vec3 dynamic;  // ground height, water depth, sediment load
 layout(location = 2) in vec3 surface_normal;
+layout(location = 3) in vec2 velocity;  // m/s, x and z
 uniform mat4 view_projection;
 out vec3 world;
 out vec3 normal;
+out vec2 flow;
 out float depth;
 out float load;
 void main() {
   depth = dynamic.y;
   load = dynamic.z;
   normal = surface_normal;
+  flow = velocity;
   world = vec3(grid.x, dynamic.x + dynamic.y, grid.y);
   gl_Position = view_projection * vec4(world, 1.0);
 })";
@@ -28,11 +32,31 @@ void main() {
 const char* kWaterFragment = R"(#version 330 core
 in vec3 world;
 in vec3 normal;
+in vec2 flow;
 in float depth;
 in float load;
 uniform vec3 eye;
-uniform float min_depth;
+uniform float min_depth, seconds, streak_scale;
 out vec4 colour;
+float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
+float noise(vec2 p) {  // value noise
+  vec2 i = floor(p), f = fract(p);
+  vec2 u = f * f * (3.0 - 2.0 * f);
+  return mix(mix(hash(i), hash(i + vec2(1, 0)), u.x), mix(hash(i + vec2(0, 1)), hash(i + 1.0), u.x),
+             u.y);
+}
+// Streaks drifting with the flow: a noise pattern stretched 4 times along the velocity, advected
+// along it for a phase of one second, two phases half a period apart cross-faded so that neither
+// drifts for ever.
+float streaks(vec2 p, vec2 v) {
+  float speed = length(v);
+  vec2 along = v / max(speed, 1e-3), across = vec2(-along.y, along.x);
+  vec2 q = vec2(dot(p, along) / 4.0, dot(p, across)) / streak_scale;
+  float t0 = fract(seconds), t1 = fract(seconds + 0.5);
+  float a = noise(q - vec2(speed * t0 / (4.0 * streak_scale), 0.0));
+  float b = noise(q - vec2(speed * t1 / (4.0 * streak_scale), 0.0) + 17.0);
+  return smoothstep(0.6, 0.9, mix(a, b, abs(2.0 * t0 - 1.0)));
+}
 void main() {
   if (depth < min_depth) discard;
   // The surface's own normal, smooth across the mesh (WaterRenderer::update): no facets.
@@ -50,6 +74,8 @@ void main() {
   vec3 sun = normalize(vec3(-0.5, 0.8, -0.3));
   float highlight = pow(max(dot(n, normalize(sun + v)), 0.0), 120.0);
   vec3 c = mix(body * (0.65 + 0.35 * max(dot(n, sun), 0.0)), sky, 0.7 * fresnel) + 0.3 * highlight;
+  float speed = length(flow);
+  c = mix(c, vec3(0.85, 0.92, 0.95), 0.45 * streaks(world.xz, flow) * smoothstep(0.2, 2.0, speed));
   float shore = smoothstep(min_depth, 3.0 * min_depth, depth);  // thin edges fade out
   colour = vec4(c, shore * clamp(0.35 + 0.6 * absorbed + fresnel, 0.0, 0.93));
 })";
@@ -75,6 +101,8 @@ WaterRenderer::WaterRenderer(const Heightmap& t)
   normal_vbo_ =
       make_buffer(GL_ARRAY_BUFFER, t.size() * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
   float_attribute(2, 3);
+  flow_vbo_ = make_buffer(GL_ARRAY_BUFFER, t.size() * 2 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+  float_attribute(3, 2);
   ibo_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
                      GL_STATIC_DRAW);
   glBindVertexArray(0);
@@ -84,12 +112,13 @@ WaterRenderer::~WaterRenderer() {
   glDeleteBuffers(1, &grid_vbo_);
   glDeleteBuffers(1, &dynamic_vbo_);
   glDeleteBuffers(1, &normal_vbo_);
+  glDeleteBuffers(1, &flow_vbo_);
   glDeleteBuffers(1, &ibo_);
   glDeleteVertexArrays(1, &vao_);
 }
 
 void WaterRenderer::update(const std::vector<float>& ground, const std::vector<float>& depth,
-                           const std::vector<float>& load) {
+                           const std::vector<float>& load, const std::vector<float>& velocity) {
   interleaved_.assign(ground.size() * 3, 0.0f);
   for (std::size_t k = 0; k < ground.size(); ++k) {
     interleaved_[3 * k] = ground[k];
@@ -101,6 +130,10 @@ void WaterRenderer::update(const std::vector<float>& ground, const std::vector<f
   surface_normals();
   glBindBuffer(GL_ARRAY_BUFFER, normal_vbo_);
   glBufferSubData(GL_ARRAY_BUFFER, 0, normals_.size() * sizeof(float), normals_.data());
+  flow_.assign(2 * ground.size(), 0.0f);
+  std::copy_n(velocity.begin(), std::min(velocity.size(), flow_.size()), flow_.begin());
+  glBindBuffer(GL_ARRAY_BUFFER, flow_vbo_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, flow_.size() * sizeof(float), flow_.data());
 }
 
 // The water surface's normal at each vertex, from central differences of its height (ground +
@@ -126,8 +159,11 @@ void WaterRenderer::surface_normals() {
     }
 }
 
-void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_depth) const {
+void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_depth,
+                         float seconds) const {
   program_.use();
+  glUniform1f(program_.uniform("seconds"), seconds);
+  glUniform1f(program_.uniform("streak_scale"), cell_);  // streaks a cell wide
   glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
   glUniform3f(program_.uniform("eye"), eye.x, eye.y, eye.z);
   glUniform1f(program_.uniform("min_depth"), min_depth);

@@ -169,8 +169,8 @@ TEST(Session, AnSphSinkEvaporatesTheParticlesOverIt) {
 }
 
 // The binned depth holds the particles' volume (the smoothing scatters, it does not lose), and a
-// load every particle shares is the load of every wet vertex.
-TEST(WaterBinning, KeepsTheVolumeAndTheLoad) {
+// load and a velocity every particle shares are those of every wet vertex.
+TEST(WaterBinning, KeepsTheVolumeTheLoadAndTheVelocity) {
   HostParticles p;
   std::uint64_t state = 12345;
   const auto uniform = [&] {
@@ -189,6 +189,8 @@ TEST(WaterBinning, KeepsTheVolumeAndTheLoad) {
     if (w.depth[k] <= 1e-6f) continue;
     EXPECT_NEAR(w.load[k], 7 * quantum / 0.125, 1e-6);
     EXPECT_NEAR(w.speed[k], 1.0, 1e-5);
+    EXPECT_NEAR(w.velocity[2 * k], 1.0, 1e-5);      // x
+    EXPECT_NEAR(w.velocity[2 * k + 1], 0.0, 1e-6);  // z
   }
   EXPECT_EQ(w.points.size(), 4u * count);
 }

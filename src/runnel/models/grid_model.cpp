@@ -137,9 +137,9 @@ WaterView GridModel::water_view() {
       if (view.depth[k] > 1e-6f) view.load[k] = static_cast<float>(s[k] * q / view.depth[k]);
   }
   if (state_.has(kSurfaceWaterVelocity)) {
-    const auto v = state_.download_float(kSurfaceWaterVelocity);  // interleaved (x, z)
+    view.velocity = state_.download_float(kSurfaceWaterVelocity);  // interleaved (x, z)
     for (std::size_t k = 0; k < view.speed.size(); ++k)
-      view.speed[k] = std::hypot(v[2 * k], v[2 * k + 1]);
+      view.speed[k] = std::hypot(view.velocity[2 * k], view.velocity[2 * k + 1]);
   }
   return view;
 }

@@ -22,6 +22,9 @@ struct RainDisc {
 // standing water. `points` holds x, y, z and load of each water particle where the model has them.
 struct WaterView {
   std::vector<float> depth, load, speed;
+  // The water's horizontal velocity (x, z interleaved, m/s) at each vertex where the model knows
+  // it (the pipe model, SPH's particles binned); empty otherwise.
+  std::vector<float> velocity;
   std::vector<float> points;
 };
 

@@ -36,7 +36,8 @@ void smooth(std::vector<double>& v, int nx, int ny, bool along_x) {
 WaterView bin_particles(const HostParticles& p, int nx, int ny, double cell, double spacing,
                         double volume_quantum) {
   const std::size_t n = static_cast<std::size_t>(nx) * ny;
-  std::vector<double> volume(n, 0.0), sediment(n, 0.0), speed(n, 0.0);
+  std::vector<double> volume(n, 0.0), sediment(n, 0.0), speed(n, 0.0), flow_x(n, 0.0),
+      flow_z(n, 0.0);
   WaterView view;
   view.points.reserve(4 * p.size());
   const double particle = spacing * spacing * spacing;
@@ -57,18 +58,25 @@ WaterView bin_particles(const HostParticles& p, int nx, int ny, double cell, dou
       volume[k[c]] += w[c] * particle;
       sediment[k[c]] += w[c] * load;
       speed[k[c]] += w[c] * particle * v;
+      flow_x[k[c]] += w[c] * particle * p.f[kVx][i];
+      flow_z[k[c]] += w[c] * particle * p.f[kVz][i];
     }
     view.points.insert(view.points.end(),
                        {p.f[kX][i], p.f[kY][i], p.f[kZ][i], static_cast<float>(load / particle)});
   }
-  for (auto* field : {&volume, &sediment, &speed}) {
+  for (auto* field : {&volume, &sediment, &speed, &flow_x, &flow_z}) {
     smooth(*field, nx, ny, true);
     smooth(*field, nx, ny, false);
   }
   view.depth.resize(n);
   view.load.resize(n);
   view.speed.resize(n);
+  view.velocity.resize(2 * n);
   for (std::size_t k = 0; k < n; ++k) {
+    if (volume[k] > 0) {
+      view.velocity[2 * k] = static_cast<float>(flow_x[k] / volume[k]);
+      view.velocity[2 * k + 1] = static_cast<float>(flow_z[k] / volume[k]);
+    }
     view.depth[k] = static_cast<float>(volume[k] / (cell * cell));
     view.load[k] = volume[k] > 0 ? static_cast<float>(sediment[k] / volume[k]) : 0.0f;
     view.speed[k] = volume[k] > 0 ? static_cast<float>(speed[k] / volume[k]) : 0.0f;
