@@ -74,6 +74,7 @@ void Viewer::on_new_model() {
   terrain_ = std::make_unique<TerrainRenderer>(t);
   water_ = std::make_unique<WaterRenderer>(t);
   particles_ = std::make_unique<ParticleRenderer>();
+  if (!rain_) rain_ = std::make_unique<RainStreaks>();
   upload();
 }
 
@@ -239,6 +240,13 @@ void Viewer::render_scene(int w, int h, bool with_brush) {
   if (show_particles_) {
     const double spacing = 0.5 * t.cell;
     particles_->draw(vp, static_cast<float>(spacing), static_cast<float>(h), particle_colour_);
+  }
+  if (with_brush && brush_.over_terrain && session_->painting() &&
+      brush_mode_ == BrushMode::kRain) {  // the painted rain, falling on the brush's ground
+    const int i = std::clamp(static_cast<int>(std::lround(brush_.x / t.cell)), 0, t.nx - 1),
+              j = std::clamp(static_cast<int>(std::lround(brush_.z / t.cell)), 0, t.ny - 1);
+    rain_->draw(vp, glm::vec3(brush_.x, t.at(i, j), brush_.z), static_cast<float>(brush_.radius),
+                static_cast<float>(glfwGetTime()));
   }
 }
 

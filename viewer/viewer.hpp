@@ -16,6 +16,7 @@
 #include "app.hpp"
 #include "brush.hpp"
 #include "camera.hpp"
+#include "rain_streaks.hpp"
 #include "recorder.hpp"
 #include "renderers.hpp"
 #include "runnel/compute/context.hpp"
@@ -90,6 +91,7 @@ class Viewer {
   std::unique_ptr<TerrainRenderer> terrain_;
   std::unique_ptr<WaterRenderer> water_;
   std::unique_ptr<ParticleRenderer> particles_;
+  std::unique_ptr<RainStreaks> rain_;  // the painted rain under the brush
   std::unique_ptr<FrameRecorder> recorder_;
   OrbitCamera camera_;
   bool window_shot_taken_ = false;  // --screenshot-panel: the window's shot is written

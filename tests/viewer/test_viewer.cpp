@@ -408,6 +408,50 @@ TEST_P(ViewerPaints, WaterAppearsWhereTheBrushRained) {
 
 INSTANTIATE_TEST_SUITE_P(Models, ViewerPaints, ::testing::Values("sph", "pipe"));
 
+// While the brush paints rain, streaks fall under it: the window captured in the middle of a drag
+// (Escape while the button is held, --screenshot-panel) has pale streak pixels around the brush
+// that the same view without a drag has not.
+TEST(Viewer, RainFallsAsStreaksUnderThePaintingBrush) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  const std::string common = test::source_dir() +
+                             "/data/scenarios/default.toml --no-rain --size 800x600 "
+                             "--screenshot-panel --frames 1000000 --screenshot ";
+  auto streak_pixels = [&](const std::string& shot) {
+    const Picture p = read_rgb_png(dir.path(shot));
+    long pale = 0;
+    for (int j = 200; j < 340; ++j)  // the air above the brush, where no water lies
+      for (int i = 560 - 90; i < 560 + 90; ++i) {
+        const std::size_t k = 3 * (static_cast<std::size_t>(j) * p.width + i);
+        pale += p.rgb[k] > 150 && p.rgb[k + 1] > 170 && p.rgb[k + 2] > 170 &&
+                p.rgb[k + 2] > p.rgb[k] + 10;
+      }
+    return p.width == 800 ? pale : -1L;
+  };
+  {
+    ViewerProcess v(x, dir, common + "still.png");
+    ASSERT_TRUE(v.wait_for([](const StatsLine&) { return true; })) << v.log();
+    ASSERT_TRUE(v.xdotool("mousemove --window " + v.window() + " 560 380"));
+    ASSERT_TRUE(v.key("Escape"));
+    ASSERT_TRUE(v.wait_exit()) << v.log();
+  }
+  {
+    ViewerProcess v(x, dir, common + "raining.png");
+    ASSERT_TRUE(v.wait_for([](const StatsLine&) { return true; })) << v.log();
+    ASSERT_TRUE(v.press_and_drag(545, 372));  // ends at (560, 380)
+    ASSERT_TRUE(v.wait_for([](const StatsLine& s) { return s.flag("painting"); })) << v.log();
+    ASSERT_TRUE(v.key("Escape"));  // the button still held: the last frame paints
+    ASSERT_TRUE(v.wait_exit()) << v.log();
+    v.xdotool("mouseup 1");
+  }
+  const long still = streak_pixels("still.png"), raining = streak_pixels("raining.png");
+  ASSERT_GE(still, 0);
+  EXPECT_GT(raining, still + 80) << "streak pixels: " << raining << " painting, " << still
+                                 << " not";
+}
+
 // The checkpoint the S key writes (runnel-viewer-sph-step*.h5 in the working folder), read and
 // removed once it is there.
 CheckpointData take_saved_checkpoint(ViewerProcess& v, const test::ScratchDir& dir) {
