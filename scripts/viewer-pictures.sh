@@ -20,9 +20,9 @@ build/runnel-viewer --replay data/sessions/channel.json --size 1280x800 --overla
 import sys
 from PIL import Image
 work = sys.argv[1]
-box = (120, 150, 1160, 720)  # the terrain in the default view
-frames = [Image.open(f"{work}/frames/frame_{k:06d}.png").crop(box).resize((640, 351)) for k in (0, 2, 5)]
-strip = Image.new("RGB", (1920, 351))
+box = (40, 40, 1240, 760)  # the terrain in the default view (framed with a margin)
+frames = [Image.open(f"{work}/frames/frame_{k:06d}.png").crop(box).resize((640, 384)) for k in (0, 2, 5)]
+strip = Image.new("RGB", (1920, 384))
 for i, f in enumerate(frames):
     strip.paste(f, (640 * i, 0))
 strip.save("docs/images/viewer-channel.png")

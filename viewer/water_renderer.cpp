@@ -65,11 +65,11 @@ void main() {
   float cos_view = max(dot(n, v), 0.0);
   float fresnel = 0.02 + 0.98 * pow(1.0 - cos_view, 5.0);  // Schlick, water's F0
   // Beer–Lambert over a 25 cm absorption length: thin water clear and pale, deep water blue-green
-  // and opaque. The sediment clouds it, but never past half its colour: it stays water.
+  // and opaque. The sediment clouds it, but never past a third of its colour: it stays water.
   float absorbed = 1.0 - exp(-depth / 0.25);
   vec3 shallow = vec3(0.14, 0.46, 0.54), deep = vec3(0.03, 0.20, 0.34),
        muddy = vec3(0.46, 0.36, 0.22);
-  vec3 body = mix(mix(shallow, deep, absorbed), muddy, 0.5 * clamp(load * 8.0, 0.0, 1.0));
+  vec3 body = mix(mix(shallow, deep, absorbed), muddy, 0.35 * clamp(load * 8.0, 0.0, 1.0));
   vec3 sky = vec3(0.72, 0.82, 0.93);
   vec3 sun = normalize(vec3(-0.5, 0.8, -0.3));
   float highlight = pow(max(dot(n, normalize(sun + v)), 0.0), 120.0);

@@ -14,9 +14,9 @@ namespace runnel::viewer {
 // height is the ground plus the model's water depth at each vertex, drawn where the depth exceeds
 // a threshold, shaded with the surface's smooth vertex normals: Beer–Lambert absorption (thin
 // water clear and pale, deep water blue-green and opaque), a Fresnel reflection of the sky, a sun
-// highlight, and turbidity from the sediment load that never takes more than half the colour; the
-// flow is made visible by streaks drifting along the velocity (a flow map: two phases of a noise
-// pattern advected and cross-faded, after Vlachos 2010), stronger where the water runs fast.
+// highlight, and turbidity from the sediment load that never takes more than a third of the colour;
+// the flow is made visible by streaks drifting along the velocity (a flow map: two phases of a
+// noise pattern advected and cross-faded, after Vlachos 2010), stronger where the water runs fast.
 class WaterRenderer {
  public:
   explicit WaterRenderer(const Heightmap& initial);
