@@ -44,7 +44,7 @@ def read_with_paraview(xmf, tmp_path):
 
 
 @pytest.mark.parametrize("model, fields", [("pipe", {"height", "dh", "depth", "speed", "velocity"}),
-                                           ("sph", {"height", "dh", "depth", "speed"})])
+                                           ("sph", {"height", "dh", "depth", "speed", "velocity"})])
 def test_paraview_reads_every_frame_with_both_readers(tmp_path, model, fields):
     out = tmp_path / "run"
     r = subprocess.run([RUNNEL_BINARY, "run", "--generate", "fbm", "--set", "terrain.size=33", "--model", model,

@@ -6,8 +6,6 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
-#include "runnel/models/fields.hpp"
-#include "runnel/models/grid_model.hpp"
 #include "runnel/sph/particle_store.hpp"
 
 namespace runnel {
@@ -117,14 +115,12 @@ void SeriesWriter::write_terrain(Model& model) {
   has_speed_ = !water.speed.empty();
   if (has_water_depth_) file_->write(group + "/depth", water.depth, {ny, nx});
   if (has_speed_) file_->write(group + "/speed", water.speed, {ny, nx});
-  auto* grid = dynamic_cast<GridModel*>(&model);
-  has_velocity_ = grid && grid->state().has(kSurfaceWaterVelocity);
-  if (has_velocity_) {  // depth-averaged (x east, z south) → the map frame's (east, north, up)
-    const std::vector<float> v = grid->state().download_float(kSurfaceWaterVelocity);
+  has_velocity_ = !water.velocity.empty();
+  if (has_velocity_) {  // the water's (x east, z south) → the map frame's (east, north, up)
     std::vector<float> velocity(3 * nx * ny, 0.0f);
     for (std::size_t k = 0; k < nx * ny; ++k) {
-      velocity[3 * k] = v[2 * k];
-      velocity[3 * k + 1] = -v[2 * k + 1];
+      velocity[3 * k] = water.velocity[2 * k];
+      velocity[3 * k + 1] = -water.velocity[2 * k + 1];
     }
     file_->write(group + "/velocity", velocity, {nx * ny, 3});
   }

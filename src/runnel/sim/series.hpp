@@ -15,7 +15,7 @@ namespace runnel {
 
 // A run's time series (docs/series.md): series.h5 with the heightmap every `height_every` steps
 // (/height, frames × ny × nx) and each terrain frame's surface and fields (/terrain/STEP/: its
-// points in the map frame, height, Δh and the water's depth, speed or velocity where the model
+// points in the map frame, height, Δh and the water's depth, speed and velocity where the model
 // has water), SPH particle snapshots every `particle_every` steps (/particles/STEP/...), the
 // frames' steps and times, the grid's map coordinates and quads; and series.xmf, the XDMF index
 // ParaView (its XDMF3 and legacy readers) and VisIt open as a time series of a terrain surface and
