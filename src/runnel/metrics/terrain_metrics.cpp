@@ -447,10 +447,14 @@ std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightma
                                                                   const Heightmap& after_run,
                                                                   const std::vector<double>& area) {
   // The source's NODATA holes keep their filled initial heights: nothing a model invented there
-  // is measured.
-  Heightmap after = after_run;
-  for (std::size_t k = 0; k < after.h.size() && k < before.h.size(); ++k)
-    if (after.georef.hole(k)) after.h[k] = before.h[k];
+  // is measured. (A copy only for a terrain that has holes.)
+  Heightmap kept;
+  if (!after_run.georef.holes.empty()) {
+    kept = after_run;
+    for (std::size_t k = 0; k < kept.h.size() && k < before.h.size(); ++k)
+      if (kept.georef.hole(k)) kept.h[k] = before.h[k];
+  }
+  const Heightmap& after = after_run.georef.holes.empty() ? after_run : kept;
   // Channels: vertices draining at least 1 % of the terrain (and at least 20 cells).
   const double total = (after.nx - 1) * after.cell * (after.ny - 1) * after.cell;
   const double threshold = std::max(0.01 * total, 20.0 * after.cell * after.cell);

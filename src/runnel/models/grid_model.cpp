@@ -181,17 +181,11 @@ MassBalance GridModel::mass_balance() {
 }
 
 std::vector<double> GridModel::elevation() {
-  return heights_in_metres(state_.terrain().download_fixed(), state_.terrain().quantum());
+  return heights_in_metres(state_.terrain());
 }
 
 void GridModel::set_elevation(const std::vector<double>& metres) {
-  if (ground_) throw input_error("set_elevation: not with a layer stack (ground.layers)");
-  DeviceTerrain& terrain = state_.terrain();
-  const std::vector<std::int64_t> before = terrain.download_fixed();
-  const std::vector<std::int64_t> after =
-      heights_in_quanta(metres, terrain.quantum(), before.size(), "set_elevation");
-  terrain.upload_fixed(after);
-  imposed_.add(before, after);
+  imposed_.impose(state_.terrain(), metres, ground_ != nullptr);
 }
 
 void GridModel::set_rain_rates(const std::vector<float>& metres_per_second) {

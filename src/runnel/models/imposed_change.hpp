@@ -9,6 +9,8 @@
 
 namespace runnel {
 
+class DeviceTerrain;
+
 inline constexpr const char* kImposedElevationChange = "ground__imposed_elevation_change";
 
 // Heights a coupler set from outside the model (Model::set_elevation: Landlab's uplift or hillslope
@@ -17,6 +19,11 @@ inline constexpr const char* kImposedElevationChange = "ground__imposed_elevatio
 // stay what the model's own processes did.
 class ImposedChange {
  public:
+  // Replaces the terrain's heights with a coupler's (m, one a vertex), rounded to its quantum, and
+  // books the change. Refused (an input error) for a run with a layer stack, whose strata cannot
+  // tell what the change was made of; for the wrong count of heights; for a height not finite or
+  // beyond the terrain's range of 2^53 quanta.
+  void impose(DeviceTerrain& terrain, const std::vector<double>& metres, bool layered);
   // Books the step from `before` to `after` (fixed-point heights, the same size).
   void add(const std::vector<std::int64_t>& before, const std::vector<std::int64_t>& after);
   // Quanta imposed in all, and at each vertex (empty until something was imposed).
@@ -33,12 +40,8 @@ class ImposedChange {
   long long total_ = 0;
 };
 
-// A coupler's heights (m) as fixed-point counts of `quantum`: refused (an input error naming
-// `what`) when the count differs from `vertices`, a value is not finite, or a height leaves the
-// terrain's range of 2^53 quanta. The values of elevation() come back as the same counts.
-std::vector<std::int64_t> heights_in_quanta(const std::vector<double>& metres, double quantum,
-                                            std::size_t vertices, const std::string& what);
-// The fixed-point heights in metres (count × quantum: exact for every count below 2^53).
-std::vector<double> heights_in_metres(const std::vector<std::int64_t>& fixed, double quantum);
+// The terrain's exact heights in metres (count × quantum: exact for every count below 2^53); what
+// ImposedChange::impose() is given back rounds to the same counts.
+std::vector<double> heights_in_metres(DeviceTerrain& terrain);
 
 }  // namespace runnel

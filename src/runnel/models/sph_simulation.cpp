@@ -164,17 +164,11 @@ MassBalance Simulation::mass_balance() {
 }
 
 std::vector<double> Simulation::elevation() {
-  return heights_in_metres(solver_->terrain().download_fixed(), solver_->terrain().quantum());
+  return heights_in_metres(solver_->terrain());
 }
 
 void Simulation::set_elevation(const std::vector<double>& metres) {
-  if (ground_) throw input_error("set_elevation: not with a layer stack (ground.layers)");
-  DeviceTerrain& terrain = solver_->terrain();
-  const std::vector<std::int64_t> before = terrain.download_fixed();
-  const std::vector<std::int64_t> after =
-      heights_in_quanta(metres, terrain.quantum(), before.size(), "set_elevation");
-  terrain.upload_fixed(after);
-  imposed_.add(before, after);
+  imposed_.impose(solver_->terrain(), metres, ground_ != nullptr);
   solver_->terrain_replaced();
 }
 
