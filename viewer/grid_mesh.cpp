@@ -28,6 +28,18 @@ std::vector<float> grid_positions(const Heightmap& t, bool with_height) {
   return grid;
 }
 
+std::vector<float> grid_positions(int nx, int ny, double cell) {
+  std::vector<float> grid;
+  grid.reserve(2 * static_cast<std::size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      grid.push_back(static_cast<float>(i * cell));
+      grid.push_back(static_cast<float>(j * cell));
+    }
+  }
+  return grid;
+}
+
 GLuint make_buffer(GLenum target, std::size_t bytes, const void* data, GLenum usage) {
   GLuint buffer = 0;
   glGenBuffers(1, &buffer);

@@ -16,6 +16,8 @@ namespace runnel::viewer {
 std::vector<GLuint> grid_triangles(int nx, int ny);
 // x, z of every vertex (row-major), and its height when asked for.
 std::vector<float> grid_positions(const Heightmap& terrain, bool with_height);
+// x, z of every vertex of an nx × ny grid of spacing `cell` (row-major).
+std::vector<float> grid_positions(int nx, int ny, double cell);
 // A new buffer bound to `target` with `bytes` of `data` (zeros when null).
 GLuint make_buffer(GLenum target, std::size_t bytes, const void* data, GLenum usage);
 // Vertex attribute `location`: `components` floats a vertex from the bound array buffer.

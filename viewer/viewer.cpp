@@ -72,7 +72,7 @@ void Viewer::on_new_model() {
   min_height_ = t.min_height();
   max_height_ = std::max(t.max_height(), min_height_ + 1e-3f);
   terrain_ = std::make_unique<TerrainRenderer>(t);
-  water_ = std::make_unique<WaterRenderer>(t);
+  water_.reset();  // built for the water's grid at the first upload
   particles_ = std::make_unique<ParticleRenderer>();
   if (!rain_) rain_ = std::make_unique<RainStreaks>();
   upload();
@@ -209,7 +209,11 @@ void Viewer::upload() {
   const Heightmap t = model.terrain();
   terrain_->update(t.h, terrain_normals_reference(t));
   const WaterView w = model.interaction().water_view();
-  water_->update(t.h, w.depth, w.load, w.velocity);
+  const WaterSurface surface =
+      w.spacing > 0 ? particle_water_surface(t, w, w.spacing) : grid_water_surface(t, w);
+  if (!water_ || !water_->fits(surface))
+    water_ = std::make_unique<WaterRenderer>(surface.nx, surface.ny, surface.cell);
+  water_->update(surface);
   std::vector<float> depth_speed(2 * t.size(), 0.0f);
   for (std::size_t k = 0; k < w.depth.size(); ++k) {
     depth_speed[2 * k] = w.depth[k];
@@ -235,8 +239,10 @@ void Viewer::render_scene(int w, int h, bool with_brush) {
   const Heightmap& t = session_->model().initial_terrain();
   // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.
   // The streaks move on the model's clock: they pause with it, and a recording is reproducible.
+  water_->capture_bed(w, h);
+  // Streaks a cell wide, whatever grid the water lies on.
   water_->draw(vp, camera_.eye(), static_cast<float>(0.01 * t.cell),
-               static_cast<float>(session_->model().time()));
+               static_cast<float>(session_->model().time()), static_cast<float>(t.cell));
   if (show_particles_) {
     const double spacing = 0.5 * t.cell;
     particles_->draw(vp, static_cast<float>(spacing), static_cast<float>(h), particle_colour_);

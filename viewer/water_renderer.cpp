@@ -37,6 +37,8 @@ in float depth;
 in float load;
 uniform vec3 eye;
 uniform float min_depth, seconds, streak_scale;
+uniform vec2 viewport;
+uniform sampler2D bed_colour;  // the scene drawn so far: the terrain
 out vec4 colour;
 float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
 float noise(vec2 p) {  // value noise
@@ -64,51 +66,59 @@ void main() {
   vec3 v = normalize(eye - world);
   float cos_view = max(dot(n, v), 0.0);
   float fresnel = 0.02 + 0.98 * pow(1.0 - cos_view, 5.0);  // Schlick, water's F0
-  // Beer–Lambert over a 25 cm absorption length: thin water clear and pale, deep water blue-green
-  // and opaque. The sediment clouds it, but never past a third of its colour: it stays water.
-  float absorbed = 1.0 - exp(-depth / 0.25);
-  vec3 shallow = vec3(0.14, 0.46, 0.54), deep = vec3(0.03, 0.20, 0.34),
-       muddy = vec3(0.46, 0.36, 0.22);
-  vec3 body = mix(mix(shallow, deep, absorbed), muddy, 0.35 * clamp(load * 8.0, 0.0, 1.0));
-  vec3 sky = vec3(0.72, 0.82, 0.93);
+  // The bed seen through the water, refracted: the picture under the surface, displaced along the
+  // surface's slope by more where the water is deeper.
+  vec2 uv = gl_FragCoord.xy / viewport + n.xz * 0.03 * clamp(depth, 0.0, 1.0);
+  vec3 bed = texture(bed_colour, clamp(uv, vec2(0.0), vec2(1.0))).rgb;
+  // Beer–Lambert per colour over the depth, red absorbed first: thin water clear, the bed tinted
+  // blue-green, deep water the colour it scatters. The sediment clouds it, at most by a third.
+  vec3 transmitted = exp(-depth * vec3(12.0, 4.0, 2.8));
+  vec3 clear = vec3(0.05, 0.34, 0.46), muddy = vec3(0.46, 0.36, 0.22);
+  vec3 scattered = mix(clear, muddy, 0.35 * clamp(load * 8.0, 0.0, 1.0));
   vec3 sun = normalize(vec3(-0.5, 0.8, -0.3));
+  vec3 under = bed * transmitted + scattered * (0.65 + 0.35 * max(dot(n, sun), 0.0)) *
+                                       (1.0 - transmitted);
+  vec3 sky = vec3(0.72, 0.82, 0.93);
   float highlight = pow(max(dot(n, normalize(sun + v)), 0.0), 120.0);
-  vec3 c = mix(body * (0.65 + 0.35 * max(dot(n, sun), 0.0)), sky, 0.7 * fresnel) + 0.3 * highlight;
+  vec3 c = mix(under, sky, 0.7 * fresnel) + 0.3 * highlight;
   float speed = length(flow);
   c = mix(c, vec3(0.85, 0.92, 0.95), 0.45 * streaks(world.xz, flow) * smoothstep(0.2, 2.0, speed));
   float shore = smoothstep(min_depth, 3.0 * min_depth, depth);  // thin edges fade out
-  colour = vec4(c, shore * clamp(0.35 + 0.6 * absorbed + fresnel, 0.0, 0.93));
+  colour = vec4(c, shore);
 })";
 
 }  // namespace
 
-WaterRenderer::WaterRenderer(const Heightmap& t)
-    : program_(kWaterVertex, kWaterFragment),
-      nx_(t.nx),
-      ny_(t.ny),
-      cell_(static_cast<float>(t.cell)) {
-  const std::vector<float> grid = grid_positions(t, false);
-  const std::vector<GLuint> index = grid_triangles(t.nx, t.ny);  // the terrain's, so shores match
+WaterRenderer::WaterRenderer(int nx, int ny, double cell)
+    : program_(kWaterVertex, kWaterFragment), nx_(nx), ny_(ny), cell_(cell) {
+  const std::size_t n = static_cast<std::size_t>(nx) * ny;
+  const std::vector<float> grid = grid_positions(nx, ny, cell);
+  const std::vector<GLuint> index = grid_triangles(nx, ny);  // the terrain's split, so shores match
   indices_ = static_cast<GLsizei>(index.size());
   glGenVertexArrays(1, &vao_);
   glBindVertexArray(vao_);
   grid_vbo_ =
       make_buffer(GL_ARRAY_BUFFER, grid.size() * sizeof(float), grid.data(), GL_STATIC_DRAW);
   float_attribute(0, 2);
-  dynamic_vbo_ =
-      make_buffer(GL_ARRAY_BUFFER, t.size() * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+  dynamic_vbo_ = make_buffer(GL_ARRAY_BUFFER, n * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
   float_attribute(1, 3);
-  normal_vbo_ =
-      make_buffer(GL_ARRAY_BUFFER, t.size() * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+  normal_vbo_ = make_buffer(GL_ARRAY_BUFFER, n * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
   float_attribute(2, 3);
-  flow_vbo_ = make_buffer(GL_ARRAY_BUFFER, t.size() * 2 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+  flow_vbo_ = make_buffer(GL_ARRAY_BUFFER, n * 2 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
   float_attribute(3, 2);
   ibo_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
                      GL_STATIC_DRAW);
   glBindVertexArray(0);
+  glGenTextures(1, &bed_);
+  glBindTexture(GL_TEXTURE_2D, bed_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
 WaterRenderer::~WaterRenderer() {
+  glDeleteTextures(1, &bed_);
   glDeleteBuffers(1, &grid_vbo_);
   glDeleteBuffers(1, &dynamic_vbo_);
   glDeleteBuffers(1, &normal_vbo_);
@@ -117,23 +127,25 @@ WaterRenderer::~WaterRenderer() {
   glDeleteVertexArrays(1, &vao_);
 }
 
-void WaterRenderer::update(const std::vector<float>& ground, const std::vector<float>& depth,
-                           const std::vector<float>& load, const std::vector<float>& velocity) {
-  interleaved_.assign(ground.size() * 3, 0.0f);
-  for (std::size_t k = 0; k < ground.size(); ++k) {
-    interleaved_[3 * k] = ground[k];
-    interleaved_[3 * k + 1] = k < depth.size() ? depth[k] : 0.0f;
-    interleaved_[3 * k + 2] = k < load.size() ? load[k] : 0.0f;
+bool WaterRenderer::fits(const WaterSurface& s) const {
+  return s.nx == nx_ && s.ny == ny_ && s.cell == cell_;
+}
+
+void WaterRenderer::update(const WaterSurface& s) {
+  const std::size_t n = static_cast<std::size_t>(nx_) * ny_;
+  interleaved_.assign(n * 3, 0.0f);
+  for (std::size_t k = 0; k < n; ++k) {
+    interleaved_[3 * k] = s.ground[k];
+    interleaved_[3 * k + 1] = s.depth[k];
+    interleaved_[3 * k + 2] = s.load[k];
   }
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_vbo_);
   glBufferSubData(GL_ARRAY_BUFFER, 0, interleaved_.size() * sizeof(float), interleaved_.data());
   surface_normals();
   glBindBuffer(GL_ARRAY_BUFFER, normal_vbo_);
   glBufferSubData(GL_ARRAY_BUFFER, 0, normals_.size() * sizeof(float), normals_.data());
-  flow_.assign(2 * ground.size(), 0.0f);
-  std::copy_n(velocity.begin(), std::min(velocity.size(), flow_.size()), flow_.begin());
   glBindBuffer(GL_ARRAY_BUFFER, flow_vbo_);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, flow_.size() * sizeof(float), flow_.data());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, 2 * n * sizeof(float), s.velocity.data());
 }
 
 // The water surface's normal at each vertex, from central differences of its height (ground +
@@ -146,12 +158,13 @@ void WaterRenderer::surface_normals() {
     const std::size_t k = static_cast<std::size_t>(j) * nx_ + i;
     return interleaved_[3 * k + 1] > 0.0f ? interleaved_[3 * k] + interleaved_[3 * k + 1] : own;
   };
+  const float cell = static_cast<float>(cell_);
   for (int j = 0; j < ny_; ++j)
     for (int i = 0; i < nx_; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * nx_ + i;
       const float own = interleaved_[3 * k] + interleaved_[3 * k + 1];
-      const float dx = (surface(i + 1, j, own) - surface(i - 1, j, own)) / (2.0f * cell_);
-      const float dz = (surface(i, j + 1, own) - surface(i, j - 1, own)) / (2.0f * cell_);
+      const float dx = (surface(i + 1, j, own) - surface(i - 1, j, own)) / (2.0f * cell);
+      const float dz = (surface(i, j + 1, own) - surface(i, j - 1, own)) / (2.0f * cell);
       const glm::vec3 n = glm::normalize(glm::vec3(-dx, 1.0f, -dz));
       normals_[3 * k] = n.x;
       normals_[3 * k + 1] = n.y;
@@ -159,14 +172,30 @@ void WaterRenderer::surface_normals() {
     }
 }
 
-void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_depth,
-                         float seconds) const {
+// The picture drawn so far (the terrain) into the bed texture the water refracts.
+void WaterRenderer::capture_bed(int width, int height) {
+  glBindTexture(GL_TEXTURE_2D, bed_);
+  if (width != bed_width_ || height != bed_height_) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, width, height, 0, GL_RGB, GL_UNSIGNED_BYTE, nullptr);
+    bed_width_ = width;
+    bed_height_ = height;
+  }
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, width, height);
+}
+
+void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_depth, float seconds,
+                         float streak_width) const {
   program_.use();
   glUniform1f(program_.uniform("seconds"), seconds);
-  glUniform1f(program_.uniform("streak_scale"), cell_);  // streaks a cell wide
+  glUniform1f(program_.uniform("streak_scale"), streak_width);
   glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
   glUniform3f(program_.uniform("eye"), eye.x, eye.y, eye.z);
   glUniform1f(program_.uniform("min_depth"), min_depth);
+  glUniform2f(program_.uniform("viewport"), static_cast<float>(bed_width_),
+              static_cast<float>(bed_height_));
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, bed_);
+  glUniform1i(program_.uniform("bed_colour"), 0);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glDepthMask(GL_FALSE);  // the terrain under the water stays in the depth buffer

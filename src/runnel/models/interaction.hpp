@@ -26,6 +26,9 @@ struct WaterView {
   // it (the pipe model, SPH's particles binned); empty otherwise.
   std::vector<float> velocity;
   std::vector<float> points;
+  // Each particle's horizontal velocity (x, z interleaved, m/s), beside `points`.
+  std::vector<float> point_velocity;
+  double spacing = 0;  // the particles' spacing (m); 0: the model has no particles
 };
 
 // The model's side of the interaction, apart from its physics (Model::interactive() gives it):

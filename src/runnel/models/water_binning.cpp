@@ -39,7 +39,9 @@ WaterView bin_particles(const HostParticles& p, int nx, int ny, double cell, dou
   std::vector<double> volume(n, 0.0), sediment(n, 0.0), speed(n, 0.0), flow_x(n, 0.0),
       flow_z(n, 0.0);
   WaterView view;
+  view.spacing = spacing;
   view.points.reserve(4 * p.size());
+  view.point_velocity.reserve(2 * p.size());
   const double particle = spacing * spacing * spacing;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double x = std::clamp(p.f[kX][i] / cell, 0.0, nx - 1.0),
@@ -63,6 +65,7 @@ WaterView bin_particles(const HostParticles& p, int nx, int ny, double cell, dou
     }
     view.points.insert(view.points.end(),
                        {p.f[kX][i], p.f[kY][i], p.f[kZ][i], static_cast<float>(load / particle)});
+    view.point_velocity.insert(view.point_velocity.end(), {p.f[kVx][i], p.f[kVz][i]});
   }
   for (auto* field : {&volume, &sediment, &speed, &flow_x, &flow_z}) {
     smooth(*field, nx, ny, true);
