@@ -53,6 +53,9 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
   app.add_flag("--no-rain", no_rain, "start with the scenario's rain off (paint it)");
   app.add_flag("--particles", o.particles, "draw the SPH particles as dots over the water");
   app.add_flag("--paused", o.paused, "start paused (space plays)");
+  app.add_flag("--water-normals", o.water_normals,
+               "draw only the water, coloured by its shading normal (x, y, z as red, green, "
+               "blue) on black: to check the surface's smoothness");
   app.add_option("--size", size, "window size WxH")->capture_default_str();
   app.add_option("--overlay", overlay, "terrain overlay at start: none, erosion, water or speed")
       ->check(CLI::IsMember({"none", "erosion", "water", "speed"}))

@@ -230,19 +230,25 @@ void Viewer::upload() {
 
 void Viewer::render_scene(int w, int h, bool with_brush) {
   glViewport(0, 0, w, h);
-  glClearColor(0.55f, 0.68f, 0.82f, 1.0f);
+  const bool normals = options_.water_normals;  // the terrain only hides the water behind it
+  if (normals)
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  else
+    glClearColor(0.55f, 0.68f, 0.82f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   const glm::mat4 vp = camera_.projection(static_cast<float>(w) / std::max(h, 1)) * camera_.view();
+  glColorMask(!normals, !normals, !normals, GL_TRUE);
   terrain_->draw(vp, min_height_, max_height_, overlay_, erosion_overlay_scale(),
                  glm::vec3(brush_.x, brush_.z, brush_.radius), with_brush && brush_.over_terrain);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   const Heightmap& t = session_->model().initial_terrain();
   // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.
   // The streaks move on the model's clock: they pause with it, and a recording is reproducible.
   water_->capture_bed(w, h);
   // Streaks a cell wide, whatever grid the water lies on.
   water_->draw(vp, camera_.eye(), static_cast<float>(0.01 * t.cell),
-               static_cast<float>(session_->model().time()), static_cast<float>(t.cell));
+               static_cast<float>(session_->model().time()), static_cast<float>(t.cell), normals);
   if (show_particles_) {
     const double spacing = 0.5 * t.cell;
     particles_->draw(vp, static_cast<float>(spacing), static_cast<float>(h), particle_colour_);

@@ -39,6 +39,7 @@ uniform vec3 eye;
 uniform float min_depth, seconds, streak_scale;
 uniform vec2 viewport;
 uniform sampler2D bed_colour;  // the scene drawn so far: the terrain
+uniform int normals_only;      // --water-normals: the shading normal as colour
 out vec4 colour;
 float hash(vec2 p) { return fract(sin(dot(p, vec2(127.1, 311.7))) * 43758.5453); }
 float noise(vec2 p) {  // value noise
@@ -63,6 +64,10 @@ void main() {
   if (depth < min_depth) discard;
   // The surface's own normal, smooth across the mesh (WaterRenderer::update): no facets.
   vec3 n = normalize(normal);
+  if (normals_only == 1) {
+    colour = vec4(0.5 * n + 0.5, 1.0);
+    return;
+  }
   vec3 v = normalize(eye - world);
   float cos_view = max(dot(n, v), 0.0);
   float fresnel = 0.02 + 0.98 * pow(1.0 - cos_view, 5.0);  // Schlick, water's F0
@@ -165,11 +170,35 @@ void WaterRenderer::surface_normals() {
       const float own = interleaved_[3 * k] + interleaved_[3 * k + 1];
       const float dx = (surface(i + 1, j, own) - surface(i - 1, j, own)) / (2.0f * cell);
       const float dz = (surface(i, j + 1, own) - surface(i, j - 1, own)) / (2.0f * cell);
-      const glm::vec3 n = glm::normalize(glm::vec3(-dx, 1.0f, -dz));
-      normals_[3 * k] = n.x;
-      normals_[3 * k + 1] = n.y;
-      normals_[3 * k + 2] = n.z;
+      normals_[3 * k] = -dx;
+      normals_[3 * k + 1] = 1.0f;
+      normals_[3 * k + 2] = -dz;
     }
+  // The slopes blurred once by 1-2-1 in x and in z over the wet vertices, as a narrow-range filter
+  // smooths a fluid's depth: the surface's ripples at the particles' own scale soften, its shape
+  // stays.
+  for (const std::size_t stride : {std::size_t{1}, static_cast<std::size_t>(nx_)}) {
+    blurred_ = normals_;
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i) {
+        const std::size_t k = static_cast<std::size_t>(j) * nx_ + i;
+        const int pos = stride == 1 ? i : j, end = stride == 1 ? nx_ : ny_;
+        if (pos == 0 || pos + 1 == end || interleaved_[3 * (k - stride) + 1] <= 0.0f ||
+            interleaved_[3 * (k + stride) + 1] <= 0.0f)
+          continue;
+        for (int c = 0; c < 3; c += 2)
+          blurred_[3 * k + c] =
+              0.5f * normals_[3 * k + c] +
+              0.25f * (normals_[3 * (k - stride) + c] + normals_[3 * (k + stride) + c]);
+      }
+    normals_.swap(blurred_);
+  }
+  for (std::size_t k = 0; k < normals_.size(); k += 3) {
+    const glm::vec3 n = glm::normalize(glm::vec3(normals_[k], normals_[k + 1], normals_[k + 2]));
+    normals_[k] = n.x;
+    normals_[k + 1] = n.y;
+    normals_[k + 2] = n.z;
+  }
 }
 
 // The picture drawn so far (the terrain) into the bed texture the water refracts.
@@ -184,7 +213,7 @@ void WaterRenderer::capture_bed(int width, int height) {
 }
 
 void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_depth, float seconds,
-                         float streak_width) const {
+                         float streak_width, bool normals_only) const {
   program_.use();
   glUniform1f(program_.uniform("seconds"), seconds);
   glUniform1f(program_.uniform("streak_scale"), streak_width);
@@ -196,6 +225,7 @@ void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_de
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, bed_);
   glUniform1i(program_.uniform("bed_colour"), 0);
+  glUniform1i(program_.uniform("normals_only"), normals_only ? 1 : 0);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glDepthMask(GL_FALSE);  // the terrain under the water stays in the depth buffer

@@ -29,9 +29,10 @@ class WaterRenderer {
   // Takes the picture drawn so far (the terrain, width × height) as the bed the water refracts;
   // call it before draw().
   void capture_bed(int width, int height);
-  // `seconds`: the model's clock, which moves the flow's streaks; `streak_width` in metres.
+  // `seconds`: the model's clock, which moves the flow's streaks; `streak_width` in metres;
+  // `normals_only`: the shading normal as colour (x, y, z → red, green, blue), opaque.
   void draw(const glm::mat4& view_projection, const glm::vec3& eye, float min_depth, float seconds,
-            float streak_width) const;
+            float streak_width, bool normals_only = false) const;
 
  private:
   void surface_normals();
@@ -42,7 +43,7 @@ class WaterRenderer {
   GLuint bed_ = 0;
   int bed_width_ = 0, bed_height_ = 0;
   GLsizei indices_ = 0;
-  std::vector<float> interleaved_, normals_;
+  std::vector<float> interleaved_, normals_, blurred_;
 };
 
 }  // namespace runnel::viewer

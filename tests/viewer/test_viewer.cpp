@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -407,6 +408,59 @@ TEST_P(ViewerPaints, WaterAppearsWhereTheBrushRained) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, ViewerPaints, ::testing::Values("sph", "pipe"));
+
+// The water surface is smooth, not flat-shaded triangles: drawn by its shading normal
+// (--water-normals, black where there is no water), neighbouring water pixels' normals differ by a
+// mean square below 0.01. Flat-shaded triangles of the same surfaces measure 0.037 (SPH) and
+// 0.016 (pipe): a normal jumps at every edge. For SPH (its particles' surface) and the pipe model.
+class WaterSurfaceShading : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(WaterSurfaceShading, NeighbouringPixelsNormalsVaryLittle) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  const bool sph = GetParam() == "sph";
+  // Six seconds of the storm for SPH (dfsph, which takes steps of the flow's length), a minute for
+  // the pipe model, whose sheets take that long to gather into water deeper than 2 cm.
+  const test::CliResult run = test::run_cli(
+      {"run", test::source_dir() + "/data/scenarios/default.toml", "--model", GetParam(), "--set",
+       sph ? "sph.solver=dfsph" : "run.seed=1", "--set", sph ? "run.sim_time=6" : "run.sim_time=60",
+       "--quiet", "--out", dir.path("storm")});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string cmd = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + dir.path("storm/final.h5") +
+                          " --paused --frames 2 --size 800x600 --water-normals --screenshot " +
+                          dir.path("normals.png") + " > " + dir.path("log.txt") + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << test::read_text(dir.path("log.txt"));
+  const Picture p = read_rgb_png(dir.path("normals.png"));
+  ASSERT_EQ(p.width, 800);
+  auto normal = [&](int i, int j) {
+    const std::size_t k = 3 * (static_cast<std::size_t>(j) * p.width + i);
+    return std::array<double, 3>{p.rgb[k] / 127.5 - 1, p.rgb[k + 1] / 127.5 - 1,
+                                 p.rgb[k + 2] / 127.5 - 1};
+  };
+  auto water = [&](int i, int j) {
+    const std::size_t k = 3 * (static_cast<std::size_t>(j) * p.width + i);
+    return p.rgb[k] + p.rgb[k + 1] + p.rgb[k + 2] > 30;
+  };
+  double sum = 0;
+  long pairs = 0;
+  for (int j = 0; j + 1 < p.height; ++j)
+    for (int i = 0; i + 1 < p.width; ++i) {
+      if (!water(i, j)) continue;
+      for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        if (!water(i + di, j + dj)) continue;
+        const auto a = normal(i, j), b = normal(i + di, j + dj);
+        sum += (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+               (a[2] - b[2]) * (a[2] - b[2]);
+        ++pairs;
+      }
+    }
+  ASSERT_GT(pairs, 10000) << "the storm left water to draw";
+  EXPECT_LT(sum / pairs, 0.01) << "mean squared normal difference of neighbouring water pixels";
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, WaterSurfaceShading, ::testing::Values("sph", "pipe"));
 
 // While the brush paints rain, streaks fall under it: the window captured in the middle of a drag
 // (Escape while the button is held, --screenshot-panel) has pale streak pixels around the brush
