@@ -14,16 +14,16 @@ namespace runnel::viewer {
 void Viewer::handle_input() {
   ImGuiIO& io = ImGui::GetIO();
   double x = 0, y = 0;
-  glfwGetCursorPos(window_, &x, &y);
+  window_.cursor(x, y);
   const double dx = x - last_x_, dy = y - last_y_;
   last_x_ = x;
   last_y_ = y;
   int w = 0, h = 0;
-  glfwGetWindowSize(window_, &w, &h);
+  window_.window_size(w, h);
   if (!io.WantCaptureMouse) {
-    if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
+    if (window_.button_down(GLFW_MOUSE_BUTTON_RIGHT))
       camera_.orbit(static_cast<float>(dx), static_cast<float>(dy));
-    if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) {
+    if (window_.button_down(GLFW_MOUSE_BUTTON_MIDDLE)) {
       camera_.pan(static_cast<float>(dx), static_cast<float>(dy), static_cast<float>(h));
     }
     if (io.MouseWheel != 0.0f) {
@@ -51,7 +51,7 @@ bool Viewer::handle_brush(double x, double y, int w, int h, bool mouse_on_panel)
     brush_.x = hit->x;
     brush_.z = hit->z;
   }
-  const bool down = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  const bool down = window_.button_down(GLFW_MOUSE_BUTTON_LEFT);
   const bool painting_rain = brush_mode_ == BrushMode::kRain;
   const bool rain_mask = brush_mode_ == BrushMode::kDry || brush_mode_ == BrushMode::kWet;
   const bool can_paint = !session_->replaying() &&
@@ -107,7 +107,7 @@ void Viewer::handle_keys(bool can_paint) {
     session_->set_global_rain(!session_->global_rain());
   if (pressed(GLFW_KEY_H)) help_ = !help_;
   if (pressed(GLFW_KEY_HOME)) frame_camera();
-  if (pressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window_, 1);
+  if (pressed(GLFW_KEY_ESCAPE)) window_.close();
 }
 
 // The painted rain: the brush while it is down, then the sources. The session logs each change.

@@ -53,6 +53,10 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
   app.add_flag("--no-rain", no_rain, "start with the scenario's rain off (paint it)");
   app.add_flag("--particles", o.particles, "draw the SPH particles as dots over the water");
   app.add_flag("--paused", o.paused, "start paused (space plays)");
+  app.add_flag("--headless", o.headless,
+               "draw with no display or window, through EGL (a GPU server, a CI machine): for "
+               "--screenshot, --record and --bench; no mouse or keys, so give --frames or "
+               "--replay");
   app.add_flag("--water-normals", o.water_normals,
                "draw only the water, coloured by its shading normal (x, y, z as red, green, "
                "blue) on black: to check the surface's smoothness");
@@ -108,6 +112,9 @@ int main(int argc, char** argv) {
                                 ": --bench times the "
                                 "frames after the first " +
                                 std::to_string(kBenchWarmupFrames));
+    if (o.headless && o.frames == 0 && o.replay.empty())
+      throw runnel::input_error(
+          "--headless: give --frames N or --replay LOG (no window, nothing else ends the run)");
     // Files and names are checked before a window opens: a bad one is refused without a display.
     if (!o.input.empty()) runnel::require_regular_input(o.input, "input");
     if (!o.replay.empty()) runnel::read_session_log(o.replay);

@@ -4,7 +4,6 @@
 #include "viewer.hpp"
 
 #include <imgui.h>
-#include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
 #include <algorithm>
@@ -105,7 +104,7 @@ float Viewer::erosion_overlay_scale() const {
 void Viewer::frame_camera() {
   const Heightmap& t = session_->model().initial_terrain();
   int w = 0, h = 0;
-  glfwGetFramebufferSize(window_, &w, &h);
+  window_.framebuffer_size(w, h);
   // The vertices of the edges and of a grid of at most 64 × 64 inside: the terrain's silhouette.
   std::vector<glm::vec3> points;
   const int step = std::max(1, std::max(t.nx, t.ny) / 64);
@@ -127,7 +126,7 @@ void Viewer::save_checkpoint() {
 // The scene without the panel, at screenshot_scale × the window, rendered offscreen.
 void Viewer::screenshot(const std::string& path) {
   int w = 0, h = 0;
-  glfwGetFramebufferSize(window_, &w, &h);
+  window_.framebuffer_size(w, h);
   const int scale = std::max(1, options_.screenshot_scale);
   try {
     OffscreenTarget target(w * scale, h * scale);
@@ -174,7 +173,7 @@ void Viewer::advance() {
     playing_ = false;
     failed_ = true;
     // Nobody is there to undo in a replay or a run of --frames: end it.
-    if (session_->replaying() || options_.frames > 0) glfwSetWindowShouldClose(window_, 1);
+    if (session_->replaying() || options_.frames > 0) window_.close();
   }
 }
 
@@ -212,7 +211,9 @@ void Viewer::upload() {
   const WaterSurface surface =
       w.spacing > 0 ? particle_water_surface(t, w, w.spacing) : grid_water_surface(t, w);
   if (!water_ || !water_->fits(surface))
-    water_ = std::make_unique<WaterRenderer>(surface.nx, surface.ny, surface.cell);
+    // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.
+    water_ = std::make_unique<WaterRenderer>(surface.nx, surface.ny, surface.cell,
+                                             static_cast<float>(0.01 * t.cell));
   water_->update(surface);
   std::vector<float> depth_speed(2 * t.size(), 0.0f);
   for (std::size_t k = 0; k < w.depth.size(); ++k) {
@@ -243,12 +244,11 @@ void Viewer::render_scene(int w, int h, bool with_brush) {
                  glm::vec3(brush_.x, brush_.z, brush_.radius), with_brush && brush_.over_terrain);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   const Heightmap& t = session_->model().initial_terrain();
-  // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.
   // The streaks move on the model's clock: they pause with it, and a recording is reproducible.
   water_->capture_bed(w, h);
   // Streaks a cell wide, whatever grid the water lies on.
-  water_->draw(vp, camera_.eye(), static_cast<float>(0.01 * t.cell),
-               static_cast<float>(session_->model().time()), static_cast<float>(t.cell), normals);
+  water_->draw(vp, camera_.eye(), static_cast<float>(session_->model().time()),
+               static_cast<float>(t.cell), normals);
   if (show_particles_) {
     const double spacing = 0.5 * t.cell;
     particles_->draw(vp, static_cast<float>(spacing), static_cast<float>(h), particle_colour_);
@@ -258,7 +258,7 @@ void Viewer::render_scene(int w, int h, bool with_brush) {
     const int i = std::clamp(static_cast<int>(std::lround(brush_.x / t.cell)), 0, t.nx - 1),
               j = std::clamp(static_cast<int>(std::lround(brush_.z / t.cell)), 0, t.ny - 1);
     rain_->draw(vp, glm::vec3(brush_.x, t.at(i, j), brush_.z), static_cast<float>(brush_.radius),
-                static_cast<float>(glfwGetTime()));
+                static_cast<float>(window_.seconds()));
   }
 }
 
@@ -288,10 +288,9 @@ int Viewer::loop() {
   auto fps_start = Clock::now();
   long long fps_frames = 0;
   double fps = 0;
-  while (!glfwWindowShouldClose(window_)) {
-    glfwPollEvents();
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
+  while (!window_.closing()) {
+    window_.poll_events();
+    window_.new_imgui_frame();
     ImGui::NewFrame();
     for (auto& action : panel_actions_) action();
     panel_actions_.clear();
@@ -308,7 +307,7 @@ int Viewer::loop() {
     }
 
     int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
+    window_.framebuffer_size(w, h);
     if (recorder_) {
       render_scene(w, h);
       glReadBuffer(GL_BACK);
@@ -338,10 +337,10 @@ int Viewer::loop() {
     if (options_.stats_every > 0 && frame % options_.stats_every == 0) print_stats(frame, fps);
     const bool last = (options_.frames > 0 && frame >= options_.frames) ||
                       (session_->replaying() && session_->replay_finished());
-    if ((last || glfwWindowShouldClose(window_)) && options_.screenshot_panel &&
+    if ((last || window_.closing()) && options_.screenshot_panel &&
         !options_.screenshot.empty())
       screenshot_window(w, h);
-    glfwSwapBuffers(window_);
+    window_.present();
     if (last) break;
   }
   if (options_.bench) print_bench(frame);

@@ -22,6 +22,7 @@
 #include "runnel/compute/context.hpp"
 #include "runnel/interactive/session.hpp"
 #include "water_renderer.hpp"
+#include "window.hpp"
 
 namespace runnel::viewer {
 
@@ -35,7 +36,7 @@ std::vector<int>& key_presses();
 
 class Viewer {
  public:
-  Viewer(const ViewerOptions& options, GLFWwindow* window)
+  Viewer(const ViewerOptions& options, Window& window)
       : options_(options), window_(window), compute_(options.device) {
     load();
   }
@@ -84,7 +85,7 @@ class Viewer {
   std::set<int> presses_;
 
   ViewerOptions options_;
-  GLFWwindow* window_;
+  Window& window_;
   ComputeContext compute_;
   std::unique_ptr<Session> session_;
   std::uint64_t shown_generation_ = 0;  // the session's model the renderers were built for

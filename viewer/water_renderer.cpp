@@ -94,12 +94,11 @@ void main() {
 
 }  // namespace
 
-WaterRenderer::WaterRenderer(int nx, int ny, double cell)
-    : program_(kWaterVertex, kWaterFragment), nx_(nx), ny_(ny), cell_(cell) {
+WaterRenderer::WaterRenderer(int nx, int ny, double cell, float min_depth)
+    : program_(kWaterVertex, kWaterFragment), nx_(nx), ny_(ny), cell_(cell), min_depth_(min_depth) {
   const std::size_t n = static_cast<std::size_t>(nx) * ny;
   const std::vector<float> grid = grid_positions(nx, ny, cell);
-  const std::vector<GLuint> index = grid_triangles(nx, ny);  // the terrain's split, so shores match
-  indices_ = static_cast<GLsizei>(index.size());
+  all_triangles_ = grid_triangles(nx, ny);  // the terrain's split, so shores match
   glGenVertexArrays(1, &vao_);
   glBindVertexArray(vao_);
   grid_vbo_ =
@@ -111,8 +110,8 @@ WaterRenderer::WaterRenderer(int nx, int ny, double cell)
   float_attribute(2, 3);
   flow_vbo_ = make_buffer(GL_ARRAY_BUFFER, n * 2 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
   float_attribute(3, 2);
-  ibo_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
-                     GL_STATIC_DRAW);
+  ibo_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, all_triangles_.size() * sizeof(GLuint), nullptr,
+                     GL_DYNAMIC_DRAW);
   glBindVertexArray(0);
   glGenTextures(1, &bed_);
   glBindTexture(GL_TEXTURE_2D, bed_);
@@ -151,6 +150,18 @@ void WaterRenderer::update(const WaterSurface& s) {
   glBufferSubData(GL_ARRAY_BUFFER, 0, normals_.size() * sizeof(float), normals_.data());
   glBindBuffer(GL_ARRAY_BUFFER, flow_vbo_);
   glBufferSubData(GL_ARRAY_BUFFER, 0, 2 * n * sizeof(float), s.velocity.data());
+  // Only the triangles with water deep enough to draw at a corner: the dry rest of the grid would
+  // cost the rasteriser a fragment for every pixel of terrain, each discarded.
+  wet_triangles_.clear();
+  for (std::size_t t = 0; t < all_triangles_.size(); t += 3) {
+    const GLuint* v = &all_triangles_[t];
+    if (s.depth[v[0]] >= min_depth_ || s.depth[v[1]] >= min_depth_ || s.depth[v[2]] >= min_depth_)
+      wet_triangles_.insert(wet_triangles_.end(), v, v + 3);
+  }
+  glBindVertexArray(vao_);
+  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, wet_triangles_.size() * sizeof(GLuint),
+                  wet_triangles_.data());
+  glBindVertexArray(0);
 }
 
 // The water surface's normal at each vertex, from central differences of its height (ground +
@@ -212,14 +223,15 @@ void WaterRenderer::capture_bed(int width, int height) {
   glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, width, height);
 }
 
-void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_depth, float seconds,
+void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float seconds,
                          float streak_width, bool normals_only) const {
+  if (wet_triangles_.empty()) return;
   program_.use();
   glUniform1f(program_.uniform("seconds"), seconds);
   glUniform1f(program_.uniform("streak_scale"), streak_width);
   glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
   glUniform3f(program_.uniform("eye"), eye.x, eye.y, eye.z);
-  glUniform1f(program_.uniform("min_depth"), min_depth);
+  glUniform1f(program_.uniform("min_depth"), min_depth_);
   glUniform2f(program_.uniform("viewport"), static_cast<float>(bed_width_),
               static_cast<float>(bed_height_));
   glActiveTexture(GL_TEXTURE0);
@@ -230,7 +242,8 @@ void WaterRenderer::draw(const glm::mat4& vp, const glm::vec3& eye, float min_de
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glDepthMask(GL_FALSE);  // the terrain under the water stays in the depth buffer
   glBindVertexArray(vao_);
-  glDrawElements(GL_TRIANGLES, indices_, GL_UNSIGNED_INT, nullptr);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(wet_triangles_.size()), GL_UNSIGNED_INT,
+                 nullptr);
   glBindVertexArray(0);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);

@@ -21,7 +21,8 @@ namespace runnel::viewer {
 // stronger where the water runs fast.
 class WaterRenderer {
  public:
-  WaterRenderer(int nx, int ny, double cell);
+  // Water thinner than `min_depth` (m) is a wet film, not drawn.
+  WaterRenderer(int nx, int ny, double cell, float min_depth);
   ~WaterRenderer();
   // Whether `surface` lies on this renderer's grid.
   bool fits(const WaterSurface& surface) const;
@@ -31,7 +32,7 @@ class WaterRenderer {
   void capture_bed(int width, int height);
   // `seconds`: the model's clock, which moves the flow's streaks; `streak_width` in metres;
   // `normals_only`: the shading normal as colour (x, y, z → red, green, blue), opaque.
-  void draw(const glm::mat4& view_projection, const glm::vec3& eye, float min_depth, float seconds,
+  void draw(const glm::mat4& view_projection, const glm::vec3& eye, float seconds,
             float streak_width, bool normals_only = false) const;
 
  private:
@@ -39,10 +40,11 @@ class WaterRenderer {
   GlProgram program_;
   int nx_, ny_;
   double cell_;
+  float min_depth_;
   GLuint vao_ = 0, grid_vbo_ = 0, dynamic_vbo_ = 0, normal_vbo_ = 0, flow_vbo_ = 0, ibo_ = 0;
   GLuint bed_ = 0;
   int bed_width_ = 0, bed_height_ = 0;
-  GLsizei indices_ = 0;
+  std::vector<GLuint> all_triangles_, wet_triangles_;
   std::vector<float> interleaved_, normals_, blurred_;
 };
 

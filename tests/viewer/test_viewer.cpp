@@ -117,6 +117,7 @@ TEST(Viewer, BadFlagsAreRefusedBeforeAWindowOpens) {
       {{dir.path("nothing.toml")}, "nothing.toml: cannot read the input (no such file)"},
       {{dir.path("bad.json"), "--save-at-exit", dir.path("bad.json")}, "is the input"},
       {{"--screenshot-scale", "20"}, "--screenshot-scale"},
+      {{"--headless"}, "--headless: give --frames N or --replay LOG"},
   };
   for (const auto& [args, expected] : cases) {
     const auto r = test::run_program(RUNNEL_VIEWER_BINARY, args, "DISPLAY=");
@@ -124,6 +125,47 @@ TEST(Viewer, BadFlagsAreRefusedBeforeAWindowOpens) {
     EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
   }
+}
+
+// With no display at all (DISPLAY unset), --headless draws through EGL the picture the windowed
+// viewer draws under X: the same scene, pixel for pixel within rounding, and its benchmark line.
+TEST(Viewer, HeadlessDrawsThePictureAWindowDrawsWithoutADisplay) {
+  REQUIRE_X_TOOLS();
+  XServer x;
+  ASSERT_TRUE(x.ready()) << "Xvfb did not start: " << x.describe();
+  test::ScratchDir dir;
+  const std::string scene = test::source_dir() + "/data/scenarios/default.toml --frames 3 " +
+                            "--size 640x480 --paused --screenshot ";
+  const std::string windowed = x.env() + " " + RUNNEL_VIEWER_BINARY + " " + scene +
+                               dir.path("window.png") + " > " + dir.path("log.txt") + " 2>&1";
+  ASSERT_EQ(std::system(windowed.c_str()), 0) << test::read_text(dir.path("log.txt"));
+  const test::CliResult headless =
+      test::run_program(RUNNEL_VIEWER_BINARY,
+                        {test::source_dir() + "/data/scenarios/default.toml", "--headless",
+                         "--frames", "3", "--size", "640x480", "--paused", "--screenshot",
+                         dir.path("headless.png")},
+                        "DISPLAY=");
+  ASSERT_EQ(headless.exit_code, 0) << headless.err;
+  const Picture a = read_rgb_png(dir.path("window.png")), b = read_rgb_png(dir.path("headless.png"));
+  ASSERT_EQ(a.width, 640);
+  ASSERT_EQ(b.width, 640);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  long differing = 0, terrain = 0;
+  for (std::size_t k = 0; k < a.rgb.size(); k += 3) {
+    differing += std::abs(a.rgb[k] - b.rgb[k]) + std::abs(a.rgb[k + 1] - b.rgb[k + 1]) +
+                     std::abs(a.rgb[k + 2] - b.rgb[k + 2]) >
+                 6;
+    terrain += a.rgb[k + 1] > a.rgb[k + 2];  // green above blue: not the sky
+  }
+  EXPECT_GT(terrain, 640 * 480 / 5) << "the picture shows the terrain";
+  EXPECT_LT(differing, 640 * 480 / 1000) << "pixels that differ between window and headless";
+  const test::CliResult bench = test::run_program(
+      RUNNEL_VIEWER_BINARY,
+      {test::source_dir() + "/data/scenarios/default.toml", "--headless", "--bench", "--frames",
+       "8", "--size", "320x240"},
+      "DISPLAY=");
+  ASSERT_EQ(bench.exit_code, 0) << bench.err;
+  EXPECT_NE(bench.out.find("\"fps\": "), std::string::npos) << bench.out;
 }
 
 TEST(Viewer, ScreenshotShowsTheRenderedTerrain) {
