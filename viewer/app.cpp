@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// runnel-viewer's frame: the window (a display's, or EGL's off-screen surface) and the viewer in it.
+// runnel-viewer's frame: the window (a display's, or EGL's off-screen surface) and the viewer in
+// it.
 #include "app.hpp"
 
 #include "viewer.hpp"

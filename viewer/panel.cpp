@@ -158,6 +158,15 @@ void Viewer::print_bench(long long frames) {
   Model& m = session_->model();
   const double wall = std::chrono::duration<double>(Clock::now() - bench_start_.wall).count();
   const long long timed = frames - kBenchWarmupFrames;
+  JsonObject phases;  // ms a frame
+  for (int p = 0; p < FrameTimer::kPhases; ++p)
+    phases.add(FrameTimer::kNames[p],
+               1e3 * timer_.seconds(static_cast<FrameTimer::Phase>(p)) / std::max(timed, 1LL));
+  const double water_draw = water_draw_seconds();
+  const double water =
+      timer_.seconds(FrameTimer::kWaterSurface) / std::max(timed, 1LL) + water_draw;
+  const double drawing = timer_.total() - timer_.seconds(FrameTimer::kSimulate) -
+                         timer_.seconds(FrameTimer::kReadWater);
   std::printf("%s\n",
               JsonObject()
                   .add("model", m.info().name)
@@ -168,7 +177,12 @@ void Viewer::print_bench(long long frames) {
                   .add("frames", timed)
                   .add("wall_seconds", wall)
                   .add("fps", timed / std::max(wall, 1e-9))
-                  .add("draw_share", bench_draw_seconds_ / std::max(wall, 1e-9))
+                  .add("display", window_.api())
+                  .add("gl_renderer", reinterpret_cast<const char*>(glGetString(GL_RENDERER)))
+                  .add("draw_share", drawing / std::max(wall, 1e-9))
+                  .add("water_share", water * timed / std::max(wall, 1e-9))
+                  .add("water_draw_ms", 1e3 * water_draw)
+                  .add("ms_per_frame", phases)
                   .add("simulated_seconds_per_wall_second",
                        (m.time() - bench_start_.time) / std::max(wall, 1e-9))
                   .add("steps_per_second",

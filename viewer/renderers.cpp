@@ -3,6 +3,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <string>
+
 #include "grid_mesh.hpp"
 
 namespace runnel::viewer {
@@ -25,7 +27,10 @@ void main() {
   gl_Position = view_projection * vec4(world, 1.0);
 })";
 
-const char* kTerrainFragment = R"(#version 330 core
+// The terrain's colour (ground_colour) and lighting (ground_light; ground_light_at from the ground
+// texture, for the bed the water refracts); then the water (WaterLayer::kShading) and the brush
+// ring.
+const char* kTerrainColour = R"(#version 330 core
 in vec3 world;
 in vec3 normal;
 in float dh;
@@ -34,13 +39,15 @@ uniform float min_height, max_height, overlay_scale, depth_scale;
 uniform int overlay;
 uniform vec3 brush;  // x, z, radius
 uniform int brush_visible;
+uniform sampler2D ground;  // the normal's x and z: the bed the water refracts, lit
+uniform vec2 ground_texels;
+uniform float ground_cell;
 out vec4 colour;
 vec3 diverging(float t) {  // red (eroded) – white – blue (deposited)
   vec3 red = vec3(0.70, 0.09, 0.17), white = vec3(0.97), blue = vec3(0.13, 0.40, 0.67);
   return t < 0.0 ? mix(white, red, -t) : mix(white, blue, t);
 }
-void main() {
-  vec3 n = normalize(normal);
+vec3 ground_colour(vec3 world, vec3 n, float dh, vec2 water) {
   float h = clamp((world.y - min_height) / max(max_height - min_height, 1e-6), 0.0, 1.0);
   // Texture splatting after Fritz 2016: sand, grass, rock, snow by height; rock on steep slopes.
   // The bands by height follow the terrain's relief in metres: bare rock above the grass only on
@@ -59,8 +66,23 @@ void main() {
     vec3 slow = vec3(0.15, 0.35, 0.85), fast = vec3(0.95, 0.90, 0.20);
     base = mix(base, mix(slow, fast, clamp(water.y / 15.0, 0.0, 1.0)), 0.85);
   }
-  vec3 light = normalize(vec3(-0.5, 0.8, -0.3));
-  vec3 lit = base * (0.35 + 0.65 * max(dot(n, light), 0.0));
+  return base;
+}
+float ground_light(vec3 n) {  // Lambert, from a fixed sun, with sky light
+  vec3 sun = normalize(vec3(-0.5, 0.8, -0.3));
+  return 0.35 + 0.65 * max(dot(n, sun), 0.0);
+}
+float ground_light_at(vec2 xz) {
+  vec2 g = texture(ground, (xz / ground_cell + 0.5) / ground_texels).rg;
+  return ground_light(vec3(g.x, sqrt(max(1.0 - dot(g, g), 0.0)), g.y));
+}
+)";
+
+const char* kTerrainMain = R"(
+void main() {
+  vec3 n = normalize(normal);
+  float light = ground_light(n);
+  vec3 lit = with_water(world, ground_colour(world, n, dh, water) * light, light);
   if (brush_visible == 1) {
     float d = length(world.xz - brush.xy);
     float ring = 1.0 - smoothstep(0.0, 0.06 * brush.z, abs(d - brush.z));
@@ -68,6 +90,16 @@ void main() {
   }
   colour = vec4(lit, 1.0);
 })";
+
+// No water to draw: the ground as it is, without the water's texture reads and shading (on
+// llvmpipe every pixel pays for the whole shader, whether a pixel is wet or not).
+const char* kNoWater = R"(
+vec3 with_water(vec3 world, vec3 ground, float ground_light) { return ground; }
+)";
+
+std::string terrain_fragment(bool water) {
+  return std::string(kTerrainColour) + (water ? WaterLayer::kShading : kNoWater) + kTerrainMain;
+}
 
 const char* kParticleVertex = R"(#version 330 core
 layout(location = 0) in vec4 particle;  // x, y, z, value
@@ -97,7 +129,11 @@ void main() {
 }  // namespace
 
 TerrainRenderer::TerrainRenderer(const Heightmap& t)
-    : program_(kTerrainVertex, kTerrainFragment), nx_(t.nx), ny_(t.ny) {
+    : program_(kTerrainVertex, terrain_fragment(true).c_str()),
+      dry_program_(kTerrainVertex, terrain_fragment(false).c_str()),
+      nx_(t.nx),
+      ny_(t.ny),
+      cell_(t.cell) {
   const std::vector<float> grid = grid_positions(t, true);
   const std::vector<GLuint> index = grid_triangles(t.nx, t.ny);
   indices_ = static_cast<GLsizei>(index.size());
@@ -114,9 +150,17 @@ TerrainRenderer::TerrainRenderer(const Heightmap& t)
   ibo_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
                      GL_STATIC_DRAW);
   glBindVertexArray(0);
+  glGenTextures(1, &ground_);
+  glBindTexture(GL_TEXTURE_2D, ground_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, nx_, ny_, 0, GL_RG, GL_FLOAT, nullptr);
 }
 
 TerrainRenderer::~TerrainRenderer() {
+  glDeleteTextures(1, &ground_);
   glDeleteBuffers(1, &grid_vbo_);
   glDeleteBuffers(1, &dynamic_vbo_);
   glDeleteBuffers(1, &water_vbo_);
@@ -134,6 +178,14 @@ void TerrainRenderer::update(const std::vector<float>& height, const std::vector
   }
   glBindBuffer(GL_ARRAY_BUFFER, dynamic_vbo_);
   glBufferSubData(GL_ARRAY_BUFFER, 0, interleaved_.size() * sizeof(float), interleaved_.data());
+  // The normals as a texture too: the bed the water refracts, lit.
+  ground_texels_.resize(height.size() * 2);
+  for (std::size_t k = 0; k < height.size(); ++k) {
+    ground_texels_[2 * k] = normal[3 * k];
+    ground_texels_[2 * k + 1] = normal[3 * k + 2];
+  }
+  glBindTexture(GL_TEXTURE_2D, ground_);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, nx_, ny_, GL_RG, GL_FLOAT, ground_texels_.data());
 }
 
 void TerrainRenderer::update_water(const std::vector<float>& depth_and_speed) {
@@ -142,17 +194,29 @@ void TerrainRenderer::update_water(const std::vector<float>& depth_and_speed) {
                   depth_and_speed.data());
 }
 
-void TerrainRenderer::draw(const glm::mat4& vp, float lo, float hi, TerrainOverlay overlay,
-                           float scale, const glm::vec3& brush, bool brush_visible) const {
-  program_.use();
-  glUniformMatrix4fv(program_.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
-  glUniform1f(program_.uniform("min_height"), lo);
-  glUniform1f(program_.uniform("max_height"), hi);
-  glUniform1f(program_.uniform("overlay_scale"), scale);
-  glUniform1f(program_.uniform("depth_scale"), depth_scale_);
-  glUniform1i(program_.uniform("overlay"), static_cast<int>(overlay));
-  glUniform3f(program_.uniform("brush"), brush.x, brush.y, brush.z);
-  glUniform1i(program_.uniform("brush_visible"), brush_visible ? 1 : 0);
+void TerrainRenderer::draw(const glm::mat4& vp, const TerrainLook& look, const WaterLayer& water,
+                           const WaterLook& water_look) const {
+  const bool wet = !water_look.hidden && water.any();
+  const GlProgram& shader = wet ? program_ : dry_program_;
+  shader.use();
+  if (wet) water.bind(shader, 1, water_look);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, ground_);
+  glUniform1i(shader.uniform("ground"), 0);
+  glUniform2f(shader.uniform("ground_texels"), static_cast<float>(nx_), static_cast<float>(ny_));
+  glUniform1f(shader.uniform("ground_cell"), static_cast<float>(cell_));
+  const float lo = look.min_height, hi = look.max_height, scale = look.overlay_scale;
+  const TerrainOverlay overlay = look.overlay;
+  const glm::vec3& brush = look.brush;
+  const bool brush_visible = look.brush_visible;
+  glUniformMatrix4fv(shader.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
+  glUniform1f(shader.uniform("min_height"), lo);
+  glUniform1f(shader.uniform("max_height"), hi);
+  glUniform1f(shader.uniform("overlay_scale"), scale);
+  glUniform1f(shader.uniform("depth_scale"), depth_scale_);
+  glUniform1i(shader.uniform("overlay"), static_cast<int>(overlay));
+  glUniform3f(shader.uniform("brush"), brush.x, brush.y, brush.z);
+  glUniform1i(shader.uniform("brush_visible"), brush_visible ? 1 : 0);
   glBindVertexArray(vao_);
   glDrawElements(GL_TRIANGLES, indices_, GL_UNSIGNED_INT, nullptr);
   glBindVertexArray(0);

@@ -8,14 +8,25 @@
 
 #include "gl_program.hpp"
 #include "runnel/core/heightmap.hpp"
+#include "water_layer.hpp"
 
 namespace runnel::viewer {
 
 enum class TerrainOverlay { kNone = 0, kErosion = 1, kWaterDepth = 2, kFlowSpeed = 3 };
 enum class ParticleColour { kSediment = 0, kSpeed = 1 };
 
+// How the terrain is coloured this frame.
+struct TerrainLook {
+  float min_height = 0, max_height = 1;  // the colour bands' range, m
+  TerrainOverlay overlay = TerrainOverlay::kNone;
+  float overlay_scale = 1;  // the erosion overlay's full colour, m
+  glm::vec3 brush{0.0f};    // x, z, radius
+  bool brush_visible = false;
+};
+
 // The terrain mesh: texture splatting by height and slope (sand, grass, rock, snow; rock on steep
-// slopes), Lambert lighting, an erosion/deposition overlay and the rain brush ring.
+// slopes), Lambert lighting, an erosion/deposition overlay, the water on it (WaterLayer) and the
+// rain brush ring.
 class TerrainRenderer {
  public:
   explicit TerrainRenderer(const Heightmap& initial);
@@ -25,17 +36,18 @@ class TerrainRenderer {
   // Water depth (m) and mean flow speed (m/s) per vertex, from the particles around it.
   void update_water(const std::vector<float>& depth_and_speed);
   void set_depth_scale(float metres) { depth_scale_ = metres; }
-  void draw(const glm::mat4& view_projection, float min_height, float max_height,
-            TerrainOverlay overlay, float overlay_scale, const glm::vec3& brush,
-            bool brush_visible) const;
+  void draw(const glm::mat4& view_projection, const TerrainLook& look, const WaterLayer& water,
+            const WaterLook& water_look) const;
 
  private:
-  GlProgram program_;
+  GlProgram program_, dry_program_;  // with the water's shading, and without (no water)
   GLuint vao_ = 0, grid_vbo_ = 0, dynamic_vbo_ = 0, water_vbo_ = 0, ibo_ = 0;
   float depth_scale_ = 1.0f;
   GLsizei indices_ = 0;
   int nx_, ny_;
-  std::vector<float> interleaved_;
+  double cell_;
+  GLuint ground_ = 0;  // the normals' x and z: the bed the water refracts, lit
+  std::vector<float> interleaved_, ground_texels_;
 };
 
 // Water particles as round point sprites, coloured by sediment load or by speed.

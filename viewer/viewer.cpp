@@ -71,7 +71,8 @@ void Viewer::on_new_model() {
   min_height_ = t.min_height();
   max_height_ = std::max(t.max_height(), min_height_ + 1e-3f);
   terrain_ = std::make_unique<TerrainRenderer>(t);
-  water_.reset();  // built for the water's grid at the first upload
+  // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.
+  water_ = std::make_unique<WaterLayer>(static_cast<float>(0.01 * t.cell));
   particles_ = std::make_unique<ParticleRenderer>();
   if (!rain_) rain_ = std::make_unique<RainStreaks>();
   upload();
@@ -144,6 +145,26 @@ void Viewer::screenshot(const std::string& path) {
   glViewport(0, 0, w, h);
 }
 
+double Viewer::water_draw_seconds() {
+  int w = 0, h = 0;
+  window_.framebuffer_size(w, h);
+  OffscreenTarget target(w, h);
+  target.bind();
+  double with = 0, without = 0;
+  constexpr int kRepeats = 8;
+  for (int k = 0; k < 2 * kRepeats; ++k) {
+    hide_water_ = k % 2 == 1;
+    glFinish();
+    const auto start = Clock::now();
+    render_scene(w, h);
+    glFinish();
+    (hide_water_ ? without : with) += std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  hide_water_ = false;
+  OffscreenTarget::unbind();
+  return std::max(0.0, with - without) / kRepeats;
+}
+
 double Viewer::record_interval() const {
   if (options_.record_interval > 0) return options_.record_interval;
   return session_->model().info().clock == ModelClock::kSeconds ? 0.1 : 1.0;
@@ -207,14 +228,12 @@ void Viewer::upload() {
   Model& model = session_->model();
   const Heightmap t = model.terrain();
   terrain_->update(t.h, terrain_normals_reference(t));
+  timer_.lap(FrameTimer::kTerrain);
   const WaterView w = model.interaction().water_view();
-  const WaterSurface surface =
-      w.spacing > 0 ? particle_water_surface(t, w, w.spacing) : grid_water_surface(t, w);
-  if (!water_ || !water_->fits(surface))
-    // Thinner water than 1 % of a cell (2 cm on 2-m cells) is a wet film, not a stream.
-    water_ = std::make_unique<WaterRenderer>(surface.nx, surface.ny, surface.cell,
-                                             static_cast<float>(0.01 * t.cell));
-  water_->update(surface);
+  timer_.lap(FrameTimer::kReadWater);
+  water_->update(w.spacing > 0 ? particle_water_surface(t, w, w.spacing)
+                               : grid_water_surface(t, w));
+  timer_.lap(FrameTimer::kWaterSurface);
   std::vector<float> depth_speed(2 * t.size(), 0.0f);
   for (std::size_t k = 0; k < w.depth.size(); ++k) {
     depth_speed[2 * k] = w.depth[k];
@@ -231,24 +250,23 @@ void Viewer::upload() {
 
 void Viewer::render_scene(int w, int h, bool with_brush) {
   glViewport(0, 0, w, h);
-  const bool normals = options_.water_normals;  // the terrain only hides the water behind it
-  if (normals)
+  if (options_.water_normals)  // the water's normals alone: black sky and ground
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   else
     glClearColor(0.55f, 0.68f, 0.82f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   const glm::mat4 vp = camera_.projection(static_cast<float>(w) / std::max(h, 1)) * camera_.view();
-  glColorMask(!normals, !normals, !normals, GL_TRUE);
-  terrain_->draw(vp, min_height_, max_height_, overlay_, erosion_overlay_scale(),
-                 glm::vec3(brush_.x, brush_.z, brush_.radius), with_brush && brush_.over_terrain);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   const Heightmap& t = session_->model().initial_terrain();
   // The streaks move on the model's clock: they pause with it, and a recording is reproducible.
-  water_->capture_bed(w, h);
-  // Streaks a cell wide, whatever grid the water lies on.
-  water_->draw(vp, camera_.eye(), static_cast<float>(session_->model().time()),
-               static_cast<float>(t.cell), normals);
+  // They are a cell wide, whatever grid the water lies on.
+  const WaterLook water{camera_.eye(), static_cast<float>(session_->model().time()),
+                        static_cast<float>(t.cell), options_.water_normals, hide_water_};
+  terrain_->draw(vp,
+                 {min_height_, max_height_, overlay_, erosion_overlay_scale(),
+                  glm::vec3(brush_.x, brush_.z, brush_.radius), with_brush && brush_.over_terrain},
+                 *water_, water);
+  if (with_brush) timer_.lap(FrameTimer::kTerrain);  // the window's frame, not a recording's
   if (show_particles_) {
     const double spacing = 0.5 * t.cell;
     particles_->draw(vp, static_cast<float>(spacing), static_cast<float>(h), particle_colour_);
@@ -298,7 +316,9 @@ int Viewer::loop() {
     key_presses().clear();
     handle_input();
     update_rain();
+    timer_.begin();
     advance();
+    timer_.lap(FrameTimer::kSimulate);
     if (session_->model_generation() != shown_generation_) on_new_model();
     upload();
     if (frame % 10 == 0) {
@@ -313,21 +333,19 @@ int Viewer::loop() {
       glReadBuffer(GL_BACK);
       recorder_->add(read_framebuffer(w, h));  // the scene, before the brush and the panel
     }
-    const auto draw_start = Clock::now();
+    timer_.lap(FrameTimer::kOther);
     render_scene(w, h, true);
     draw_panel();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    if (options_.bench) {  // the drawing's own time: the GL's work done, not only queued
-      glFinish();
-      if (frame >= kBenchWarmupFrames)
-        bench_draw_seconds_ += std::chrono::duration<double>(Clock::now() - draw_start).count();
-    }
+    timer_.lap(FrameTimer::kPanel);
 
     ++frame;
     ++fps_frames;
-    if (options_.bench && frame == kBenchWarmupFrames)
+    if (options_.bench && frame == kBenchWarmupFrames) {
       bench_start_ = {Clock::now(), session_->model().time(), session_->model().steps()};
+      timer_.start_counting();
+    }
     const double since = std::chrono::duration<double>(Clock::now() - fps_start).count();
     if (since >= 0.5) {
       fps = fps_frames / since;
@@ -337,8 +355,7 @@ int Viewer::loop() {
     if (options_.stats_every > 0 && frame % options_.stats_every == 0) print_stats(frame, fps);
     const bool last = (options_.frames > 0 && frame >= options_.frames) ||
                       (session_->replaying() && session_->replay_finished());
-    if ((last || window_.closing()) && options_.screenshot_panel &&
-        !options_.screenshot.empty())
+    if ((last || window_.closing()) && options_.screenshot_panel && !options_.screenshot.empty())
       screenshot_window(w, h);
     window_.present();
     if (last) break;

@@ -16,12 +16,12 @@
 #include "app.hpp"
 #include "brush.hpp"
 #include "camera.hpp"
+#include "frame_timer.hpp"
 #include "rain_streaks.hpp"
 #include "recorder.hpp"
 #include "renderers.hpp"
 #include "runnel/compute/context.hpp"
 #include "runnel/interactive/session.hpp"
-#include "water_renderer.hpp"
 #include "window.hpp"
 
 namespace runnel::viewer {
@@ -38,6 +38,7 @@ class Viewer {
  public:
   Viewer(const ViewerOptions& options, Window& window)
       : options_(options), window_(window), compute_(options.device) {
+    timer_ = FrameTimer(options.bench);
     load();
   }
 
@@ -71,12 +72,16 @@ class Viewer {
   void print_stats(long long frame, double fps);
   // --bench: the timed frames' rates, as one JSON line.
   void print_bench(long long frames);
+  // --bench: what drawing the water adds to a picture of the window's size, s (the scene drawn
+  // offscreen with and without it, alternately).
+  double water_draw_seconds();
+  bool hide_water_ = false;
   struct BenchStart {
     Clock::time_point wall;
     double time = 0;
     std::uint64_t steps = 0;
   } bench_start_;
-  double bench_draw_seconds_ = 0;  // drawing the timed frames (terrain, water, panel), s
+  FrameTimer timer_{false};  // --bench: the timed frames, phase by phase
   void finish();
   double record_interval() const;
   // A key that went down since the last frame, from the key events (key_presses()): polling the
@@ -90,7 +95,7 @@ class Viewer {
   std::unique_ptr<Session> session_;
   std::uint64_t shown_generation_ = 0;  // the session's model the renderers were built for
   std::unique_ptr<TerrainRenderer> terrain_;
-  std::unique_ptr<WaterRenderer> water_;
+  std::unique_ptr<WaterLayer> water_;
   std::unique_ptr<ParticleRenderer> particles_;
   std::unique_ptr<RainStreaks> rain_;  // the painted rain under the brush
   std::unique_ptr<FrameRecorder> recorder_;

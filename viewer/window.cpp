@@ -46,7 +46,8 @@ EGLDisplay headless_display() {
   }
   EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY);
   if (d != EGL_NO_DISPLAY && eglInitialize(d, nullptr, nullptr)) return d;
-  throw runtime_error("--headless: no EGL display (is libEGL with a GPU driver or Mesa installed?)");
+  throw runtime_error(
+      "--headless: no EGL display (is libEGL with a GPU driver or Mesa installed?)");
 }
 
 }  // namespace
@@ -141,7 +142,9 @@ void Window::open_egl(const ViewerOptions& options) {
     throw runtime_error("--headless: cannot make the EGL context current");
 }
 
-bool Window::closing() const { return glfw_ ? glfwWindowShouldClose(glfw_) != 0 : closing_; }
+bool Window::closing() const {
+  return glfw_ ? glfwWindowShouldClose(glfw_) != 0 : closing_;
+}
 
 void Window::close() {
   if (glfw_)

@@ -24,12 +24,25 @@ WaterSurface particle_water_surface(const Heightmap& t, const WaterView& view, d
   s.cell = t.cell / refine;
   const std::size_t n = static_cast<std::size_t>(s.nx) * s.ny;
   s.ground.resize(n);
-  for (int j = 0; j < s.ny; ++j)
-    for (int i = 0; i < s.nx; ++i)
+  // The terrain's triangles, split along (i, j)–(i+1, j+1) as surface_height() has them, at each
+  // fine vertex of each cell (the last row and column of fine vertices from the last cells).
+  for (int j = 0; j < s.ny; ++j) {
+    const int cj = std::min(j / refine, t.ny - 2);
+    const float fz = static_cast<float>(j - cj * refine) / refine;
+    for (int i = 0; i < s.nx; ++i) {
+      const int ci = std::min(i / refine, t.nx - 2);
+      const float fx = static_cast<float>(i - ci * refine) / refine;
+      const float a = t.at(ci, cj), b = t.at(ci + 1, cj), c = t.at(ci + 1, cj + 1),
+                  d = t.at(ci, cj + 1);
       s.ground[static_cast<std::size_t>(j) * s.nx + i] =
-          static_cast<float>(surface_height(t, i * s.cell, j * s.cell));
+          fx >= fz ? a + fx * (b - a) + fz * (c - b) : a + fz * (d - a) + fx * (c - d);
+    }
+  }
 
-  std::vector<double> volume(n, 0.0), sediment(n, 0.0), flow_x(n, 0.0), flow_z(n, 0.0);
+  struct Sums {
+    double volume = 0, sediment = 0, flow_x = 0, flow_z = 0;
+  };
+  std::vector<Sums> sums(n);
   const double radius = 2.0 * spacing, particle = spacing * spacing * spacing;
   const int reach = static_cast<int>(std::ceil(radius / s.cell));
   const std::size_t count = view.points.size() / 4;
@@ -44,10 +57,11 @@ WaterSurface particle_water_surface(const Heightmap& t, const WaterView& view, d
     // on the grid, also at the terrain's edge and off it.
     weight.clear();
     double total = 0;
+    const double inverse_r2 = 1.0 / (radius * radius);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const double dx = i * s.cell - x, dz = j * s.cell - z;
-        const double q2 = (dx * dx + dz * dz) / (radius * radius);
+        const double q2 = (dx * dx + dz * dz) * inverse_r2;
         const double w = q2 < 1.0 ? (1.0 - q2) * (1.0 - q2) * (1.0 - q2) : 0.0;
         weight.push_back(w);
         total += w;
@@ -59,16 +73,17 @@ WaterSurface particle_water_surface(const Heightmap& t, const WaterView& view, d
     const double load = view.points[4 * p + 3];
     const double vx = 2 * p < view.point_velocity.size() ? view.point_velocity[2 * p] : 0.0,
                  vz = 2 * p + 1 < view.point_velocity.size() ? view.point_velocity[2 * p + 1] : 0.0;
+    const double share = particle / total;
     std::size_t w = 0;
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i, ++w) {
         if (weight[w] == 0.0) continue;
-        const std::size_t k = static_cast<std::size_t>(j) * s.nx + i;
-        const double v = particle * weight[w] / total;
-        volume[k] += v;
-        sediment[k] += v * load;
-        flow_x[k] += v * vx;
-        flow_z[k] += v * vz;
+        Sums& sum = sums[static_cast<std::size_t>(j) * s.nx + i];
+        const double v = share * weight[w];
+        sum.volume += v;
+        sum.sediment += v * load;
+        sum.flow_x += v * vx;
+        sum.flow_z += v * vz;
       }
   }
   s.depth.resize(n);
@@ -76,11 +91,12 @@ WaterSurface particle_water_surface(const Heightmap& t, const WaterView& view, d
   s.velocity.assign(2 * n, 0.0f);
   const double area = s.cell * s.cell;
   for (std::size_t k = 0; k < n; ++k) {
-    s.depth[k] = static_cast<float>(volume[k] / area);
-    if (volume[k] <= 0) continue;
-    s.load[k] = static_cast<float>(sediment[k] / volume[k]);
-    s.velocity[2 * k] = static_cast<float>(flow_x[k] / volume[k]);
-    s.velocity[2 * k + 1] = static_cast<float>(flow_z[k] / volume[k]);
+    const Sums& sum = sums[k];
+    s.depth[k] = static_cast<float>(sum.volume / area);
+    if (sum.volume <= 0) continue;
+    s.load[k] = static_cast<float>(sum.sediment / sum.volume);
+    s.velocity[2 * k] = static_cast<float>(sum.flow_x / sum.volume);
+    s.velocity[2 * k + 1] = static_cast<float>(sum.flow_z / sum.volume);
   }
   return s;
 }
