@@ -19,6 +19,7 @@ struct ViewerOptions {
   int overlay = 0;  // terrain overlay at start: 0 none, 1 erosion, 2 water depth, 3 flow speed
   bool particles = false;      // SPH particles as dots over the water surface
   bool paused = false;         // start paused (space plays)
+  double sim_share = 0.75;     // the share of each frame the simulation gets (25 ms to 250 ms)
   bool headless = false;       // EGL with no display: an off-screen surface of the window's size
   bool water_normals = false;  // the water's shading normals as colour, nothing else
   std::string log;             // session log written at exit (strokes.json)

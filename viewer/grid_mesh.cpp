@@ -15,26 +15,14 @@ std::vector<GLuint> grid_triangles(int nx, int ny) {
   return index;
 }
 
-std::vector<float> grid_positions(const Heightmap& t, bool with_height) {
+std::vector<float> grid_positions(const Heightmap& t) {
   std::vector<float> grid;
-  grid.reserve(t.size() * (with_height ? 3 : 2));
+  grid.reserve(t.size() * 3);
   for (int j = 0; j < t.ny; ++j) {
     for (int i = 0; i < t.nx; ++i) {
       grid.push_back(static_cast<float>(i * t.cell));
       grid.push_back(static_cast<float>(j * t.cell));
-      if (with_height) grid.push_back(t.at(i, j));
-    }
-  }
-  return grid;
-}
-
-std::vector<float> grid_positions(int nx, int ny, double cell) {
-  std::vector<float> grid;
-  grid.reserve(2 * static_cast<std::size_t>(nx) * ny);
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      grid.push_back(static_cast<float>(i * cell));
-      grid.push_back(static_cast<float>(j * cell));
+      grid.push_back(t.at(i, j));
     }
   }
   return grid;

@@ -9,15 +9,13 @@
 
 namespace runnel::viewer {
 
-// The pieces every mesh on the terrain's grid is made of (the terrain, the water surface).
+// The pieces a mesh on the terrain's grid is made of.
 
 // Two triangles per cell, split along the diagonal (i, j)–(i+1, j+1) as the simulation's mesh is,
 // so whatever is drawn on the grid meets the terrain along the same edges.
 std::vector<GLuint> grid_triangles(int nx, int ny);
-// x, z of every vertex (row-major), and its height when asked for.
-std::vector<float> grid_positions(const Heightmap& terrain, bool with_height);
-// x, z of every vertex of an nx × ny grid of spacing `cell` (row-major).
-std::vector<float> grid_positions(int nx, int ny, double cell);
+// x, z and height of every vertex (row-major).
+std::vector<float> grid_positions(const Heightmap& terrain);
 // A new buffer bound to `target` with `bytes` of `data` (zeros when null).
 GLuint make_buffer(GLenum target, std::size_t bytes, const void* data, GLenum usage);
 // Vertex attribute `location`: `components` floats a vertex from the bound array buffer.

@@ -53,6 +53,12 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
   app.add_flag("--no-rain", no_rain, "start with the scenario's rain off (paint it)");
   app.add_flag("--particles", o.particles, "draw the SPH particles as dots over the water");
   app.add_flag("--paused", o.paused, "start paused (space plays)");
+  app.add_option("--sim-share", o.sim_share,
+                 "the share of each frame's time the simulation gets, the rest drawing (each frame "
+                 "simulates 25 ms to 250 ms): lower it for more frames per second on a slow GL, "
+                 "raise it for more simulated time")
+      ->check(CLI::Range(0.1, 0.95))
+      ->capture_default_str();
   app.add_flag("--headless", o.headless,
                "draw with no display or window, through EGL (a GPU server, a CI machine): for "
                "--screenshot, --record and --bench; no mouse or keys, so give --frames or "

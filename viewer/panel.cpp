@@ -110,8 +110,9 @@ void Viewer::panel_brush_controls(Model& model) {
     ImGui::Text("blue: water depth, full colour at %.3g m", cell);
   if (overlay_ == TerrainOverlay::kFlowSpeed)
     ImGui::Text("blue slow to yellow fast: full colour at 15 m/s");
-  ImGui::TextDisabled("water: pale thin, dark blue-green deep,");
-  ImGui::TextDisabled("brown tint: its sediment; streaks: its flow");
+  ImGui::TextDisabled("water: clear where thin (the bed shows through),");
+  ImGui::TextDisabled("blue-green where deep; brown tint: its sediment;");
+  ImGui::TextDisabled("pale streaks: its flow");
   ImGui::Checkbox("particles", &show_particles_);
   if (show_particles_) {
     ImGui::Combo("particle colour", &colour, "sediment load\0flow speed\0");

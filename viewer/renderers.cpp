@@ -134,7 +134,7 @@ TerrainRenderer::TerrainRenderer(const Heightmap& t)
       nx_(t.nx),
       ny_(t.ny),
       cell_(t.cell) {
-  const std::vector<float> grid = grid_positions(t, true);
+  const std::vector<float> grid = grid_positions(t);
   const std::vector<GLuint> index = grid_triangles(t.nx, t.ny);
   indices_ = static_cast<GLsizei>(index.size());
   glGenVertexArrays(1, &vao_);
@@ -205,18 +205,14 @@ void TerrainRenderer::draw(const glm::mat4& vp, const TerrainLook& look, const W
   glUniform1i(shader.uniform("ground"), 0);
   glUniform2f(shader.uniform("ground_texels"), static_cast<float>(nx_), static_cast<float>(ny_));
   glUniform1f(shader.uniform("ground_cell"), static_cast<float>(cell_));
-  const float lo = look.min_height, hi = look.max_height, scale = look.overlay_scale;
-  const TerrainOverlay overlay = look.overlay;
-  const glm::vec3& brush = look.brush;
-  const bool brush_visible = look.brush_visible;
   glUniformMatrix4fv(shader.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(vp));
-  glUniform1f(shader.uniform("min_height"), lo);
-  glUniform1f(shader.uniform("max_height"), hi);
-  glUniform1f(shader.uniform("overlay_scale"), scale);
+  glUniform1f(shader.uniform("min_height"), look.min_height);
+  glUniform1f(shader.uniform("max_height"), look.max_height);
+  glUniform1f(shader.uniform("overlay_scale"), look.overlay_scale);
   glUniform1f(shader.uniform("depth_scale"), depth_scale_);
-  glUniform1i(shader.uniform("overlay"), static_cast<int>(overlay));
-  glUniform3f(shader.uniform("brush"), brush.x, brush.y, brush.z);
-  glUniform1i(shader.uniform("brush_visible"), brush_visible ? 1 : 0);
+  glUniform1i(shader.uniform("overlay"), static_cast<int>(look.overlay));
+  glUniform3f(shader.uniform("brush"), look.brush.x, look.brush.y, look.brush.z);
+  glUniform1i(shader.uniform("brush_visible"), look.brush_visible ? 1 : 0);
   glBindVertexArray(vao_);
   glDrawElements(GL_TRIANGLES, indices_, GL_UNSIGNED_INT, nullptr);
   glBindVertexArray(0);

@@ -210,16 +210,26 @@ void Viewer::advance_unguarded() {
     // A recorded frame every record_interval of the model's clock, whatever the frame rate.
     session_->advance(record_interval());
   } else {
-    // As many steps as fit in about 25 ms, so the window stays responsive at any size.
+    // The simulation's share of the frame (--sim-share): as many steps as fit in that share of
+    // a frame whose other work (drawing, uploading, the panel) took what it took last time, at
+    // least 25 ms and at most 250 ms, so the window stays responsive at any size and drawing on
+    // a slow GL does not starve the water.
+    const double rest = std::chrono::duration<double>(start - advanced_).count();
+    const double budget =
+        std::clamp(rest * options_.sim_share / (1.0 - options_.sim_share), 0.025, 0.25);
     int steps = 0;
+    double elapsed = 0;
     do {
       session_->step();
       ++steps;
+      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+      // Another step while it ends nearer the budget than this one does.
     } while (!step_once_ && !session_->replay_finished() &&
-             Clock::now() - start < std::chrono::milliseconds(25) && steps < 200);
+             elapsed + 0.5 * elapsed / steps <= budget && steps < 200);
   }
   step_once_ = false;
-  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  advanced_ = Clock::now();
+  const double seconds = std::chrono::duration<double>(advanced_ - start).count();
   steps_per_second_ =
       static_cast<double>(session_->model().steps() - before) / std::max(seconds, 1e-6);
 }

@@ -113,6 +113,7 @@ class Viewer {
   ParticleColour particle_colour_ = ParticleColour::kSediment;
   float min_height_ = 0, max_height_ = 1;
   double steps_per_second_ = 0;
+  Clock::time_point advanced_ = Clock::now();  // when the last frame's steps ended
   double last_x_ = 0, last_y_ = 0;
   MassBalance balance_;
   double rain_volume_ = 0;

@@ -57,8 +57,9 @@ vec3 with_water(vec3 world, vec3 ground, float ground_light) {
   vec2 shift = depth * (t.xz / max(-t.y, 0.2) + v.xz / max(v.y, 0.2));
   vec3 bed = ground * (ground_light_at(world.xz + shift) / max(ground_light, 0.05));
   // Beer–Lambert per colour over the depth, red absorbed first: thin water clear, the bed tinted
-  // blue-green, deep water the colour it scatters. The sediment clouds it, at most by a third.
-  vec3 transmitted = exp(-depth * vec3(12.0, 4.0, 2.8));
+  // blue-green, deep water the colour it scatters. The sediment clouds it, at most by a third. At
+  // most 60 % of the bed comes through, so that a film reads as water, not as the ground under it.
+  vec3 transmitted = min(exp(-depth * vec3(12.0, 4.0, 2.8)), vec3(0.6));
   vec3 clear = vec3(0.05, 0.34, 0.46), muddy = vec3(0.46, 0.36, 0.22);
   vec3 scattered = mix(clear, muddy, 0.35 * clamp(load * 8.0, 0.0, 1.0));
   vec3 sun = normalize(vec3(-0.5, 0.8, -0.3));

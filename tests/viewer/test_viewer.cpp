@@ -118,6 +118,7 @@ TEST(Viewer, BadFlagsAreRefusedBeforeAWindowOpens) {
       {{dir.path("bad.json"), "--save-at-exit", dir.path("bad.json")}, "is the input"},
       {{"--screenshot-scale", "20"}, "--screenshot-scale"},
       {{"--headless"}, "--headless: give --frames N or --replay LOG"},
+      {{"--sim-share", "1"}, "--sim-share"},
   };
   for (const auto& [args, expected] : cases) {
     const auto r = test::run_program(RUNNEL_VIEWER_BINARY, args, "DISPLAY=");
@@ -280,8 +281,10 @@ TEST(Viewer, BenchPrintsTheLoopsRates) {
   ASSERT_EQ(std::system((viewer + " --frames 12 > " + dir.path("out.txt") + " 2>&1").c_str()), 0)
       << test::read_text(dir.path("out.txt"));
   const std::string out = test::read_text(dir.path("out.txt"));
-  for (const char* key : {"\"fps\": ", "\"simulated_seconds_per_wall_second\": ",
-                          "\"draw_share\": ", "\"frames\": 7", "\"solver\": \"wcsph\""})
+  for (const char* key :
+       {"\"fps\": ", "\"simulated_seconds_per_wall_second\": ", "\"draw_share\": ",
+        "\"water_share\": ", "\"frames\": 7", "\"solver\": \"wcsph\"", "\"display\": \"glfw\"",
+        "\"ms_per_frame\": {\"simulate\": "})
     EXPECT_NE(out.find(key), std::string::npos) << key << " in " << out;
   const int refused =
       std::system((viewer + " --frames 3 > " + dir.path("no.txt") + " 2>&1").c_str());
@@ -391,11 +394,11 @@ void paint(ViewerProcess& v, int x, int y, double volume) {
   ASSERT_TRUE(v.wait_for([](const StatsLine& s) { return !s.flag("painting"); })) << v.log();
 }
 
-// Pixels that turned blue (blue above red and green by a margin) from `before` to `after`, within
-// `radius` of (x, y) and beyond `far` of it.
+// Pixels that turned blue-green (blue and green both above red by a margin) from `before` to
+// `after`, within `radius` of (x, y) and beyond `far` of it. Grass and soil have red above blue.
 struct WaterPixels {
   long near = 0, far = 0;
-  long brown = 0;  // changed pixels under the brush that are brown (red above blue), not water
+  long brown = 0;  // changed pixels under the brush that are brown (red above blue and green)
 };
 WaterPixels new_water(const Picture& before, const Picture& after, int x, int y, int radius,
                       int far) {
@@ -407,8 +410,8 @@ WaterPixels new_water(const Picture& before, const Picture& after, int x, int y,
       const int changed = std::abs(r - before.rgb[k]) + std::abs(g - before.rgb[k + 1]) +
                           std::abs(b - before.rgb[k + 2]);
       const double d = std::hypot(i - x, j - y);
-      if (changed >= 40 && d <= radius && r > b + 15) ++w.brown;
-      if (changed < 40 || b < r + 25 || b < g) continue;
+      if (changed >= 40 && d <= radius && r > b + 15 && r >= g) ++w.brown;
+      if (changed < 40 || b < r + 25 || g < r + 25) continue;
       w.near += d <= radius;
       w.far += d > far;
     }
