@@ -1,21 +1,17 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # The README's viewer pictures: data/sessions/channel.json (a source on the ridge of the default
-# terrain, SPH, 30 simulated seconds) replayed under Xvfb at 1280x800, recorded every 5 s; three
-# frames side by side (docs/images/viewer-channel.png) and the last with the erosion overlay
-# (docs/images/viewer.png). Needs build/runnel-viewer, Xvfb and Debian's python3-pil.
+# terrain, SPH, 30 simulated seconds) replayed headless (EGL) at 1280x800, recorded every 5 s;
+# three frames side by side (docs/images/viewer-channel.png) and the last with the erosion overlay
+# (docs/images/viewer.png). Needs build/runnel-viewer and Debian's python3-pil.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 work=$(mktemp -d)
-trap 'kill $xvfb 2>/dev/null || true; rm -rf "$work"' EXIT
-Xvfb :93 -screen 0 1280x900x24 -nolisten tcp -noreset >/dev/null 2>&1 &
-xvfb=$!
-until DISPLAY=:93 xdpyinfo >/dev/null 2>&1; do sleep 0.2; done
-export DISPLAY=:93
-build/runnel-viewer --replay data/sessions/channel.json --size 1280x800 --record "$work/frames" \
-  --record-interval 5
-build/runnel-viewer --replay data/sessions/channel.json --size 1280x800 --overlay erosion \
-  --screenshot "$work/erosion.png"
+trap 'rm -rf "$work"' EXIT
+build/runnel-viewer --headless --replay data/sessions/channel.json --size 1280x800 \
+  --record "$work/frames" --record-interval 5
+build/runnel-viewer --headless --replay data/sessions/channel.json --size 1280x800 \
+  --overlay erosion --screenshot "$work/erosion.png"
 /usr/bin/python3 - "$work" <<'PY'
 import sys
 from PIL import Image
