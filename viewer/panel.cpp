@@ -200,6 +200,7 @@ void Viewer::print_stats(long long frame, double fps) {
                           .add("model", m.info().name)
                           .add("particles", static_cast<long long>(particles_shown_))
                           .add("steps", static_cast<long long>(m.steps()))
+                          .add("time", m.time())
                           .add("steps_per_second", steps_per_second_)
                           .add("rain_volume", rain_volume_)
                           .add("eroded_volume", balance_.eroded)

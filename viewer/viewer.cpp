@@ -180,6 +180,7 @@ void Viewer::toggle_recording() {
   const std::string path =
       options_.record.empty() ? "runnel-viewer-recording.mp4" : options_.record;
   recorder_ = std::make_unique<FrameRecorder>(path, options_.record_fps);
+  record_start_ = session_->model().time();
   message_ = "recording to " + recorder_->target();
 }
 
@@ -207,8 +208,12 @@ void Viewer::advance_unguarded() {
   const auto start = Clock::now();
   const std::uint64_t before = session_->model().steps();
   if (recorder_ && !step_once_) {
-    // A recorded frame every record_interval of the model's clock, whatever the frame rate.
-    session_->advance(record_interval());
+    // Recorded frame k shows the model at k record_intervals of its clock from the recording's
+    // start (the first step at or after it: steps are not shortened, so a recorded replay stays
+    // the run it replays), whatever the frame rate.
+    const double due =
+        record_start_ + static_cast<double>(recorder_->frames() + 1) * record_interval();
+    session_->advance(due - session_->model().time());
   } else {
     // The simulation's share of the frame (--sim-share): as many steps as fit in that share of
     // a frame whose other work (drawing, uploading, the panel) took what it took last time, at

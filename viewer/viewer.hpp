@@ -99,6 +99,7 @@ class Viewer {
   std::unique_ptr<ParticleRenderer> particles_;
   std::unique_ptr<RainStreaks> rain_;  // the painted rain under the brush
   std::unique_ptr<FrameRecorder> recorder_;
+  double record_start_ = 0;  // the model's clock when the recording started
   OrbitCamera camera_;
   bool window_shot_taken_ = false;  // --screenshot-panel: the window's shot is written
   Brush brush_;
