@@ -37,6 +37,17 @@ GLuint make_buffer(GLenum target, std::size_t bytes, const void* data, GLenum us
   return buffer;
 }
 
+GLuint make_texture() {
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
 void float_attribute(GLuint location, int components) {
   glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
   glEnableVertexAttribArray(location);

@@ -150,12 +150,7 @@ TerrainRenderer::TerrainRenderer(const Heightmap& t)
   ibo_ = make_buffer(GL_ELEMENT_ARRAY_BUFFER, index.size() * sizeof(GLuint), index.data(),
                      GL_STATIC_DRAW);
   glBindVertexArray(0);
-  glGenTextures(1, &ground_);
-  glBindTexture(GL_TEXTURE_2D, ground_);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  ground_ = make_texture();
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, nx_, ny_, 0, GL_RG, GL_FLOAT, nullptr);
 }
 

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
+#include "grid_mesh.hpp"
+
 namespace runnel::viewer {
 
 // The water's shading, for the terrain's fragment shader to include: with_water() turns the
@@ -77,17 +79,6 @@ vec3 with_water(vec3 world, vec3 ground, float ground_light) {
 )";
 
 namespace {
-
-GLuint make_texture() {
-  GLuint texture = 0;
-  glGenTextures(1, &texture);
-  glBindTexture(GL_TEXTURE_2D, texture);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return texture;
-}
 
 // Fills `texture` with `data` (channels floats a texel), reallocating when the size changed.
 void upload(GLuint texture, int width, int height, bool resized, GLenum format, GLenum internal,
