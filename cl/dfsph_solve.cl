@@ -19,11 +19,13 @@
 // too hard). The divergence-free solve acts only where θ > 0 (a full neighbourhood, as SPlisHSPlasH
 // leaves particles with fewer than 20 neighbours out): at a free surface the summation density is
 // deficient and the constant-density solve alone keeps the water from compressing.
-// Every particle adds its error to fixed-point sums (integer atomics: the totals do not depend on
-// the order), from which the host decides whether to iterate again.
+// Every particle adds its error to fixed-point sums (integers, summed in its work-group, then
+// atomically: the totals do not depend on the order), from which the host decides whether to
+// iterate again.
 // Compile-time constants (host -D): SPH_H, SPH_MASS, SPH_RHO0, SPH_WALLS.
 
 #define DFSPH_ERROR_QUANTUM 1e-9f  // of the dimensionless density error, in the fixed-point sums
+#define DFSPH_GROUP 64             // work-items a group of dfsph_density_change (Dfsph::kGroup)
 // Jacobi's relaxation, as IISPH's (Ihmsen et al. 2014): with the full step (1) the iteration
 // diverges on a water column, the diagonal being only part of what κ_i changes.
 #define DFSPH_RELAXATION 0.5f
@@ -87,8 +89,12 @@ __kernel void dfsph_density_change(
     const float domain_z, const float dt, const float dt_k, const float error_scale, const uint divergence,
     const uint iterate, const __global uint* neighbours, const __global uint* neighbour_count,
     volatile __global long* errors, volatile __global uint* error_max) {
+  __local long group_quanta[DFSPH_GROUP];
+  __local uint group_count[DFSPH_GROUP], group_worst[DFSPH_GROUP];
   const uint i = get_global_id(0);
-  if (i >= n) return;
+  long quanta = 0;  // particle i's error in quanta, whether it is in the solve, the error's bits
+  uint counted = 0, worst = 0;
+  if (i < n) {
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 ui = (float3)(ux[i], uy[i], uz[i]);
   float sum = 0.0f;
@@ -119,9 +125,31 @@ __kernel void dfsph_density_change(
   kappa[i] = ki;
   if (residual < 0.0f || (iterate && ki > 0.0f)) {
     const float e = residual < 0.0f ? -residual * error_scale : 0.0f;
-    atom_add(&errors[0], (long)(e * (1.0f / DFSPH_ERROR_QUANTUM) + 0.5f));
-    atom_inc(&errors[1]);
-    atomic_max(error_max, as_uint(e));
+    quanta = (long)(e * (1.0f / DFSPH_ERROR_QUANTUM) + 0.5f);
+    counted = 1;
+    worst = as_uint(e);
+  }
+  }
+  // The work-group's sums in local memory, then one atomic each: on a CPU, atomics on one address
+  // from every particle serialise the cores. Integers and a maximum: the totals do not depend on
+  // the order.
+  const uint l = get_local_id(0);
+  group_quanta[l] = quanta;
+  group_count[l] = counted;
+  group_worst[l] = worst;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint reach = DFSPH_GROUP / 2; reach > 0; reach >>= 1) {
+    if (l < reach) {
+      group_quanta[l] += group_quanta[l + reach];
+      group_count[l] += group_count[l + reach];
+      group_worst[l] = max(group_worst[l], group_worst[l + reach]);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0 && group_count[0] > 0) {
+    atom_add(&errors[0], group_quanta[0]);
+    atom_add(&errors[1], (long)group_count[0]);
+    atomic_max(error_max, group_worst[0]);
   }
 }
 

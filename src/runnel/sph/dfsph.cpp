@@ -172,7 +172,7 @@ std::pair<double, double> Dfsph::density_change(ParticleStore& store, bool itera
   q.enqueueFillBuffer(error_max_, cl_uint{0}, 0, sizeof(cl_uint));
   density_change_.set("iterate", cl_uint{iterate});
   density_change_.set("errors", errors_).set("error_max", error_max_);
-  density_change_.launch(round_up_work(store.size()));
+  density_change_.launch_groups((store.size() + kGroup - 1) / kGroup, kGroup);
   cl_long sums[2] = {0, 0};
   cl_uint worst_bits = 0;
   q.enqueueReadBuffer(errors_, CL_FALSE, 0, sizeof(sums), sums);

@@ -54,6 +54,9 @@ class Dfsph {
   JsonObject json() const;
 
  private:
+  // Work-items a group of dfsph_density_change, which sums its errors in local memory
+  // (cl/dfsph_solve.cl's DFSPH_GROUP).
+  static constexpr std::size_t kGroup = 64;
   struct SolveResult {
     int iterations;
     bool capped;
