@@ -72,7 +72,7 @@ vec3 with_water(vec3 world, vec3 ground, float ground_light) {
   for (int k = 0; k < 7; ++k) highlight *= highlight;
   vec3 c = mix(under, sky, 0.7 * fresnel) + 0.3 * highlight;
   float speed = length(flow);
-  c = mix(c, vec3(0.85, 0.92, 0.95), 0.45 * streaks(world.xz, flow) * smoothstep(0.2, 2.0, speed));
+  c = mix(c, vec3(0.85, 0.92, 0.95), 0.3 * streaks(world.xz, flow) * smoothstep(0.2, 2.0, speed));
   float shore = smoothstep(min_depth, 3.0 * min_depth, depth);  // thin edges fade in
   return mix(ground, c, shore);
 }
