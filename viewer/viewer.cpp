@@ -203,6 +203,7 @@ void Viewer::advance_unguarded() {
   if (session_->replay_finished()) return;
   if (!playing_ && !step_once_) {
     steps_per_second_ = 0;
+    advanced_ = Clock::now();  // a frame's rest is measured from here when it plays again
     return;
   }
   const auto start = Clock::now();
