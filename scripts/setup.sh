@@ -21,6 +21,7 @@ packages=(
   # which Debian's python3-paraview conflicts with: installing runnel must not remove ParaView.
   paraview python3-paraview python3-meshio
   xvfb xdotool x11-utils libgl1-mesa-dri
+  libegl1 libegl-mesa0  # runnel-viewer --headless: EGL without a display (Mesa's surfaceless platform)
   clang-format
   clang libclang-rt-14-dev  # scripts/sanitize.sh: ASan + UBSan build and the libFuzzer targets
   patchelf  # scripts/gpu-bundle.sh: the bundle's binaries find their libraries through an RPATH
