@@ -60,6 +60,10 @@ void Viewer::panel_run_controls(Model& model) {
   ImGui::SameLine();
   if (ImGui::Button(recorder_ ? "Stop recording" : "Record")) toggle_recording();
   if (recorder_) ImGui::Text("recording: %lld frames", recorder_->frames());
+  // --sim-share: more simulated time a second, or more frames.
+  float share = static_cast<float>(options_.sim_share);
+  if (ImGui::SliderFloat("sim share", &share, 0.1f, 0.95f, "%.2f of a frame"))
+    options_.sim_share = share;
 }
 
 // What the brush paints, its radius and rain, the water it added, the overlays.
