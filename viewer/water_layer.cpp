@@ -38,7 +38,6 @@ float streaks(vec2 p, vec2 v) {
   float b = noise(q - vec2(speed * t1 / (4.0 * streak_scale), 0.0) + 17.0);
   return smoothstep(0.6, 0.9, mix(a, b, abs(2.0 * t0 - 1.0)));
 }
-vec4 water_at(vec2 xz) { return texture(water_fields, (xz / water_cell + 0.5) / water_texels); }
 vec3 with_water(vec3 world, vec3 ground, float ground_light) {
   vec2 uv = (world.xz / water_cell + 0.5) / water_texels;
   vec4 fields = texture(water_fields, uv);

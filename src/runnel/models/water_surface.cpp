@@ -24,20 +24,10 @@ WaterSurface particle_water_surface(const Heightmap& t, const WaterView& view, d
   s.cell = t.cell / refine;
   const std::size_t n = static_cast<std::size_t>(s.nx) * s.ny;
   s.ground.resize(n);
-  // The terrain's triangles, split along (i, j)–(i+1, j+1) as surface_height() has them, at each
-  // fine vertex of each cell (the last row and column of fine vertices from the last cells).
-  for (int j = 0; j < s.ny; ++j) {
-    const int cj = std::min(j / refine, t.ny - 2);
-    const float fz = static_cast<float>(j - cj * refine) / refine;
-    for (int i = 0; i < s.nx; ++i) {
-      const int ci = std::min(i / refine, t.nx - 2);
-      const float fx = static_cast<float>(i - ci * refine) / refine;
-      const float a = t.at(ci, cj), b = t.at(ci + 1, cj), c = t.at(ci + 1, cj + 1),
-                  d = t.at(ci, cj + 1);
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i)
       s.ground[static_cast<std::size_t>(j) * s.nx + i] =
-          fx >= fz ? a + fx * (b - a) + fz * (c - b) : a + fz * (d - a) + fx * (c - d);
-    }
-  }
+          static_cast<float>(surface_height(t, i * s.cell, j * s.cell));
 
   struct Sums {
     double volume = 0, sediment = 0, flow_x = 0, flow_z = 0;
