@@ -72,6 +72,36 @@ inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uin
     }                                                                                              \
   }
 
+// As DFSPH_NEIGHBOURS, with grad_ = ∇_i W_ij as the density pass stored it for the listed
+// neighbours (pair_grad, slot-major, one block of DFSPH_SLOTS slots per component), computed as it
+// does for a particle that walks its cells. The solves' passes run ten times a step over the same
+// positions: reading the gradient replaces the gathers of x_j and the kernel's evaluation.
+#define DFSPH_PAIRS(...)                                                                            \
+  {                                                                                                \
+    const uint listed_ = neighbour_count[i];                                                       \
+    if (listed_ <= DFSPH_SLOTS) {                                                                  \
+      for (uint s_ = 0; s_ < listed_; ++s_) {                                                      \
+        const uint e_ = neighbours[s_ * n + i];                                                    \
+        const uint j = e_ & DFSPH_INDEX_MASK, image_ = e_ >> DFSPH_IMAGE_SHIFT;                    \
+        const float3 grad_ = (float3)(pair_grad[s_ * n + i], pair_grad[(DFSPH_SLOTS + s_) * n + i],   \
+                                      pair_grad[(2 * DFSPH_SLOTS + s_) * n + i]);                  \
+        __VA_ARGS__                                                                                \
+      }                                                                                            \
+    } else {                                                                                       \
+      const float3 pi_ = (float3)(x[i], y[i], z[i]);                                               \
+      const Grid grid_ = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);                              \
+      LoneTile t_;                                                                                 \
+      particle_candidates(i, pi_, grid_, cell_start, cell_end, domain_x, domain_z, &t_);           \
+      LONE_CANDIDATES_BEGIN(t_)                                                                    \
+      if (image_ != 0 || j != i) {                                                                 \
+        const float3 xij_ = pi_ - image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z); \
+        const float3 grad_ = wendland_grad_factor(sqrt(dot(xij_, xij_))) * xij_;                   \
+        __VA_ARGS__                                                                                \
+      }                                                                                            \
+      LONE_CANDIDATES_END                                                                          \
+    }                                                                                              \
+  }
+
 // The terrain's tangent plane under a particle: distance d along the unit normal n.
 typedef struct {
   float d;
@@ -93,7 +123,8 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
                             const __global uint* cell_end, const __global float* terrain_height,
                             const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
                             const float domain_x, const float domain_z, __global float* rho, __global float* factor,
-                            __global float* theta, __global uint* neighbours, __global uint* neighbour_count) {
+                            __global float* theta, __global uint* neighbours, __global uint* neighbour_count,
+                            __global float* pair_grad, __global float* floor_gradient) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
@@ -107,13 +138,18 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
   const float3 xij = pi - pj;
   const float r2 = dot(xij, xij);
-  if (r2 < BEYOND_SUPPORT2 && (image_ != 0 || j != i)) {
-    if (listed < DFSPH_SLOTS) neighbours[listed * n + i] = j | (image_ << DFSPH_IMAGE_SHIFT);
-    ++listed;
-  }
   const float r = sqrt(r2);
   const float w = wendland_w(r);
   const float3 grad = wendland_grad_factor(r) * xij;
+  if (r2 < BEYOND_SUPPORT2 && (image_ != 0 || j != i)) {
+    if (listed < DFSPH_SLOTS) {
+      neighbours[listed * n + i] = j | (image_ << DFSPH_IMAGE_SHIFT);
+      pair_grad[listed * n + i] = grad.x;
+      pair_grad[(DFSPH_SLOTS + listed) * n + i] = grad.y;
+      pair_grad[(2 * DFSPH_SLOTS + listed) * n + i] = grad.z;
+    }
+    ++listed;
+  }
   const float sq = dot(grad, grad);
   if (image_ == 0) {
     w_fluid += w;
@@ -134,6 +170,10 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   const float3 g_pressure = g - wall_integral(f.d) * f.n;  // ∇ρ̂ with the terrain mirrored
   const float denominator = dot(g_pressure, g_pressure) + DFSPH_V0 * DFSPH_V0 * (sq_fluid + sq_ghost);
   neighbour_count[i] = listed;
+  const float3 gn = wall_integral(f.d) * f.n;
+  floor_gradient[i] = gn.x;
+  floor_gradient[n + i] = gn.y;
+  floor_gradient[2 * n + i] = gn.z;
   rho[i] = SPH_RHO0 * rho_hat;
   factor[i] = denominator > 1e-6f / (SPH_H * SPH_H) ? 1.0f / denominator : 0.0f;
   theta[i] = th;

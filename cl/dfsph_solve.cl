@@ -59,21 +59,18 @@ __kernel void dfsph_pressure_acceleration(
     const __global float* x, const __global float* y, const __global float* z, const __global float* kappa,
     const uint n, const float ox, const float oy, const float oz, const float inv_cell,
     const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
-    const __global float* terrain_height, const __global float* terrain_normal, const int tnx, const int tny,
-    const float tcell, const float domain_x, const float domain_z, const __global uint* neighbours,
-    const __global uint* neighbour_count, __global float* apx, __global float* apy, __global float* apz) {
+    const float domain_x, const float domain_z, const __global uint* neighbours,
+    const __global uint* neighbour_count, const __global float* pair_grad, const __global float* floor_gradient,
+    __global float* apx, __global float* apy, __global float* apz) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  const float3 pi = (float3)(x[i], y[i], z[i]);
   const float ki = kappa[i];
   float3 acc = (float3)(0.0f);
-  DFSPH_NEIGHBOURS(
-    const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
-    const float3 xij = pi - pj;
-    acc += (-DFSPH_V0 * (ki + kappa[j]) * wendland_grad_factor(length(xij))) * xij;
+  DFSPH_PAIRS(
+    acc += (-DFSPH_V0 * (ki + kappa[j])) * grad_;
   )
-  const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
-  acc += (2.0f * ki * wall_integral(f.d)) * f.n;
+  const float3 gn = (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
+  acc += (2.0f * ki) * gn;
   apx[i] = acc.x;
   apy[i] = acc.y;
   apz[i] = acc.z;
@@ -93,10 +90,10 @@ __kernel void dfsph_density_change(
     const __global float* uy, const __global float* uz, const __global float* rho, const __global float* factor,
     const __global float* theta, __global float* source, __global float* kappa, const uint n, const float ox,
     const float oy, const float oz, const float inv_cell, const int gx, const int gy, const int gz,
-    const __global uint* cell_start, const __global uint* cell_end, const __global float* terrain_height,
-    const __global float* terrain_normal, const int tnx, const int tny, const float tcell, const float domain_x,
+    const __global uint* cell_start, const __global uint* cell_end, const float domain_x,
     const float domain_z, const float dt, const float dt_k, const float error_scale, const uint divergence,
     const uint iterate, const __global uint* neighbours, const __global uint* neighbour_count,
+    const __global float* pair_grad, const __global float* floor_gradient,
     volatile __global long* errors, volatile __global uint* error_max) {
   __local long group_quanta[DFSPH_GROUP];
   __local uint group_count[DFSPH_GROUP], group_worst[DFSPH_GROUP];
@@ -104,17 +101,14 @@ __kernel void dfsph_density_change(
   long quanta = 0;  // particle i's error in quanta, whether it is in the solve, the error's bits
   uint counted = 0, worst = 0;
   if (i < n) {
-  const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 ui = (float3)(ux[i], uy[i], uz[i]);
   float sum = 0.0f;
-  DFSPH_NEIGHBOURS(
-    const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+  DFSPH_PAIRS(
     const float3 uj = image_velocity(image_, (float3)(ux[j], uy[j], uz[j]));
-    const float3 xij = pi - pj;
-    sum += dot(ui - uj, xij) * wendland_grad_factor(length(xij));
+    sum += dot(ui - uj, grad_);
   )
-  const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
-  const float change = DFSPH_V0 * sum - 2.0f * wall_integral(f.d) * dot(ui, f.n);
+  const float3 gn = (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
+  const float change = DFSPH_V0 * sum - 2.0f * dot(ui, gn);
   // The divergence-free solve leaves particles of a deficient neighbourhood alone.
   const bool solved = !divergence || theta[i] > 0.0f;
   float residual;

@@ -46,11 +46,16 @@ void Dfsph::measure_density(ParticleStore& store, const SpatialHash& hash, Devic
     list_capacity_ = std::max(n, list_capacity_ + list_capacity_ / 2);
     neighbours_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
                              list_capacity_ * kSlots * sizeof(cl_uint));
+    pair_gradients_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
+                                 3 * list_capacity_ * kSlots * sizeof(cl_float));
+    floor_gradients_ =
+        cl::Buffer(compute_.context(), CL_MEM_READ_WRITE, 3 * list_capacity_ * sizeof(cl_float));
   }
   bind_neighbourhood(density_, store, hash, terrain);
   store.bind(density_, {kRho});
   density_.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
   density_.set("neighbours", neighbours_).set("neighbour_count", store.spare(kListed));
+  density_.set("pair_grad", pair_gradients_).set("floor_gradient", floor_gradients_);
   density_.launch(round_up_work(n));
 }
 
@@ -120,6 +125,7 @@ Dfsph::SolveResult Dfsph::solve(ParticleStore& store, const SpatialHash& hash,
   for (Kernel* k : {&change, &accel}) {
     bind_neighbourhood(*k, store, hash, terrain);
     k->set("neighbours", neighbours_).set("neighbour_count", store.spare(kListed));
+    k->set("pair_grad", pair_gradients_).set("floor_gradient", floor_gradients_);
   }
   store.bind(change, {kRho});
   change.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));

@@ -83,6 +83,9 @@ class Dfsph {
   // Each particle's neighbours within the support, slot-major (cl/dfsph_density.cl), for the
   // solves.
   cl::Buffer neighbours_;
+  // ∇W of each listed pair (three blocks of kSlots slots) and G(d)·n of the terrain under each
+  // particle, from the density pass, for the solves.
+  cl::Buffer pair_gradients_, floor_gradients_;
   std::size_t list_capacity_ = 0;
   DfsphStats stats_;
   double density_dt_ = 0, divergence_dt_ = 0;  // the steps of the last solves (κ is kept × dt^k)
