@@ -150,6 +150,20 @@ TEST(Dfsph, SolvesConvergeToATightTolerance) {
   EXPECT_LE(stats.divergence.last_error, 0.001e-2);
 }
 
+// The memory a run is budgeted (sph_simulation.cpp) counts dfsph's per-particle buffers at the
+// size the solver really allocates them: a whole number of particles' worth, at least one for
+// every particle in the store.
+TEST(Dfsph, PerParticleBuffersAreWhatTheBudgetCounts) {
+  const SphSettings s = SphSettings::from(dfsph_parameters(), 0.1, 2.0);
+  SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);
+  EXPECT_EQ(solver.dfsph()->allocated_bytes(), 0u);
+  solver.add(block_on_floor(5));
+  solver.prepare();
+  const std::size_t bytes = solver.dfsph()->allocated_bytes(), each = Dfsph::bytes_per_particle();
+  EXPECT_EQ(bytes % each, 0u);
+  EXPECT_GE(bytes / each, solver.particles().size());
+}
+
 TEST(Dfsph, LoneDropNeverRisesAboveItsRelease) {
   // droplet_bounce's factor 0.0625 / 0.25 / 0.5 is sph.cfl_flow 0.1 / 0.4 (the default) / 0.8.
   for (double cfl : {0.0625, 0.25, 0.5}) {

@@ -95,14 +95,16 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
 }
 
 // The most device memory the run will hold: the particle store at its largest (the budget with
-// the store's growth margin), the terrain (fixed point, deltas, float view, normals, contact
-// heights, water depth with its coarser levels for films, a third more, talus outflows) and the
-// hash grid's cell ranges. Refused now, with the figures, rather than failing when the rain has
-// filled the store.
+// the store's growth margin; with dfsph, each particle's neighbour list and pair gradients too),
+// the terrain (fixed point, deltas, float view, normals, contact heights, water depth with its
+// coarser levels for films, a third more, talus outflows) and the hash grid's cell ranges. Refused
+// now, with the figures, rather than failing when the rain has filled the store.
 void Simulation::budget_device_memory(const ComputeContext& compute, const Heightmap& terrain,
                                       RainSettings& rain, std::size_t standing_particles) {
   const double vertices = static_cast<double>(terrain.size());
-  const double particle_bytes = 1.5 * static_cast<double>(ParticleStore::bytes_per_particle() + 4);
+  const std::size_t bytes_each = ParticleStore::bytes_per_particle() + 4 +
+                                 (solver_->dfsph() ? Dfsph::bytes_per_particle() : 0);
+  const double particle_bytes = 1.5 * static_cast<double>(bytes_each);
   const double fixed_bytes = vertices * (36 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
                              8.0 * static_cast<double>(solver_->hash().grid().cell_count()) +
                              static_cast<double>(standing_particles) * particle_bytes;
@@ -123,8 +125,7 @@ void Simulation::budget_device_memory(const ComputeContext& compute, const Heigh
   if (available > 0 && device_bytes_ > available) {
     throw input_error("rain.max_particles: the run needs " + format_number(device_bytes_ / 1e6) +
                       " MB of device memory (" + format_number(most_alive) +
-                      " particles alive at most, at " +
-                      std::to_string(ParticleStore::bytes_per_particle()) +
+                      " particles alive at most, at " + std::to_string(bytes_each) +
                       " bytes each, with growth margin, plus the terrain); " + compute.info().name +
                       " has " + format_number(available / 1e6) + " MB");
   }

@@ -14,7 +14,6 @@ namespace {
 
 // The store's spares during the solves (valid from measure_density() to the next sort).
 enum DfsphSpare : int { kFactor = 0, kTheta = 1, kSource = 2, kPressureAx = 3, kListed = 6 };
-constexpr std::size_t kSlots = 96;      // DFSPH_SLOTS of cl/dfsph_density.cl
 constexpr double kErrorQuantum = 1e-9;  // DFSPH_ERROR_QUANTUM of cl/dfsph_solve.cl
 
 }  // namespace
@@ -209,6 +208,13 @@ std::vector<float> Dfsph::pressure(ParticleStore& store) const {
     p[i] = static_cast<float>(settings_.rho0 * k);
   }
   return p;
+}
+
+std::size_t Dfsph::allocated_bytes() const {
+  std::size_t bytes = 0;
+  for (const cl::Buffer* b : {&neighbours_, &pair_gradients_, &floor_gradients_})
+    if ((*b)() != nullptr) bytes += b->getInfo<CL_MEM_SIZE>();
+  return bytes;
 }
 
 JsonObject Dfsph::json() const {

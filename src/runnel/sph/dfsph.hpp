@@ -48,6 +48,13 @@ class Dfsph {
                         double dt);
 
   const DfsphStats& stats() const { return stats_; }
+  // Device memory a particle of capacity takes beyond the store's: its neighbour list, the listed
+  // pairs' kernel gradients and the terrain's gradient under it.
+  static constexpr std::size_t bytes_per_particle() {
+    return kSlots * (sizeof(cl_uint) + 3 * sizeof(cl_float)) + 3 * sizeof(cl_float);
+  }
+  // The bytes those buffers hold now (0 before the first density pass).
+  std::size_t allocated_bytes() const;
   // Each particle's pressure (Pa) in the last step: ρ0 (κ + κ_v) of its two solves.
   std::vector<float> pressure(ParticleStore& store) const;
   // The stats as JSON: solves, mean iterations, capped solves, last errors.
@@ -57,6 +64,7 @@ class Dfsph {
   // Work-items a group of dfsph_density_change, which sums its errors in local memory
   // (cl/dfsph_solve.cl's DFSPH_GROUP).
   static constexpr std::size_t kGroup = 64;
+  static constexpr std::size_t kSlots = 96;  // DFSPH_SLOTS of cl/dfsph_density.cl
   struct SolveResult {
     int iterations;
     bool capped;
