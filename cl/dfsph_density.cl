@@ -6,10 +6,10 @@
 // water at its initial spacing is at rest density rather than 1.75 % compressed:
 //   ρ̂_i = ρ_i/ρ0 = V0 Σ_j W_ij + V0 Σ_ghosts W_ij' + Γ(d_i)
 //   g_i  = ∇_i ρ̂_i = V0 Σ_j ∇W_ij + V0 Σ_ghosts ∇W_ij' − G(d_i) n_i
-//   factor_i = 1 / (|g_i − G(d_i) n_i|² + V0² Σ_j |∇W_ij|²)
+//   factor_i = 1 / (max(g_i·(g_i − G(d_i) n_i), 0) + V0² Σ_j |∇W_ij|²)
 // (0 for a particle alone: nothing to solve), the inverse of the diagonal of the solves' system:
 // how fast ρ̂_i changes with κ_i through a_i (dfsph_solve.cl), in which the terrain mirrors the
-// particle's own pressure and velocity (its share −G n counts twice) and the neighbours' in theirs.
+// particle's own pressure (its share −G n counts twice) and the neighbours' in theirs.
 // The terrain under the particle is the volume map of a half-space: Γ(d) is the share of the
 // kernel beyond the tangent plane at distance d (Bender et al. 2019 tabulate it for any shape; a
 // plane's is closed form, sph_kernel.cl), and ∇Γ = −G(d) n. The tank walls' mirror ghosts
@@ -168,7 +168,7 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   const float rho_hat = DFSPH_V0 * (w_fluid + w_ghost) + wall_volume(f.d);
   const float3 g = DFSPH_V0 * (g_fluid + g_ghost) - wall_integral(f.d) * f.n;
   const float3 g_pressure = g - wall_integral(f.d) * f.n;  // ∇ρ̂ with the terrain mirrored
-  const float denominator = dot(g_pressure, g_pressure) + DFSPH_V0 * DFSPH_V0 * (sq_fluid + sq_ghost);
+  const float denominator = max(dot(g, g_pressure), 0.0f) + DFSPH_V0 * DFSPH_V0 * (sq_fluid + sq_ghost);
   neighbour_count[i] = listed;
   const float3 gn = wall_integral(f.d) * f.n;
   floor_gradient[i] = gn.x;

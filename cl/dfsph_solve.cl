@@ -10,18 +10,18 @@
 // applied over the step dt removes
 //   the constant-density solve:  the predicted compression, ρ̂_i + dt Δ_i(v) ≤ 1, and
 //   the divergence-free solve:   the rate of compression, Δ_i(v) ≤ 0,
-// where Δ_i(u) = V0 Σ_j (u_i − u_j)·∇W_ij + V0 Σ_ghosts (u_i − u_j')·∇W_ij' − 2 G(d_i) u_i·n_i
-// is the rate of change of ρ̂_i that the velocities u cause, the ghosts' u mirrored as their
-// velocities are, and the terrain's share that of a mirrored fluid too: the terrain's volume map
-// with the particle's own velocity mirrored (the normal part of u_i − M u_i is 2 u_i·n_i), as the
-// pressure mirrors κ_i. Then a = −Dᵀκ for the operator D of Δ: the solves' system −Δ(a(κ)) = D Dᵀ κ
-// is symmetric and positive semi-definite, and relaxed Jacobi converges on it. (With the terrain's
-// rate counted once, −G u_i·n_i, the system is not symmetric; it has a mode that alternates from
-// particle to particle along the floor and grows by 1 % an iteration, which left the floor's layer
-// 1–2 % compressed and made a solve run away at a tight tolerance.) The mirrored rate overstates
-// how fast water moving onto the terrain compresses against it, and understates how fast water
-// leaving it thins; at rest, where the water settles, both are 0. Only compression is removed:
-// κ ≥ 0, so water may thin at a free surface and a drop keeps no pressure. Projected Jacobi: κ_i ← max(κ_i − ω r_i · factor_i / dt^k, 0) with the
+// where Δ_i(u) = V0 Σ_j (u_i − u_j)·∇W_ij + V0 Σ_ghosts (u_i − u_j')·∇W_ij' − G(d_i) u_i·n_i
+// is the rate of change of ρ̂_i that the velocities u cause (the ghosts' u mirrored as their
+// velocities are; the terrain at rest, its share the plane's exact rate). The system is not
+// symmetric: the terrain pushes with 2κ_i but compresses at the rate of one. On a lattice of water
+// on a floor diag⁻¹A has one eigenvalue below 0 (−0.02 to −0.05 with the particles jittered), a
+// mode alternating from particle to particle along the floor that grows 1–2.5 % a Jacobi
+// iteration; a solve of a few iterations leaves it small, one of hundreds (a tolerance of 0.001 %
+// in a deep tank) runs away. Making the system symmetric by counting the terrain's rate twice as
+// well converges on every mode, but then the solve believes the terrain's push twice as effective
+// as it is: under heavy rain on ponds the water beside the ground compressed step after step to
+// 1.7 ρ0. Only compression is removed: κ ≥ 0, so water may thin at a free surface and a drop
+// keeps no pressure. Projected Jacobi: κ_i ← max(κ_i − ω r_i · factor_i / dt^k, 0) with the
 // residual r_i = s_i − dt^k Δ_i(a) (k = 2 for the density, 1 for the divergence), s_i the source
 // (IISPH's clamp; a κ that only grew, as in SPlisHSPlasH, cannot undo a warm start that pushes
 // too hard). The divergence-free solve acts only where θ > 0 (a full neighbourhood, as SPlisHSPlasH
@@ -34,9 +34,11 @@
 
 #define DFSPH_ERROR_QUANTUM 1e-9f  // of the dimensionless density error, in the fixed-point sums
 #define DFSPH_GROUP 64             // work-items a group of dfsph_density_change (Dfsph::kGroup)
-// Jacobi's relaxation, as IISPH's (Ihmsen et al. 2014). Jacobi converges on the symmetric system
-// when ω < 2 / λ_max of diag⁻¹ D Dᵀ, and λ_max is about 3.5 on a lattice of water (the lattice's
-// shortest pressure waves): with the full step (1) the iteration diverges.
+// Jacobi's relaxation, as IISPH's (Ihmsen et al. 2014). Jacobi damps a mode when ω λ < 2, λ its
+// eigenvalue of diag⁻¹A; the largest is 3.5 on a lattice of water (its shortest pressure waves)
+// and 3.7–3.9 where the particles are jittered by 0.15–0.3 dx (measured on the matrix of a small
+// tank), so with the full step (1) the iteration diverges, and 0.5 is about the largest that
+// damps them: 0.55 took 6 % fewer iterations in a storm.
 #define DFSPH_RELAXATION 0.5f
 
 // u = v + a·dt/2 with the non-pressure accelerations of dfsph_non_pressure: into v itself, the
@@ -108,7 +110,7 @@ __kernel void dfsph_density_change(
     sum += dot(ui - uj, grad_);
   )
   const float3 gn = (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
-  const float change = DFSPH_V0 * sum - 2.0f * dot(ui, gn);
+  const float change = DFSPH_V0 * sum - dot(ui, gn);
   // The divergence-free solve leaves particles of a deficient neighbourhood alone.
   const bool solved = !divergence || theta[i] > 0.0f;
   float residual;

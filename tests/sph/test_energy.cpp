@@ -100,65 +100,41 @@ double incompressible_energy(SphSolver& solver) {
   return e;
 }
 
-// What a settled dfsph block's energy does over its second second, with the solves' tolerances
-// (per cent of ρ0) given.
-struct EnergyRecord {
-  long long steps = 0, gains = 0;
-  double start = 0, end = 0, worst_gain = 0, kinetic_end = 0;
-};
-
-EnergyRecord settled_incompressible_block(double density_error, double divergence_error) {
+// The incompressible solver's settled block loses energy over a second, but not in every step:
+// the solves stop at a tolerance, and what they leave acts as small pressure impulses (measured:
+// about half the steps gain, the worst by 0.4 % of the block's energy above its resting level;
+// printed, and in docs/validation.md). Its energy must still fall over the second.
+TEST(SphEnergy, IncompressibleSettledBlockLosesEnergyOverASecond) {
   Parameters params = default_parameters();
   params.set("sph.walls", true);
   params.set("sph.solver", std::string("dfsph"));
-  params.set("sph.dfsph_density_error", density_error);
-  params.set("sph.dfsph_divergence_error", divergence_error);
-  params.set("sph.dfsph_max_iterations", 2000);
   const double height = 0.2, dx = height / 8, width = 8 * dx;
   const SphSettings s = SphSettings::from(params, dx, std::sqrt(9.81 * height));
   SphSolver solver(compute(), s, flat_floor(16, 16, 0.5 * dx), 2 * height);
   solver.add(uniform_block(s, width, height, width));
   while (solver.time() < 1.0) solver.step();
-  EnergyRecord r;
-  r.start = incompressible_energy(solver);
-  double previous = r.start;
+  const double start = incompressible_energy(solver);
+  double previous = start, worst_gain = 0, kinetic_end = 0;
+  long long steps = 0, gains = 0;
   while (solver.time() < 2.0) {
     solver.step();
     const double e = incompressible_energy(solver);
-    r.worst_gain = std::max(r.worst_gain, e - previous);
-    r.gains += e > previous;
+    worst_gain = std::max(worst_gain, e - previous);
+    gains += e > previous;
     previous = e;
-    ++r.steps;
+    ++steps;
   }
-  r.end = previous;
   const HostParticles p = solver.particles().download();
   for (std::size_t i = 0; i < p.size(); ++i)
-    r.kinetic_end += 0.5 * s.mass() *
-                     (double(p.f[kVx][i]) * p.f[kVx][i] + double(p.f[kVy][i]) * p.f[kVy][i] +
-                      double(p.f[kVz][i]) * p.f[kVz][i]);
+    kinetic_end += 0.5 * s.mass() *
+                   (double(p.f[kVx][i]) * p.f[kVx][i] + double(p.f[kVy][i]) * p.f[kVy][i] +
+                    double(p.f[kVz][i]) * p.f[kVz][i]);
   std::printf(
-      "measured at %g %% / %g %%: %lld steps, %lld gained energy, the worst by %g J; E %g -> %g J, "
-      "kinetic energy at the end %g J\n",
-      density_error, divergence_error, r.steps, r.gains, r.worst_gain, r.start, r.end,
-      r.kinetic_end);
-  return r;
-}
-
-// The incompressible solver's settled block loses energy over a second, but not in every step:
-// the solves stop at a tolerance, and what they leave acts as small pressure impulses. Those gains
-// are the solves' error, not the scheme's: a tenth of the default tolerances cuts the worst gain
-// by more than ten (measured: 0.0047 J at the defaults, about 0.0001 J at 0.005 % / 0.01 %, of a
-// block's 7.9 J; docs/sph.md), and the energy falls over the second either way.
-TEST(SphEnergy, IncompressibleSettledBlockGainsOnlyWhatTheSolvesLeave) {
-  const EnergyRecord loose = settled_incompressible_block(0.05, 0.1);  // the defaults
-  const EnergyRecord tight = settled_incompressible_block(0.005, 0.01);
-  for (const EnergyRecord* r : {&loose, &tight}) {
-    EXPECT_GT(r->steps, 50);
-    EXPECT_LT(r->end, r->start) << "energy must be dissipated";
-  }
-  EXPECT_GT(loose.worst_gain, 0.0);
-  EXPECT_LT(tight.worst_gain, 0.1 * loose.worst_gain);
-  EXPECT_LT(tight.worst_gain, 1e-4 * tight.start);
+      "measured: %lld steps, %lld gained energy, the worst by %g J; E %g -> %g J, kinetic "
+      "energy at the end %g J\n",
+      steps, gains, worst_gain, start, previous, kinetic_end);
+  EXPECT_GT(steps, 50);
+  EXPECT_LT(previous, start) << "energy must be dissipated";
 }
 
 }  // namespace
