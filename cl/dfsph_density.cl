@@ -50,13 +50,14 @@ inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uin
 #define DFSPH_IMAGE_SHIFT 28
 
 // Visits particle i's neighbours and ghosts (the list, or the walk when it overflowed) with j the
-// sorted index and image_ the image, as LONE_CANDIDATES_BEGIN does; the argument is the body.
+// sorted index, image_ the image and slot_ the list's slot (DFSPH_SLOTS on the walk), as
+// LONE_CANDIDATES_BEGIN does; the argument is the body. The kernel needs pi, particle i's position.
 #define DFSPH_NEIGHBOURS(...)                                                                       \
   {                                                                                                \
     const uint listed_ = neighbour_count[i];                                                       \
     if (listed_ <= DFSPH_SLOTS) {                                                                  \
-      for (uint s_ = 0; s_ < listed_; ++s_) {                                                      \
-        const uint e_ = neighbours[s_ * n + i];                                                    \
+      for (uint slot_ = 0; slot_ < listed_; ++slot_) {                                             \
+        const uint e_ = neighbours[slot_ * n + i];                                                 \
         const uint j = e_ & DFSPH_INDEX_MASK, image_ = e_ >> DFSPH_IMAGE_SHIFT;                    \
         __VA_ARGS__                                                                                \
       }                                                                                            \
@@ -66,41 +67,27 @@ inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uin
       particle_candidates(i, pi, grid_, cell_start, cell_end, domain_x, domain_z, &t_);            \
       LONE_CANDIDATES_BEGIN(t_)                                                                    \
       if (image_ != 0 || j != i) {                                                                 \
+        const uint slot_ = DFSPH_SLOTS;                                                            \
         __VA_ARGS__                                                                                \
       }                                                                                            \
       LONE_CANDIDATES_END                                                                          \
     }                                                                                              \
   }
 
-// As DFSPH_NEIGHBOURS, with grad_ = ∇_i W_ij as the density pass stored it for the listed
-// neighbours (pair_grad, slot-major, one block of DFSPH_SLOTS slots per component), computed as it
+// ∇_i W_ij of a pair the neighbour walk visits: as the density pass stored it for a listed
+// neighbour (pair_grad, slot-major, one block of DFSPH_SLOTS slots per component), computed as it
 // does for a particle that walks its cells. The solves' passes run ten times a step over the same
 // positions: reading the gradient replaces the gathers of x_j and the kernel's evaluation.
-#define DFSPH_PAIRS(...)                                                                            \
-  {                                                                                                \
-    const uint listed_ = neighbour_count[i];                                                       \
-    if (listed_ <= DFSPH_SLOTS) {                                                                  \
-      for (uint s_ = 0; s_ < listed_; ++s_) {                                                      \
-        const uint e_ = neighbours[s_ * n + i];                                                    \
-        const uint j = e_ & DFSPH_INDEX_MASK, image_ = e_ >> DFSPH_IMAGE_SHIFT;                    \
-        const float3 grad_ = (float3)(pair_grad[s_ * n + i], pair_grad[(DFSPH_SLOTS + s_) * n + i],   \
-                                      pair_grad[(2 * DFSPH_SLOTS + s_) * n + i]);                  \
-        __VA_ARGS__                                                                                \
-      }                                                                                            \
-    } else {                                                                                       \
-      const float3 pi_ = (float3)(x[i], y[i], z[i]);                                               \
-      const Grid grid_ = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);                              \
-      LoneTile t_;                                                                                 \
-      particle_candidates(i, pi_, grid_, cell_start, cell_end, domain_x, domain_z, &t_);           \
-      LONE_CANDIDATES_BEGIN(t_)                                                                    \
-      if (image_ != 0 || j != i) {                                                                 \
-        const float3 xij_ = pi_ - image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z); \
-        const float3 grad_ = wendland_grad_factor(sqrt(dot(xij_, xij_))) * xij_;                   \
-        __VA_ARGS__                                                                                \
-      }                                                                                            \
-      LONE_CANDIDATES_END                                                                          \
-    }                                                                                              \
-  }
+inline float3 pair_gradient(uint slot, uint i, uint j, uint image, uint n, const __global float* pair_grad,
+                            float3 pi, const __global float* x, const __global float* y,
+                            const __global float* z, float domain_x, float domain_z) {
+  if (slot < DFSPH_SLOTS)
+    return (float3)(pair_grad[slot * n + i], pair_grad[(DFSPH_SLOTS + slot) * n + i],
+                    pair_grad[(2 * DFSPH_SLOTS + slot) * n + i]);
+  const float3 xij = pi - image_position(image, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+  return wendland_grad_factor(sqrt(dot(xij, xij))) * xij;
+}
+#define DFSPH_PAIR_GRADIENT pair_gradient(slot_, i, j, image_, n, pair_grad, pi, x, y, z, domain_x, domain_z)
 
 // The terrain's tangent plane under a particle: distance d along the unit normal n.
 typedef struct {

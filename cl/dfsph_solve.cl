@@ -66,10 +66,11 @@ __kernel void dfsph_pressure_acceleration(
     __global float* apx, __global float* apy, __global float* apz) {
   const uint i = get_global_id(0);
   if (i >= n) return;
+  const float3 pi = (float3)(x[i], y[i], z[i]);
   const float ki = kappa[i];
   float3 acc = (float3)(0.0f);
-  DFSPH_PAIRS(
-    acc += (-DFSPH_V0 * (ki + kappa[j])) * grad_;
+  DFSPH_NEIGHBOURS(
+    acc += (-DFSPH_V0 * (ki + kappa[j])) * DFSPH_PAIR_GRADIENT;
   )
   const float3 gn = (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
   acc += (2.0f * ki) * gn;
@@ -103,11 +104,12 @@ __kernel void dfsph_density_change(
   long quanta = 0;  // particle i's error in quanta, whether it is in the solve, the error's bits
   uint counted = 0, worst = 0;
   if (i < n) {
+  const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 ui = (float3)(ux[i], uy[i], uz[i]);
   float sum = 0.0f;
-  DFSPH_PAIRS(
+  DFSPH_NEIGHBOURS(
     const float3 uj = image_velocity(image_, (float3)(ux[j], uy[j], uz[j]));
-    sum += dot(ui - uj, grad_);
+    sum += dot(ui - uj, DFSPH_PAIR_GRADIENT);
   )
   const float3 gn = (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
   const float change = DFSPH_V0 * sum - dot(ui, gn);
