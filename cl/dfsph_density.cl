@@ -154,7 +154,7 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   const float th = fluid_fullness((SPH_MASS / SPH_RHO0) * others, f.d, SPH_RHO0);
   const float rho_hat = DFSPH_V0 * (w_fluid + w_ghost) + wall_volume(f.d);
   const float3 g = DFSPH_V0 * (g_fluid + g_ghost) - wall_integral(f.d) * f.n;
-  const float3 g_pressure = g - wall_integral(f.d) * f.n;  // ∇ρ̂ with the terrain mirrored
+  const float3 g_pressure = g - wall_integral(f.d) * f.n;  // how κ_i moves i: the terrain mirrors it
   const float denominator = max(dot(g, g_pressure), 0.0f) + DFSPH_V0 * DFSPH_V0 * (sq_fluid + sq_ghost);
   neighbour_count[i] = listed;
   const float3 gn = wall_integral(f.d) * f.n;
