@@ -48,16 +48,26 @@ inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uin
 #define DFSPH_SLOTS 96
 #define DFSPH_INDEX_MASK 0x0FFFFFFFu
 #define DFSPH_IMAGE_SHIFT 28
+// A listed pair is one float4, slot-major (pairs[slot·n + i]: a work-group's particles read one
+// run of memory a slot): its ∇W_ij in xyz and the neighbour's entry (j, and the image in the top
+// bits) in w, flipped by DFSPH_ENTRY_FLIP. The float arithmetic on the gradient carries w along in
+// the vector's fourth lane, and an entry taken as a float is a denormal for every j below 2^23
+// with image 0: each operation on it then takes the x86 core's microcode assist, which made the
+// pressure pass five times slower. Flipped, the exponent is neither 0 nor all ones for every
+// index below 125,829,120 (j's bits 23–27 are then never 15 or 16), so w is an ordinary number.
+#define DFSPH_ENTRY_FLIP 0x08000000u
 
 // Visits particle i's neighbours and ghosts (the list, or the walk when it overflowed) with j the
-// sorted index, image_ the image and slot_ the list's slot (DFSPH_SLOTS on the walk), as
-// LONE_CANDIDATES_BEGIN does; the argument is the body. The kernel needs pi, particle i's position.
+// sorted index, image_ the image, slot_ the list's slot (DFSPH_SLOTS on the walk) and pair_ its
+// float4 (0 on the walk), as LONE_CANDIDATES_BEGIN does; the argument is the body. The kernel
+// needs pi, particle i's position.
 #define DFSPH_NEIGHBOURS(...)                                                                       \
   {                                                                                                \
     const uint listed_ = neighbour_count[i];                                                       \
     if (listed_ <= DFSPH_SLOTS) {                                                                  \
       for (uint slot_ = 0; slot_ < listed_; ++slot_) {                                             \
-        const uint e_ = neighbours[slot_ * n + i];                                                 \
+        const float4 pair_ = pairs[(size_t)slot_ * n + i];                                         \
+        const uint e_ = as_uint(pair_.w) ^ DFSPH_ENTRY_FLIP;                                       \
         const uint j = e_ & DFSPH_INDEX_MASK, image_ = e_ >> DFSPH_IMAGE_SHIFT;                    \
         __VA_ARGS__                                                                                \
       }                                                                                            \
@@ -68,6 +78,7 @@ inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uin
       LONE_CANDIDATES_BEGIN(t_)                                                                    \
       if (image_ != 0 || j != i) {                                                                 \
         const uint slot_ = DFSPH_SLOTS;                                                            \
+        const float4 pair_ = (float4)(0.0f);                                                       \
         __VA_ARGS__                                                                                \
       }                                                                                            \
       LONE_CANDIDATES_END                                                                          \
@@ -75,19 +86,15 @@ inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uin
   }
 
 // ∇_i W_ij of a pair the neighbour walk visits: as the density pass stored it for a listed
-// neighbour (pair_grad, slot-major, one block of DFSPH_SLOTS slots per component), computed as it
-// does for a particle that walks its cells. The solves' passes run ten times a step over the same
+// neighbour (the pair's float4), computed as it does for a particle that walks its cells. The solves' passes run ten times a step over the same
 // positions: reading the gradient replaces the gathers of x_j and the kernel's evaluation.
-inline float3 pair_gradient(uint slot, uint i, uint j, uint image, uint n, const __global float* pair_grad,
-                            float3 pi, const __global float* x, const __global float* y,
-                            const __global float* z, float domain_x, float domain_z) {
-  if (slot < DFSPH_SLOTS)
-    return (float3)(pair_grad[slot * n + i], pair_grad[(DFSPH_SLOTS + slot) * n + i],
-                    pair_grad[(2 * DFSPH_SLOTS + slot) * n + i]);
+inline float3 pair_gradient(uint slot, float4 pair, uint j, uint image, float3 pi, const __global float* x,
+                            const __global float* y, const __global float* z, float domain_x, float domain_z) {
+  if (slot < DFSPH_SLOTS) return pair.xyz;
   const float3 xij = pi - image_position(image, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
   return wendland_grad_factor(sqrt(dot(xij, xij))) * xij;
 }
-#define DFSPH_PAIR_GRADIENT pair_gradient(slot_, i, j, image_, n, pair_grad, pi, x, y, z, domain_x, domain_z)
+#define DFSPH_PAIR_GRADIENT pair_gradient(slot_, pair_, j, image_, pi, x, y, z, domain_x, domain_z)
 
 // The terrain's tangent plane under a particle: distance d along the unit normal n.
 typedef struct {
@@ -110,8 +117,8 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
                             const __global uint* cell_end, const __global float* terrain_height,
                             const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
                             const float domain_x, const float domain_z, __global float* rho, __global float* factor,
-                            __global float* theta, __global uint* neighbours, __global uint* neighbour_count,
-                            __global float* pair_grad, __global float* floor_gradient) {
+                            __global float* theta, __global float4* pairs, __global uint* neighbour_count,
+                            __global float* floor_gradient) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
@@ -130,10 +137,8 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   const float3 grad = wendland_grad_factor(r) * xij;
   if (r2 < BEYOND_SUPPORT2 && (image_ != 0 || j != i)) {
     if (listed < DFSPH_SLOTS) {
-      neighbours[listed * n + i] = j | (image_ << DFSPH_IMAGE_SHIFT);
-      pair_grad[listed * n + i] = grad.x;
-      pair_grad[(DFSPH_SLOTS + listed) * n + i] = grad.y;
-      pair_grad[(2 * DFSPH_SLOTS + listed) * n + i] = grad.z;
+      const uint entry = j | (image_ << DFSPH_IMAGE_SHIFT);
+      pairs[(size_t)listed * n + i] = (float4)(grad, as_float(entry ^ DFSPH_ENTRY_FLIP));
     }
     ++listed;
   }
@@ -177,7 +182,7 @@ __kernel void dfsph_non_pressure(const __global float* x, const __global float* 
                                  const uint n, const float ox, const float oy,
                                  const float oz, const float inv_cell, const int gx, const int gy, const int gz,
                                  const __global uint* cell_start, const __global uint* cell_end,
-                                 const float domain_x, const float domain_z, const __global uint* neighbours,
+                                 const float domain_x, const float domain_z, const __global float4* pairs,
                                  const __global uint* neighbour_count, __global float* ax, __global float* ay,
                                  __global float* az) {
   const uint i = get_global_id(0);

@@ -61,8 +61,8 @@ __kernel void dfsph_pressure_acceleration(
     const __global float* x, const __global float* y, const __global float* z, const __global float* kappa,
     const uint n, const float ox, const float oy, const float oz, const float inv_cell,
     const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
-    const float domain_x, const float domain_z, const __global uint* neighbours,
-    const __global uint* neighbour_count, const __global float* pair_grad, const __global float* floor_gradient,
+    const float domain_x, const float domain_z, const __global float4* pairs,
+    const __global uint* neighbour_count, const __global float* floor_gradient,
     __global float* apx, __global float* apy, __global float* apz) {
   const uint i = get_global_id(0);
   if (i >= n) return;
@@ -95,8 +95,8 @@ __kernel void dfsph_density_change(
     const float oy, const float oz, const float inv_cell, const int gx, const int gy, const int gz,
     const __global uint* cell_start, const __global uint* cell_end, const float domain_x,
     const float domain_z, const float dt, const float dt_k, const float error_scale, const uint divergence,
-    const uint iterate, const __global uint* neighbours, const __global uint* neighbour_count,
-    const __global float* pair_grad, const __global float* floor_gradient,
+    const uint iterate, const __global float4* pairs, const __global uint* neighbour_count,
+    const __global float* floor_gradient,
     volatile __global long* errors, volatile __global uint* error_max) {
   __local long group_quanta[DFSPH_GROUP];
   __local uint group_count[DFSPH_GROUP], group_worst[DFSPH_GROUP];

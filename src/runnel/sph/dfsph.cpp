@@ -43,18 +43,16 @@ void Dfsph::measure_density(ParticleStore& store, const SpatialHash& hash, Devic
   if (n == 0) return;
   if (n > list_capacity_) {  // the lists grow with the particles, by the store's factor
     list_capacity_ = std::max(n, list_capacity_ + list_capacity_ / 2);
-    neighbours_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
-                             list_capacity_ * kSlots * sizeof(cl_uint));
-    pair_gradients_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
-                                 3 * list_capacity_ * kSlots * sizeof(cl_float));
+    pairs_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
+                        list_capacity_ * kSlots * sizeof(cl_float4));
     floor_gradients_ =
         cl::Buffer(compute_.context(), CL_MEM_READ_WRITE, 3 * list_capacity_ * sizeof(cl_float));
   }
   bind_neighbourhood(density_, store, hash, terrain);
   store.bind(density_, {kRho});
   density_.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
-  density_.set("neighbours", neighbours_).set("neighbour_count", store.spare(kListed));
-  density_.set("pair_grad", pair_gradients_).set("floor_gradient", floor_gradients_);
+  density_.set("pairs", pairs_).set("neighbour_count", store.spare(kListed));
+  density_.set("floor_gradient", floor_gradients_);
   density_.launch(round_up_work(n));
 }
 
@@ -64,7 +62,7 @@ void Dfsph::non_pressure_accelerations(ParticleStore& store, const SpatialHash& 
   if (n == 0) return;
   bind_neighbourhood(non_pressure_, store, hash, terrain);
   store.bind(non_pressure_, {kVx, kVy, kVz, kAx, kAy, kAz});
-  non_pressure_.set("neighbours", neighbours_).set("neighbour_count", store.spare(kListed));
+  non_pressure_.set("pairs", pairs_).set("neighbour_count", store.spare(kListed));
   non_pressure_.launch(round_up_work(n));
 }
 
@@ -123,8 +121,8 @@ Dfsph::SolveResult Dfsph::solve(ParticleStore& store, const SpatialHash& hash,
   Kernel& accel = pressure_acceleration_;
   for (Kernel* k : {&change, &accel}) {
     bind_neighbourhood(*k, store, hash, terrain);
-    k->set("neighbours", neighbours_).set("neighbour_count", store.spare(kListed));
-    k->set("pair_grad", pair_gradients_).set("floor_gradient", floor_gradients_);
+    k->set("pairs", pairs_).set("neighbour_count", store.spare(kListed));
+    k->set("floor_gradient", floor_gradients_);
   }
   store.bind(change, {kRho});
   change.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
@@ -212,7 +210,7 @@ std::vector<float> Dfsph::pressure(ParticleStore& store) const {
 
 std::size_t Dfsph::allocated_bytes() const {
   std::size_t bytes = 0;
-  for (const cl::Buffer* b : {&neighbours_, &pair_gradients_, &floor_gradients_})
+  for (const cl::Buffer* b : {&pairs_, &floor_gradients_})
     if ((*b)() != nullptr) bytes += b->getInfo<CL_MEM_SIZE>();
   return bytes;
 }

@@ -48,10 +48,10 @@ class Dfsph {
                         double dt);
 
   const DfsphStats& stats() const { return stats_; }
-  // Device memory a particle of capacity takes beyond the store's: its neighbour list, the listed
-  // pairs' kernel gradients and the terrain's gradient under it.
+  // Device memory a particle of capacity takes beyond the store's: its listed pairs (a neighbour's
+  // index and the pair's kernel gradient, one float4 each) and the terrain's gradient under it.
   static constexpr std::size_t bytes_per_particle() {
-    return kSlots * (sizeof(cl_uint) + 3 * sizeof(cl_float)) + 3 * sizeof(cl_float);
+    return kSlots * sizeof(cl_float4) + 3 * sizeof(cl_float);
   }
   // The bytes those buffers hold now (0 before the first density pass).
   std::size_t allocated_bytes() const;
@@ -88,12 +88,10 @@ class Dfsph {
   SphSettings settings_;
   Kernel density_, non_pressure_, half_kick_, pressure_acceleration_, density_change_, finish_;
   cl::Buffer errors_, error_max_;
-  // Each particle's neighbours within the support, slot-major (cl/dfsph_density.cl), for the
-  // solves.
-  cl::Buffer neighbours_;
-  // ∇W of each listed pair (three blocks of kSlots slots) and G(d)·n of the terrain under each
-  // particle, from the density pass, for the solves.
-  cl::Buffer pair_gradients_, floor_gradients_;
+  // Each particle's neighbours within the support and their pairs' ∇W, kSlots float4s a
+  // particle (cl/dfsph_density.cl), and G(d)·n of the terrain under each particle, from the
+  // density pass, for the solves.
+  cl::Buffer pairs_, floor_gradients_;
   std::size_t list_capacity_ = 0;
   DfsphStats stats_;
   double density_dt_ = 0, divergence_dt_ = 0;  // the steps of the last solves (κ is kept × dt^k)
