@@ -252,13 +252,17 @@ __kernel void step_stats(__global float* vx, __global float* vy, __global float*
 
 // After the terrain changed under the particles (deposition, talus), puts back on the contact
 // surface any particle now below it, so no particle ever ends a step below the terrain. A particle
-// resting on the surface rides up with it; one that ends more than ε below is counted.
+// resting on the surface rides up with it; one that ends more than ε below is counted. A particle
+// that left through an open edge this step is not: beyond the edge the surface is the edge's
+// height, which a droplet thrown out and down ends below (with dfsph's longer steps, most that
+// leave do).
 __kernel void project_to_surface(__global float* x, __global float* y, __global float* z, __global float* vx,
-                                 __global float* vy, __global float* vz, const uint n,
+                                 __global float* vy, __global float* vz, const __global uint* id, const uint n,
                                  const __global float* terrain_contact, const __global float* terrain_normal,
                                  const int tnx, const int tny, const float tcell, volatile __global long* counters) {
   const uint i = get_global_id(0);
   if (i >= n) return;
+  if (id[i] & DEAD_FLAG) return;  // left through an open edge this step: gone at the next sort
   const SurfacePoint s =
       kept_surface(terrain_contact, terrain_normal, tnx, tny, tcell, x[i], z[i]);
   if (y[i] >= s.height) return;

@@ -12,6 +12,7 @@
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/surface.hpp"
 #include "runnel/terrain/terrain_normals.hpp"
+#include "runnel/validation/tank.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -182,6 +183,27 @@ TEST(Collision, FastDropletsNeverTunnelAtTheLargestTimeStep) {
   const SphCounters c = solver.counters();
   EXPECT_GT(c.collisions, 250) << "every droplet reaches the terrain: nothing holds a drop up";
   EXPECT_EQ(c.surface_projections, 0) << "the contact leaves none below the surface";
+}
+
+TEST(Collision, AParticleLeavingThroughAnOpenEdgeIsNoProjection) {
+  // A droplet thrown down and out over the map's edge: the drift books it as outflow, its last
+  // position beyond the edge and below the height there. The projection that follows a terrain
+  // change must leave it alone: it is gone at the next sort, and no projection happened.
+  const Heightmap flat = flat_floor(8, 8, 1.0);
+  SphSolver solver(compute(), droplet_settings(0.5), flat, 10.0);
+  const Heightmap surface = contact_surface(flat, solver.settings().contact_radius);
+  const float edge = static_cast<float>((flat.nx - 1) * flat.cell);
+  HostParticles p;
+  p.push(edge - 0.01f, static_cast<float>(surface_height(surface, edge, 4.0)) + 0.05f, 4.0f, 400.0f,
+         -400.0f, 0, 1000, 1e30f);
+  solver.add(p);
+  solver.drift();
+  const HostParticles after = solver.particles().download();
+  ASSERT_EQ(solver.counters().outflow_particles, 1);
+  ASSERT_LT(after.f[kY][0], surface_height(surface, edge, 4.0) - 2 * solver.settings().surface_eps)
+      << "the case needs the droplet to end below the edge's height";
+  solver.project_to_surface();
+  EXPECT_EQ(solver.counters().surface_projections, 0);
 }
 
 }  // namespace

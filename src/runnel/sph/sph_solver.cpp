@@ -257,7 +257,7 @@ void SphSolver::drop_dead_particles() {
 
 void SphSolver::project_to_surface() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
-  store_.bind(project_, {kX, kY, kZ, kVx, kVy, kVz});
+  store_.bind(project_, {kX, kY, kZ, kVx, kVy, kVz, kId});
   terrain_.bind_contact(project_);
   project_.set("counters", counters_buffer_).launch(round_up_work(n));
 }
