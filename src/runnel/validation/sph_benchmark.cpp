@@ -44,8 +44,10 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
                          const Parameters& params_in, unsigned tile, const std::string& scene) {
   Parameters params = params_in;
   params.set("sph.walls", true, "bench");
-  const bool sheet = scene == "sheet";
+  const bool sheet = scene == "sheet", fall = scene == "fall";
   // block: twice as wide as it is high, filling the tank's floor, the water 1 m deep.
+  // fall: the same block at rest density, its bottom a quarter of its height above the floor of a
+  //   tank twice as wide: it falls, lands (after 0.23 s) and spreads.
   // sheet: kSheetLayers particles of 5 cm deep on a square slope.
   const int high =
       sheet ? kSheetLayers : std::max(2, static_cast<int>(std::lround(std::cbrt(particles / 4.0))));
@@ -53,12 +55,25 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
       std::max(2, static_cast<int>(std::lround(std::sqrt(static_cast<double>(particles) / high))));
   const double dx = sheet ? 0.05 : 1.0 / high, depth = high * dx;
   const SphSettings s =
-      SphSettings::from(params, dx, std::sqrt(params.real("sph.gravity") * (sheet ? 1.0 : depth)));
-  const double side = wide * dx;
-  SphSolver solver(compute, s, sheet ? sloped_floor(wide, dx) : flat_floor(1, 1, side),
-                   sheet ? kSheetSlope * side + 1.0 : 1.5 * depth);
+      SphSettings::from(params, dx,
+                        std::sqrt(params.real("sph.gravity") * (sheet  ? 1.0
+                                                                : fall ? 1.25 * depth
+                                                                       : depth)));
+  const double side = wide * dx, floor_side = fall ? 2 * side : side;
+  SphSolver solver(compute, s, sheet ? sloped_floor(wide, dx) : flat_floor(1, 1, floor_side),
+                   sheet  ? kSheetSlope * side + 1.0
+                   : fall ? 2.0 * depth
+                          : 1.5 * depth);
   if (tile > 0) solver.hash().set_tile(tile);
-  solver.add(sheet ? sheet_on_slope(s, wide) : hydrostatic_block(s, side, depth, side));
+  if (fall) {
+    HostParticles block = uniform_block(s, side, depth, side);
+    for (float& x : block.f[kX]) x += static_cast<float>(side / 2);
+    for (float& y : block.f[kY]) y += static_cast<float>(depth / 4);
+    for (float& z : block.f[kZ]) z += static_cast<float>(side / 2);
+    solver.add(std::move(block));
+  } else {
+    solver.add(sheet ? sheet_on_slope(s, wide) : hydrostatic_block(s, side, depth, side));
+  }
   const long long n = static_cast<long long>(solver.particles().size());
 
   for (int k = 0; k < 3; ++k) solver.step();  // warm-up: kernel builds, first allocations
@@ -83,7 +98,7 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
   }
   JsonObject out;
   out.add("benchmark", "sph")
-      .add("scene", sheet ? "sheet" : "block")
+      .add("scene", scene)
       .add("device", compute.info().name)
       .add("particles", n)
       .add("steps", steps)
