@@ -137,10 +137,13 @@ step sph_4000000_tile32 120 "$runnel" bench sph --particles "$(scaled 4000000)" 
 # The incompressible solver on the same block (its simulated seconds per wall second beside wcsph's).
 step sph_1000000_dfsph 120 "$runnel" bench sph --particles "$(scaled 1000000)" --steps 20 --device "$device" \
   --set sph.solver=dfsph
-# Both solvers on a film two particles deep running down a slope, the shape of a storm's water.
-for solver in wcsph dfsph; do
-  step "sph_sheet_1000000_$solver" 120 "$runnel" bench sph --scene sheet --particles "$(scaled 1000000)" \
-    --steps 20 --device "$device" --set sph.solver=$solver
+# Both solvers on a film two particles deep running down a slope, the shape of a storm's water, and
+# on the block dropped onto the floor (falling and landing).
+for scene in sheet fall; do
+  for solver in wcsph dfsph; do
+    step "sph_${scene}_1000000_$solver" 120 "$runnel" bench sph --scene "$scene" \
+      --particles "$(scaled 1000000)" --steps 20 --device "$device" --set sph.solver=$solver
+  done
 done
 
 # 4. Grid models at 4096².
