@@ -86,8 +86,9 @@ inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uin
   }
 
 // ∇_i W_ij of a pair the neighbour walk visits: as the density pass stored it for a listed
-// neighbour (the pair's float4), computed as it does for a particle that walks its cells. The solves' passes run ten times a step over the same
-// positions: reading the gradient replaces the gathers of x_j and the kernel's evaluation.
+// neighbour (the pair's float4), computed as it does for a particle that walks its cells. The
+// solves' passes run ten times a step over the same positions: reading the gradient replaces the
+// gathers of x_j and the kernel's evaluation.
 inline float3 pair_gradient(uint slot, float4 pair, uint j, uint image, float3 pi, const __global float* x,
                             const __global float* y, const __global float* z, float domain_x, float domain_z) {
   if (slot < DFSPH_SLOTS) return pair.xyz;

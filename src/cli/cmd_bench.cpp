@@ -43,9 +43,8 @@ void add_bench_command(CLI::App& app) {
          "--scene", opt->scene,
          "sph: block (a block settling in a tank, the pressure solves' hardest case), fall (the "
          "same block dropped from a quarter of its height into a tank twice as wide: it falls, "
-         "lands and spreads) or sheet (a film two particles deep running down a 10 % slope, like "
-         "most of a "
-         "storm)")
+         "lands and spreads) or sheet (a film two particles deep running down a 10 % slope, "
+         "like most of a storm)")
       ->check(CLI::IsMember({"block", "fall", "sheet"}))
       ->capture_default_str();
   cmd->add_option("--set", opt->sets, "sph.* parameter key=value (repeatable)");
