@@ -97,6 +97,12 @@ inline float3 pair_gradient(uint slot, float4 pair, uint j, uint image, float3 p
 }
 #define DFSPH_PAIR_GRADIENT pair_gradient(slot_, pair_, j, image_, pi, x, y, z, domain_x, domain_z)
 
+// G(d)·n of the terrain under particle i, as the density pass stored it (one block of n per
+// component).
+inline float3 floor_gradient_of(uint i, uint n, const __global float* floor_gradient) {
+  return (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
+}
+
 // The terrain's tangent plane under a particle: distance d along the unit normal n.
 typedef struct {
   float d;

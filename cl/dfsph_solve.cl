@@ -72,7 +72,7 @@ __kernel void dfsph_pressure_acceleration(
   DFSPH_NEIGHBOURS(
     acc += (-DFSPH_V0 * (ki + kappa[j])) * DFSPH_PAIR_GRADIENT;
   )
-  const float3 gn = (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
+  const float3 gn = floor_gradient_of(i, n, floor_gradient);
   acc += (2.0f * ki) * gn;
   apx[i] = acc.x;
   apy[i] = acc.y;
@@ -111,7 +111,7 @@ __kernel void dfsph_density_change(
     const float3 uj = image_velocity(image_, (float3)(ux[j], uy[j], uz[j]));
     sum += dot(ui - uj, DFSPH_PAIR_GRADIENT);
   )
-  const float3 gn = (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
+  const float3 gn = floor_gradient_of(i, n, floor_gradient);
   const float change = DFSPH_V0 * sum - dot(ui, gn);
   // The divergence-free solve leaves particles of a deficient neighbourhood alone.
   const bool solved = !divergence || theta[i] > 0.0f;

@@ -30,14 +30,12 @@ def by_area(a, b, terrain, model):
     """Per drainage-area class, the lowered and the raised cells' Δh summed, A then B."""
     area = np.load(a / terrain / model / "drainage_area.npy").astype(float)
     edges = [area.min()] + list(np.percentile(area, AREA_PERCENTILES)) + [area.max() + 1]
+    maps = [gdal.Open(str(run / terrain / model / "erosion.tif")).ReadAsArray().astype(float) for run in (a, b)]
     print(f"  {'class (percentile of area)':27s} {'lowered A':>9s} {'lowered B':>9s} {'raised A':>9s} {'raised B':>9s}")
     bounds = (0,) + AREA_PERCENTILES + (100,)
     for k in range(len(edges) - 1):
-        sums = []
-        for run in (a, b):
-            dh = gdal.Open(str(run / terrain / model / "erosion.tif")).ReadAsArray().astype(float)
-            cls = (area >= edges[k]) & (area < edges[k + 1])
-            sums.append((-dh[cls & (dh < 0)].sum(), dh[cls & (dh > 0)].sum()))
+        cls = (area >= edges[k]) & (area < edges[k + 1])
+        sums = [(-dh[cls & (dh < 0)].sum(), dh[cls & (dh > 0)].sum()) for dh in maps]
         label = f"{bounds[k]}-{bounds[k + 1]}"
         print(f"  {label:27s} {sums[0][0]:9.0f} {sums[1][0]:9.0f} {sums[0][1]:9.0f} {sums[1][1]:9.0f}")
 

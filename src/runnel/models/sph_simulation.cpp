@@ -102,8 +102,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
 void Simulation::budget_device_memory(const ComputeContext& compute, const Heightmap& terrain,
                                       RainSettings& rain, std::size_t standing_particles) {
   const double vertices = static_cast<double>(terrain.size());
-  const std::size_t bytes_each = ParticleStore::bytes_per_particle() + 4 +
-                                 (solver_->dfsph() ? Dfsph::bytes_per_particle() : 0);
+  const std::size_t bytes_each = solver_->bytes_per_particle() + 4;
   const double particle_bytes = 1.5 * static_cast<double>(bytes_each);
   const double fixed_bytes = vertices * (36 + 8 * 4.0 / 3.0 + (thermal_interval_ > 0 ? 32 : 0)) +
                              8.0 * static_cast<double>(solver_->hash().grid().cell_count()) +

@@ -107,6 +107,10 @@ class SphSolver {
   cl::Buffer& counters_buffer() { return counters_buffer_; }
   // The incompressible solver (nullptr with wcsph).
   const Dfsph* dfsph() const { return dfsph_.get(); }
+  // Device memory a particle of capacity takes: the store's fields, and with dfsph its pair lists.
+  std::size_t bytes_per_particle() const {
+    return ParticleStore::bytes_per_particle() + (dfsph_ ? Dfsph::bytes_per_particle() : 0);
+  }
   // Each particle's pressure (Pa): wcsph's Tait equation of its density, dfsph's solves.
   std::vector<float> pressure();
 

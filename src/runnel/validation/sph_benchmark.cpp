@@ -111,10 +111,7 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
       .add("spacing", dx)
       .add("h_factor", s.h / s.spacing)
       .add("tile", static_cast<long long>(solver.hash().tile_size()))
-      // The store's, and with dfsph its pair lists too (what the memory budget counts).
-      .add("bytes_per_particle",
-           static_cast<long long>(ParticleStore::bytes_per_particle() +
-                                  (solver.dfsph() ? Dfsph::bytes_per_particle() : 0)))
+      .add("bytes_per_particle", static_cast<long long>(solver.bytes_per_particle()))
       .add("kernel_seconds_total", kernel_total)
       .add("device_idle_seconds", profiler.idle_seconds())
       .add("kernel_seconds", kernels);
