@@ -197,6 +197,8 @@ def test_an_iteration_model_counts_iterations(scenario):
 SCENARIOS_FOR_THE_TESTER = {
     "pipe": PIPE,
     "sph": PIPE.replace('model = "pipe"', 'model = "sph"').replace("[pipe]\nrain = 0.02", "[rain]\nintensity = 3600.0"),
+    "sph-dfsph": PIPE.replace('model = "pipe"', 'model = "sph"')
+                     .replace("[pipe]\nrain = 0.02", '[rain]\nintensity = 3600.0\n[sph]\nsolver = "dfsph"'),
     "stream-power": PIPE.replace('model = "pipe"', 'model = "stream-power"').replace("sim_time = 3.0", "sim_years = 5000.0"),
 }
 

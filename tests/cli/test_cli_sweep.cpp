@@ -138,6 +138,49 @@ TEST(CliSweep, SerialParallelAndMemberByMemberGiveIdenticalResults) {
   EXPECT_NE(script.find("--member \"$SLURM_ARRAY_TASK_ID\""), std::string::npos) << script;
 }
 
+// The SPH solver is an axis like any other key: each member runs the solver its row names, and a
+// member repeats itself bit for bit whether the sweep runs serially or in parallel.
+TEST(CliSweep, SweepsTheSphSolverAndEveryMemberRepeatsItself) {
+  ScratchDir dir;
+  test::write_text(dir.path("base.toml"), R"([run]
+model = "sph"
+sim_time = 3
+[terrain]
+generator = "fbm"
+size = 33
+cell = 2.0
+[rain]
+intensity = 60000.0
+)");
+  test::write_text(dir.path("sweep.toml"), R"([sweep]
+base = "base.toml"
+metrics = ["eroded_volume", "mass_balance_abs"]
+[axes]
+"sph.solver" = ["wcsph", "dfsph"]
+)");
+  for (const char* way : {"serial", "parallel"}) {
+    const auto r = run_cli({"sweep", dir.path("sweep.toml"), "--out", dir.path(way), "-j",
+                            way == std::string("serial") ? "1" : "2", "--quiet"});
+    ASSERT_EQ(r.exit_code, 0) << way << ": " << r.err;
+  }
+  const std::string results = test::read_text(dir.path("serial/results.csv"));
+  EXPECT_EQ(results.substr(0, results.find('\n')),
+            "member,sph.solver,eroded_volume,mass_balance_abs");
+  EXPECT_NE(results.find("\n0,wcsph,"), std::string::npos) << results;
+  EXPECT_NE(results.find("\n1,dfsph,"), std::string::npos) << results;
+  EXPECT_EQ(test::read_text(dir.path("parallel/results.csv")), results);
+  for (int m = 0; m < 2; ++m) {
+    const std::string serial = test::read_text(member_file(dir, "serial", m, "final.npy"));
+    ASSERT_FALSE(serial.empty()) << m;
+    EXPECT_EQ(test::read_text(member_file(dir, "parallel", m, "final.npy")), serial) << m;
+  }
+  EXPECT_NE(test::read_text(member_file(dir, "serial", 0, "final.npy")),
+            test::read_text(member_file(dir, "serial", 1, "final.npy")))
+      << "the two solvers move the bed differently";
+  const std::string dfsph = test::read_text(member_file(dir, "serial", 1, "metrics.json"));
+  EXPECT_NE(dfsph.find("\"solver\": \"dfsph\""), std::string::npos) << dfsph;
+}
+
 // With checkpoint_every, an interrupted member goes on from its newest checkpoint, and ends as the
 // uninterrupted member did, bit for bit (what a SLURM requeue after the time limit relies on).
 TEST(CliSweep, AnInterruptedMemberResumesFromItsNewestCheckpoint) {
