@@ -132,6 +132,49 @@ TEST(CliSph, BenchSheetOnASlopeIsTheSolvesEasyCase) {
   EXPECT_EQ(run_cli({"bench", "sph", "--scene", "lake"}).exit_code, 2);
 }
 
+// A dfsph solve that reaches sph.dfsph_max_iterations goes on with the error it has; the run says
+// so once on stderr and metrics.json counts every such solve. With the default cap and tolerance
+// the same storm's solves all converge, and nothing is said.
+TEST(CliSph, ADfsphSolveAtItsIterationCapIsToldOnceAndCounted) {
+  ScratchDir dir;
+  auto storm = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> args{"run",
+                                  "--generate",
+                                  "fbm",
+                                  "--set",
+                                  "terrain.size=33",
+                                  "--set",
+                                  "terrain.cell=1",
+                                  "--steps",
+                                  "60",
+                                  "--set",
+                                  "rain.rate=4000",
+                                  "--set",
+                                  "sph.solver=dfsph",
+                                  "--out",
+                                  dir.path(out),
+                                  "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args);
+  };
+  const std::string told = "stopped at sph.dfsph_max_iterations = 2";
+  const auto capped = storm(
+      "capped", {"--set", "sph.dfsph_max_iterations=2", "--set", "sph.dfsph_density_error=0.001"});
+  ASSERT_EQ(capped.exit_code, 0) << capped.err;
+  const auto first = capped.err.find(told);
+  ASSERT_NE(first, std::string::npos) << capped.err;
+  EXPECT_EQ(capped.err.find(told, first + 1), std::string::npos) << "once a run: " << capped.err;
+  EXPECT_GT(json_number(test::read_text(dir.path("capped/metrics.json")), "density_solves_capped"),
+            1.0);
+
+  const auto plain = storm("plain", {});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.err.find("sph.dfsph_max_iterations"), std::string::npos) << plain.err;
+  const std::string metrics = test::read_text(dir.path("plain/metrics.json"));
+  EXPECT_EQ(json_number(metrics, "density_solves_capped"), 0.0) << metrics;
+  EXPECT_GT(json_number(metrics, "density_iterations_mean"), 1.0) << "the water is under pressure";
+}
+
 TEST(CliSph, BenchDropletPrintsItsThroughput) {
   const auto r = run_cli({"bench", "droplet", "--size", "129", "--steps", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;

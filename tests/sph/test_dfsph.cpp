@@ -3,6 +3,7 @@
 // sum in double precision, a lone drop's bounce, and bitwise reproducibility.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -161,6 +162,44 @@ TEST(Dfsph, StepsWithTheFlowNotTheSoundSpeed) {
   p.set("sph.solver", std::string("wcsph"));
   const BounceResult weakly = droplet_bounce(compute(), p, 0.25, 0.0);
   EXPECT_LT(4 * incompressible.steps, weakly.steps);
+}
+
+// The next step is the flow's: cfl_flow · min(dx/|v|max, ½ sqrt(dx/|a|max)) with the non-pressure
+// accelerations, the viscosity's limit, at most dt_max. Here the maxima are recomputed on the host
+// from the particles each step leaves (the device reduces them in step_stats), as the drops speed
+// up in their fall, and the rule applied to them independently.
+TEST(Dfsph, EachStepFollowsTheFlowWithinDtMax) {
+  for (const double dt_max : {0.0, 0.004}) {  // the default (0.05 s), and a cap the flow reaches
+    Parameters p = dfsph_parameters();
+    p.set("sph.dt_max", dt_max);
+    const SphSettings s = SphSettings::from(p, 0.1, 2.0);
+    SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);
+    solver.add(block_on_floor(3));
+    double smallest = 1e30, largest = 0;
+    for (int k = 0; k < 12; ++k) {
+      solver.step();
+      double v2 = 0, a2 = 0;
+      for (auto [field, most] : {std::pair{kVx, &v2}, std::pair{kAx, &a2}}) {
+        std::array<std::vector<float>, 3> c;
+        for (int k = 0; k < 3; ++k) c[k] = solver.particles().read_field(ParticleField(field + k));
+        for (std::size_t i = 0; i < c[0].size(); ++i)
+          *most = std::max(*most, double(c[0][i]) * c[0][i] + double(c[1][i]) * c[1][i] +
+                                      double(c[2][i]) * c[2][i]);
+      }
+      const double nu = s.alpha_visc * s.c0 * s.h / 10.0;
+      const double flow = s.cfl_flow * std::min(s.spacing / std::sqrt(v2),
+                                                0.5 * std::sqrt(s.spacing / std::sqrt(a2)));
+      const double expected = std::min({flow, 0.125 * s.h * s.h / nu, s.dt_max});
+      EXPECT_NEAR(solver.dt(), expected, 1e-5 * expected) << "dt_max " << dt_max << ", step " << k;
+      smallest = std::min(smallest, solver.dt());
+      largest = std::max(largest, solver.dt());
+    }
+    if (dt_max > 0) {
+      EXPECT_EQ(largest, dt_max) << "the cap binds where the flow would allow more";
+    } else {
+      EXPECT_LT(smallest, 0.8 * largest) << "the step changes with the flow";
+    }
+  }
 }
 
 TEST(Dfsph, RunsAreBitwiseReproducible) {
