@@ -86,17 +86,23 @@ def test_fields_have_the_dictionarys_shapes(hills):
     assert len(np.unique(ids)) == len(ids)
 
 
-def test_a_checkpoint_resumes_bit_for_bit(hills, tmp_path):
-    whole = runnel.Model("pipe", hills, {"pipe.rain": 0.03})
-    half = runnel.Model("pipe", hills, {"pipe.rain": 0.03})
-    for _ in range(50):
+def run_straight_and_resumed(make, steps, tmp_path):
+    """A model run `steps` steps straight, and one saved halfway, loaded back and run to the same step."""
+    whole, half = make(), make()
+    for _ in range(steps):
         whole.step()
-    for _ in range(25):
+    for _ in range(steps // 2):
         half.step()
     half.save_checkpoint(str(tmp_path / "half.h5"))
     resumed = runnel.Model.load_checkpoint(str(tmp_path / "half.h5"))
-    for _ in range(25):
+    for _ in range(steps - steps // 2):
         resumed.step()
+    return whole, resumed
+
+
+def test_a_checkpoint_resumes_bit_for_bit(hills, tmp_path):
+    whole, resumed = run_straight_and_resumed(lambda: runnel.Model("pipe", hills, {"pipe.rain": 0.03}),
+                                              50, tmp_path)
     assert resumed.steps == whole.steps
     assert np.array_equal(resumed.terrain().heights, whole.terrain().heights)
     assert np.array_equal(resumed.field("sediment__suspended"), whole.field("sediment__suspended"))
@@ -106,15 +112,7 @@ def test_a_checkpoint_resumes_bit_for_bit(hills, tmp_path):
 def test_an_sph_checkpoint_resumes_bit_for_bit_with_either_solver(tmp_path, solver):
     terrain = runnel.generate("fbm", 33, 33, 1.0, seed=1)
     settings = {"sph.solver": solver, "rain.rate": 2000.0}
-    whole, half = runnel.Model("sph", terrain, settings), runnel.Model("sph", terrain, settings)
-    for _ in range(40):
-        whole.step()
-    for _ in range(20):
-        half.step()
-    half.save_checkpoint(str(tmp_path / "half.h5"))
-    resumed = runnel.Model.load_checkpoint(str(tmp_path / "half.h5"))
-    for _ in range(20):
-        resumed.step()
+    whole, resumed = run_straight_and_resumed(lambda: runnel.Model("sph", terrain, settings), 40, tmp_path)
     assert resumed.time == whole.time and resumed.steps == whole.steps
     assert np.array_equal(resumed.field("particle__position"), whole.field("particle__position"))
     assert len(whole.field("particle__id")) > 0, "the drops have fallen"
