@@ -33,7 +33,7 @@ import json, sys
 r = json.load(open(sys.argv[1]))
 d = r["details"]
 front = [p["x_over_L_runnel"] for p in d["front"]]
-print(f"{sys.argv[2]:18s} {r['relative_error']:6.3f} {d['worst_surge_error']:6.3f} {r['steps']:6d}  "
+print(f"{sys.argv[2]:18s} {d['mean_surge_error']:6.3f} {d['worst_surge_error']:6.3f} {r['steps']:6d}  "
       + " ".join(f"{x:.3f}" for x in (front[0], front[1], front[3])))
 PY
 done

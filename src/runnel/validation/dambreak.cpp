@@ -6,10 +6,13 @@
 // surge distance s = (x − L)/L (the column's own width L is not a result):
 //   error_k = |s_sim(t*_k) − s_exp(t*_k)| / s_exp(t*_k),
 // at every measured time whose front lies inside the simulated tank (x_exp < 4L; the last
-// measurement, 4.13 L, is beyond its wall). relative_error is their mean; the worst is reported
-// too, and so are the errors against other readings (the same experiment read again, Martin &
-// Moyce 1952), which show how far a reading of such a figure can be trusted, and the gap to another
-// code's solution of the same instant release (PySPH), which shows whether runnel solves the case.
+// measurement, 4.13 L, is beyond its wall). The case's targets (docs/validation.md): the surge
+// within 5 % on average of another code's converged solution of the same instant release (PySPH;
+// relative_error), and within 10 % of the experiment at every point from t* = 1.4 on, where the
+// experiment's lifted gate no longer matters (an instant release leads it early in the surge).
+// The mean and worst over all the experiment's points are reported without a target, and so are
+// the errors against other readings (the same experiment read again, Martin & Moyce 1952), which
+// show how far a reading of such a figure can be trusted.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +27,10 @@
 
 namespace runnel {
 namespace {
+
+// From this t* on the experiment is a target: its gate was lifted, not removed, and an instant
+// release leads it before.
+constexpr double kExperimentFrom = 1.4;
 
 // The surge front x/L (the farthest particle plus half a spacing) every 0.05 of t* = t sqrt(g/L)
 // up to 2.4, interpolated between steps.
@@ -153,12 +160,17 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
 
   if (!options.out_dir.empty())
     write_front_files(options.out_dir, front, exp_t, exp_x, peer, resolution, tank);
+  double late_worst = 0;  // the experiment from t* = 1.4 on
+  for (const SurgeComparison& p : target.points)
+    if (p.t_star >= kExperimentFrom) late_worst = std::max(late_worst, p.error);
+  const double late_target = 0.10;
   ValidationResult r;
   r.name = "dambreak";
   r.particles = particles;
   r.steps = static_cast<long long>(solver.steps());
-  r.relative_error = target.mean;
-  r.target = 0.10;
+  r.relative_error = peer_gap.mean;
+  r.target = 0.05;
+  r.other_targets_met = late_worst <= late_target;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.details.add("resolution", resolution)
       .add("dx", dx)
@@ -166,13 +178,18 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
       .add("c0", s.c0)
       .add("sim_time", solver.time())
       .add("manning_n", s.manning_n)
-      .add("compared_points", static_cast<long long>(target.points.size()))
-      .add("worst_surge_error", target.worst)
-      .add("measure", "surge distance (x - L)/L, relative to the experiment's")
-      .add("front", table)
+      .add("measure", "surge distance (x - L)/L, relative to the reference's")
+      .add("instant_release", instant_release)
+      .add("experiment_from_t_star_1_4", JsonObject()
+                                             .add("worst_surge_error", late_worst)
+                                             .add("target", late_target)
+                                             .add("passed", late_worst <= late_target))
       .add("reference", "Koshizuka & Oka 1996")
-      .add("other_readings", others)
-      .add("instant_release", instant_release);
+      .add("compared_points", static_cast<long long>(target.points.size()))
+      .add("mean_surge_error", target.mean)
+      .add("worst_surge_error", target.worst)
+      .add("front", table)
+      .add("other_readings", others);
   return r;
 }
 

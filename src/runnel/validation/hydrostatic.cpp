@@ -173,7 +173,7 @@ JsonObject ValidationResult::summary() const {
       .add("wall_seconds", wall_seconds)
       .add("relative_error", relative_error)
       .add("target", target)
-      .add("passed", relative_error <= target)
+      .add("passed", relative_error <= target && other_targets_met)
       .add("details", details);
   return o;
 }
