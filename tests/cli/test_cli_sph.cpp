@@ -43,6 +43,7 @@ TEST(CliSph, ValidateDambreakWritesFrontCsvAndJson) {
   EXPECT_GT(late, 0.0) << r.out;
   const bool passed = r.out.find("\"passed\": true, \"details\"") != std::string::npos;
   EXPECT_EQ(passed, json_number(r.out, "relative_error") <= 0.05 && late <= 0.10) << r.out;
+  EXPECT_NE(r.out.find("\"solver\": {\"solver\": \"wcsph\"}"), std::string::npos) << r.out;
   EXPECT_GT(std::filesystem::file_size(dir.path("db/front.png")), 1000u);
   std::istringstream csv(test::read_text(dir.path("db/front.csv")));
   std::string line;
@@ -69,6 +70,14 @@ TEST(CliSph, ValidateHydrostaticWritesPressureCsv) {
       {"validate", "hydrostatic", "--resolution", "8", "--settle", "1", "--out", dir.path("hs")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\"case\": \"hydrostatic\""), std::string::npos);
+  // Two targets: the worst layer's pressure within 3 % (relative_error) and the water at rest
+  // compressed by at most 0.1 % on average; `passed` is both.
+  EXPECT_EQ(json_number(r.out, "target"), 0.03);
+  EXPECT_EQ(json_number(r.out, "mean_compression_target"), 0.001);
+  const bool passed = r.out.find("\"passed\": true, \"details\"") != std::string::npos;
+  EXPECT_EQ(passed, json_number(r.out, "relative_error") <= 0.03 &&
+                        json_number(r.out, "mean_compression") <= 0.001)
+      << r.out;
   const std::string csv = test::read_text(dir.path("hs/pressure.csv"));
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "depth,pressure,expected,particles");
   EXPECT_GT(std::filesystem::file_size(dir.path("hs/pressure.png")), 1000u);

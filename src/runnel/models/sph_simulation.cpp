@@ -279,8 +279,7 @@ JsonObject Simulation::effective_settings() const {
       .add("c0_m_per_s", s.c0)
       .add("reference_speed_m_per_s", reference_speed_)
       .add("particle_volume_m3", s.spacing * s.spacing * s.spacing)
-      .add("solver",
-           solver_->dfsph() ? solver_->dfsph()->json() : JsonObject().add("solver", "wcsph"))
+      .add("solver", solver_->solver_json())
       .add("rain", rain_->settings().json())
       .add("erosion", erosion_->settings().json());
 }

@@ -107,6 +107,10 @@ class SphSolver {
   cl::Buffer& counters_buffer() { return counters_buffer_; }
   // The incompressible solver (nullptr with wcsph).
   const Dfsph* dfsph() const { return dfsph_.get(); }
+  // Which solver ran, and with dfsph its solves' counts: what a run's report records.
+  JsonObject solver_json() const {
+    return dfsph_ ? dfsph_->json() : JsonObject().add("solver", "wcsph");
+  }
   // Device memory a particle of capacity takes: the store's fields, and with dfsph its pair lists.
   std::size_t bytes_per_particle() const {
     return ParticleStore::bytes_per_particle() + (dfsph_ ? Dfsph::bytes_per_particle() : 0);

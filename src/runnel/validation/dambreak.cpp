@@ -178,6 +178,7 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
       .add("c0", s.c0)
       .add("sim_time", solver.time())
       .add("manning_n", s.manning_n)
+      .add("solver", solver.solver_json())
       .add("measure", "surge distance (x - L)/L, relative to the reference's")
       .add("instant_release", instant_release)
       .add("experiment_from_t_star_1_4", JsonObject()
