@@ -26,11 +26,11 @@ def smoothed(dh, cells=4):
 AREA_PERCENTILES = (50, 80, 95, 99)
 
 
-def by_area(a, b, terrain, model):
-    """Per drainage-area class, the lowered and the raised cells' Δh summed, A then B."""
+def by_area(a, terrain, model, maps):
+    """Per drainage-area class (A's drainage areas), the lowered and the raised cells' Δh summed, A's map
+    then B's (`maps`, unsmoothed)."""
     area = np.load(a / terrain / model / "drainage_area.npy").astype(float)
     edges = [area.min()] + list(np.percentile(area, AREA_PERCENTILES)) + [area.max() + 1]
-    maps = [gdal.Open(str(run / terrain / model / "erosion.tif")).ReadAsArray().astype(float) for run in (a, b)]
     print(f"  {'class (percentile of area)':27s} {'lowered A':>9s} {'lowered B':>9s} {'raised A':>9s} {'raised B':>9s}")
     bounds = (0,) + AREA_PERCENTILES + (100,)
     for k in range(len(edges) - 1):
@@ -42,18 +42,19 @@ def by_area(a, b, terrain, model):
 
 def main():
     args = [x for x in sys.argv[1:] if x != "--by-area"]
+    areas = len(args) < len(sys.argv) - 1
     a, b = pathlib.Path(args[0]), pathlib.Path(args[1])
     model = args[2] if len(args) > 2 else "sph"
     print(f"{'terrain':13s} {'eroded A':>9s} {'eroded B':>9s} {'B/A-1':>7s} {'Δh corr':>8s}")
     for terrain in sorted(p.name for p in a.iterdir() if (p / model / "erosion.tif").exists()):
         maps, eroded = [], []
         for run in (a, b):
-            maps.append(smoothed(gdal.Open(str(run / terrain / model / "erosion.tif")).ReadAsArray().astype(float)))
+            maps.append(gdal.Open(str(run / terrain / model / "erosion.tif")).ReadAsArray().astype(float))
             eroded.append(json.loads((run / terrain / model / "metrics.json").read_text())["eroded_volume"])
-        corr = np.corrcoef(maps[0].ravel(), maps[1].ravel())[0, 1]
+        corr = np.corrcoef(smoothed(maps[0]).ravel(), smoothed(maps[1]).ravel())[0, 1]
         print(f"{terrain:13s} {eroded[0]:9.0f} {eroded[1]:9.0f} {eroded[1] / eroded[0] - 1:+7.1%} {corr:8.3f}")
-        if "--by-area" in sys.argv:
-            by_area(a, b, terrain, model)
+        if areas:
+            by_area(a, terrain, model, maps)
 
 
 if __name__ == "__main__":
