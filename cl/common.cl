@@ -105,32 +105,71 @@ inline float keyed_uniform(ulong key, uint counter) {
 // Lanes: kernels whose work-item takes LANES items (droplets, particles) in the lanes of OpenCL
 // vectors, where written for one item they would run one lane at a time: the compilers of CPUs
 // (PoCL's among them) do not vectorise branchy code or loops of varying length across work-items.
-// The host sets LANES (compute/launch.hpp's kLanes); the vector types below hold 8.
-#if LANES != 8
-#error "the lane types hold 8 items"
+// The host sets LANES per device (ComputeContext::lanes(): 4, 8 or 16); every lane computes alone,
+// so the results are the same bits at every width.
+//
+// The width fits the target's registers (a float vector fills them), so float and int lane vectors
+// pass to any call as the target's ABI expects; long lane vectors are twice as wide. PoCL compiles
+// with `-Dinline=`, so every helper and every builtin (convert_*, vload*, select, min) is a call
+// when clang checks the calling convention, and a vector wider than the target's registers
+// crossing a call changes the x86 ABI, which clang reports as a warning for every such call. So
+// no helper takes or returns a lane vector by value (helpers take them through pointers, gathers
+// are macros), and a long lane vector meets builtins only in halves (the *_LONGV macros) and
+// otherwise operators (?:, comparisons, arithmetic), which are no calls.
+#if LANES != 4 && LANES != 8 && LANES != 16
+#error "LANES must be 4, 8 or 16"
 #endif
-typedef float8 floatv;
-typedef int8 intv;
-typedef long8 longv;
-typedef uint8 uintv;
-#define LOADV(offset, p) vload8(offset, p)
-#define STOREV(v, offset, p) vstore8(v, offset, p)
-#define CONVERT_FLOATV convert_float8
-#define CONVERT_INTV convert_int8
-#define CONVERT_LONGV convert_long8
-#define CONVERT_UINTV convert_uint8
-#define LANE_INDEX ((intv)(0, 1, 2, 3, 4, 5, 6, 7))
+#define LANE_PASTE_(a, b) a##b
+#define LANE_PASTE(a, b) LANE_PASTE_(a, b)
+#define LANE_VECTOR(name) LANE_PASTE(name, LANES)
+typedef LANE_VECTOR(float) floatv;
+typedef LANE_VECTOR(int) intv;
+typedef LANE_VECTOR(long) longv;
+typedef LANE_VECTOR(uint) uintv;
+#define LOADV(offset, p) LANE_VECTOR(vload)(offset, p)
+#define STOREV(v, offset, p) LANE_VECTOR(vstore)(v, offset, p)
+#define CONVERT_FLOATV LANE_VECTOR(convert_float)
+#define CONVERT_INTV LANE_VECTOR(convert_int)
+#define CONVERT_LONGV LANE_VECTOR(convert_long)
+#define CONVERT_UINTV LANE_VECTOR(convert_uint)
 
-// The values at 8 indices.
-inline longv gather_long(const __global long* p, intv k) {
-  return (longv)(p[k.s0], p[k.s1], p[k.s2], p[k.s3], p[k.s4], p[k.s5], p[k.s6], p[k.s7]);
-}
-inline floatv gather_float(const __global float* p, intv k) {
-  return (floatv)(p[k.s0], p[k.s1], p[k.s2], p[k.s3], p[k.s4], p[k.s5], p[k.s6], p[k.s7]);
-}
-inline uintv gather_uint(const __global uint* p, intv k) {
-  return (uintv)(p[k.s0], p[k.s1], p[k.s2], p[k.s3], p[k.s4], p[k.s5], p[k.s6], p[k.s7]);
-}
+// The lanes' numbers, and the values of p at the lanes' indices k (k: a named intv).
+#if LANES == 4
+#define HALF_LANES 2
+#define LANE_INDEX ((intv)(0, 1, 2, 3))
+#define LANE_GATHER(p, k) (p[k.s0], p[k.s1], p[k.s2], p[k.s3])
+#elif LANES == 8
+#define HALF_LANES 4
+#define LANE_INDEX ((intv)(0, 1, 2, 3, 4, 5, 6, 7))
+#define LANE_GATHER(p, k) (p[k.s0], p[k.s1], p[k.s2], p[k.s3], p[k.s4], p[k.s5], p[k.s6], p[k.s7])
+#else
+#define HALF_LANES 8
+#define LANE_INDEX ((intv)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+#define LANE_GATHER(p, k)                                                                                            \
+  (p[k.s0], p[k.s1], p[k.s2], p[k.s3], p[k.s4], p[k.s5], p[k.s6], p[k.s7], p[k.s8], p[k.s9], p[k.sa], p[k.sb],     \
+   p[k.sc], p[k.sd], p[k.se], p[k.sf])
+#endif
+#define GATHER_LONG(p, k) ((longv)LANE_GATHER(p, k))
+
+// Long lane vectors through builtins in halves (each a float lane vector's bits), lane by lane the
+// same values as the whole-vector builtins.
+#define HALF_VECTOR(name) LANE_PASTE(name, HALF_LANES)
+#define LONGV_TO_FLOATV(v) ((floatv)(HALF_VECTOR(convert_float)((v).lo), HALF_VECTOR(convert_float)((v).hi)))
+#define LONGV_TO_INTV(v) ((intv)(HALF_VECTOR(convert_int)((v).lo), HALF_VECTOR(convert_int)((v).hi)))
+#define FLOATV_TO_LONGV(f) ((longv)(HALF_VECTOR(convert_long)((f).lo), HALF_VECTOR(convert_long)((f).hi)))
+#define INTV_TO_LONGV(i) ((longv)(HALF_VECTOR(convert_long)((i).lo), HALF_VECTOR(convert_long)((i).hi)))
+#define LOADV_LONG(offset, p) ((longv)(HALF_VECTOR(vload)(2 * (offset), p), HALF_VECTOR(vload)(2 * (offset) + 1, p)))
+#define STOREV_LONG(v, offset, p)                       \
+  do {                                                  \
+    HALF_VECTOR(vstore)((v).lo, 2 * (offset), p);       \
+    HALF_VECTOR(vstore)((v).hi, 2 * (offset) + 1, p);   \
+  } while (0)
+// select(a, b, mask), max and min of long lane vectors as operators; the mask a longv of 0 or −1.
+#define SELECT_LONGV(a, b, mask) ((mask) ? (b) : (a))
+#define MAX_LONGV(a, b) ((a) > (b) ? (a) : (b))
+#define MIN_LONGV(a, b) ((a) < (b) ? (a) : (b))
+#define GATHER_FLOAT(p, k) ((floatv)LANE_GATHER(p, k))
+#define GATHER_UINT(p, k) ((uintv)LANE_GATHER(p, k))
 
 inline int grid_index(int i, int j, int nx) { return j * nx + i; }
 

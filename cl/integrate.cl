@@ -67,9 +67,9 @@ __kernel void bed_friction_factors(const __global float* depth, const uint n, __
   // The last work-item's spare lanes read the last particle. The bound is a vector: Oclgrind 21.10
   // (scripts/oclgrind-check.sh) gets min(int8, int) wrong in some lanes.
   const intv k = min((int)first + LANE_INDEX, (intv)((int)n - 1));
-  const floatv d = fmax(gather_float(depth, k), BED_FRICTION_DEPTH_FLOOR);
-  const floatv f = BED_FRICTION_FACTOR(d);
-  const float out[LANES] = {f.s0, f.s1, f.s2, f.s3, f.s4, f.s5, f.s6, f.s7};
+  const floatv d = fmax(GATHER_FLOAT(depth, k), BED_FRICTION_DEPTH_FLOOR);
+  float out[LANES];
+  STOREV(BED_FRICTION_FACTOR(d), 0, out);
   for (uint l = 0; first + l < n; ++l) factor[first + l] = out[l];
 }
 

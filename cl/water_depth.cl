@@ -154,11 +154,9 @@ __kernel void water_depth_coarsen(__global long* water, const int nx, const int 
 // order as for one particle, a vertex beyond its own footprint adding an exact 0: the same bits as
 // the scalar code it replaced.
 
-// footprint_weight, lane by lane.
-inline floatv footprint_weight_v(floatv d) {
-  const floatv t = fmax(0.0f, 1.0f - d * d * (1.0f / (FOOTPRINT_RADIUS * FOOTPRINT_RADIUS)));
-  return t * t;
-}
+// footprint_weight, lane by lane (a macro: no lane vector crosses a call, common.cl).
+#define FOOTPRINT_WEIGHT_V(d) footprint_weight_squared_v(fmax(0.0f, 1.0f - (d) * (d) * (1.0f / (FOOTPRINT_RADIUS * FOOTPRINT_RADIUS))))
+#define footprint_weight_squared_v(t) ((t) * (t))
 
 // The water depth at (x, z) read on level l (nx × ny vertices, each the mean of the fine vertices of
 // its block, standing at the block's centre) with the footprint scaled by 2^l, and the depth the
@@ -167,7 +165,9 @@ inline floatv footprint_weight_v(floatv d) {
 // lanes outside `active` read vertex 0 and give nothing meaningful. (Each column's weight factor
 // and fine vertices once, not once a row: the divisions were most of the films' reading time.)
 inline void level_reading_v(const __global long* field, int l, int fnx, int fny, int nx, int ny, float fcell,
-                            floatv x, floatv z, intv active, floatv* depth, floatv* own) {
+                            const floatv* px, const floatv* pz, const intv* pactive, floatv* depth, floatv* own) {
+  const floatv x = *px, z = *pz;
+  const intv active = *pactive;
   const int span = 1 << l;
   const float cell = fcell * (float)span, radius = FOOTPRINT_RADIUS * (float)span;
   const floatv lx = x - 0.5f * (float)(span - 1) * fcell, lz = z - 0.5f * (float)(span - 1) * fcell;
@@ -196,7 +196,8 @@ inline void level_reading_v(const __global long* field, int l, int fnx, int fny,
       const floatv u = column_weight[a];
       const floatv w = select((floatv)0.0f, t * t * u * u, in);
       const floatv covered = select((floatv)1.0f, CONVERT_FLOATV(column_cover[a] * cover_z), in);
-      const floatv count = CONVERT_FLOATV(gather_long(field, select((intv)0, j * nx + i0 + a, in)));
+      const intv vertex = select((intv)0, j * nx + i0 + a, in);
+      const floatv count = LONGV_TO_FLOATV(GATHER_LONG(field, vertex));
       sum += w * select((floatv)0.0f, count, in) / covered;
       weights += w;
       squares += w * w / covered;
@@ -223,8 +224,8 @@ __kernel void water_depth_gather(const __global float* x, const __global float* 
   if (first >= n) return;
   const intv present = (intv)(int)(n - first) > LANE_INDEX;
   const intv k = select((intv)(int)first, (int)first + LANE_INDEX, present);  // the last work-item's spare lanes
-  const floatv px = gather_float(x, k), pz = gather_float(z, k);
-  const uintv flags = gather_uint(id, k);
+  const floatv px = GATHER_FLOAT(x, k), pz = GATHER_FLOAT(z, k);
+  const uintv flags = GATHER_UINT(id, k);
   const intv live = present & (CONVERT_INTV(flags & DEAD_FLAG) == 0);
   // The footprint (footprint_of), the fine field's footprint mean, and the depth the particle's own
   // water alone gives on it, V·Σŵ²/cell² (the weights are separable, and so is the sum of their
@@ -235,8 +236,8 @@ __kernel void water_depth_gather(const __global float* x, const __global float* 
   const intv j1 = min(tny - 1, CONVERT_INTV(floor((pz + FOOTPRINT_RADIUS) / tcell)));
   floatv sum_x = 0.0f, sum_z = 0.0f, squares_x = 0.0f, squares_z = 0.0f;
   for (int a = 0; a < FOOTPRINT_SIDE; ++a) {
-    const floatv wx = select((floatv)0.0f, footprint_weight_v(CONVERT_FLOATV(i0 + a) * tcell - px), i0 + a <= i1);
-    const floatv wz = select((floatv)0.0f, footprint_weight_v(CONVERT_FLOATV(j0 + a) * tcell - pz), j0 + a <= j1);
+    const floatv wx = select((floatv)0.0f, FOOTPRINT_WEIGHT_V(CONVERT_FLOATV(i0 + a) * tcell - px), i0 + a <= i1);
+    const floatv wz = select((floatv)0.0f, FOOTPRINT_WEIGHT_V(CONVERT_FLOATV(j0 + a) * tcell - pz), j0 + a <= j1);
     sum_x += wx;
     sum_z += wz;
     squares_x += wx * wx;
@@ -247,11 +248,12 @@ __kernel void water_depth_gather(const __global float* x, const __global float* 
   for (int b = 0; b < FOOTPRINT_SIDE; ++b) {
     const intv row = reaches & (j0 + b <= j1);
     if (!any(row)) break;
-    const floatv wz = footprint_weight_v(CONVERT_FLOATV(j0 + b) * tcell - pz);
+    const floatv wz = FOOTPRINT_WEIGHT_V(CONVERT_FLOATV(j0 + b) * tcell - pz);
     for (int a = 0; a < FOOTPRINT_SIDE; ++a) {
       const intv in = row & (i0 + a <= i1);
-      const floatv w = select((floatv)0.0f, wz * footprint_weight_v(CONVERT_FLOATV(i0 + a) * tcell - px), in);
-      const floatv count = CONVERT_FLOATV(gather_long(water, select((intv)0, (j0 + b) * tnx + i0 + a, in)));
+      const floatv w = select((floatv)0.0f, wz * FOOTPRINT_WEIGHT_V(CONVERT_FLOATV(i0 + a) * tcell - px), in);
+      const intv vertex = select((intv)0, (j0 + b) * tnx + i0 + a, in);
+      const floatv count = LONGV_TO_FLOATV(GATHER_LONG(water, vertex));
       sum += w * select((floatv)0.0f, count, in);
     }
   }
@@ -269,7 +271,7 @@ __kernel void water_depth_gather(const __global float* x, const __global float* 
       nx = (nx + 1) / 2;
       ny = (ny + 1) / 2;
       floatv r_depth, r_own;
-      level_reading_v(water + offset, l, tnx, tny, nx, ny, tcell, px, pz, searching, &r_depth, &r_own);
+      level_reading_v(water + offset, l, tnx, tny, nx, ny, tcell, &px, &pz, &searching, &r_depth, &r_own);
       const intv found = searching & (r_depth - r_own >= FILM_NEIGHBOURS * r_own);
       d = select(d, r_depth - r_own, found);
       searching &= ~found;
@@ -277,7 +279,8 @@ __kernel void water_depth_gather(const __global float* x, const __global float* 
     }
   }
   d = select((floatv)0.0f, d, live);
-  const float out[LANES] = {d.s0, d.s1, d.s2, d.s3, d.s4, d.s5, d.s6, d.s7};
+  float out[LANES];
+  STOREV(d, 0, out);
   const int count = min((int)LANES, (int)(n - first));
   for (int l = 0; l < count; ++l) depth[first + l] = out[l];
 }

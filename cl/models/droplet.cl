@@ -28,27 +28,28 @@
 #define DROPLET_STREAM 0x64726f70UL  // "drop"
 #define DROPLET_MASK_STREAM 0x64726d6bUL  // "drmk"
 
-// fixed_height_view (common.cl), lane by lane: the same expression, the same bits.
-inline floatv fixed_height_view_v(longv h, float quantum) {
-  const longv high = h >> 20;
-  const longv low = h - (high << 20);
-  return CONVERT_FLOATV(high) * (quantum * 1048576.0f) + CONVERT_FLOATV(low) * quantum;
-}
+// fixed_height_view (common.cl), lane by lane, of a named longv: the same expression, the same
+// bits. A macro: no lane vector crosses a call (common.cl).
+#define FIXED_HEIGHT_VIEW_V(h, quantum) \
+  (LONGV_TO_FLOATV((h) >> 20) * ((quantum) * 1048576.0f) + LONGV_TO_FLOATV((h) - (((h) >> 20) << 20)) * (quantum))
 
 // Bilinear height (m) and gradient at (x, z), from the fixed heights as the float view gives them;
-// lanes outside `valid` read vertex 0 and give nothing meaningful.
-inline floatv height_at(const __global long* h, float quantum, int nx, floatv x, floatv z, intv valid, floatv* gx,
-                        floatv* gz) {
+// lanes outside `valid` read vertex 0 and give nothing meaningful. The lanes come in and go out
+// through pointers (common.cl).
+inline void height_at(const __global long* h, float quantum, int nx, const floatv* px, const floatv* pz,
+                      const intv* valid, floatv* height, floatv* gx, floatv* gz) {
+  const floatv x = *px, z = *pz;
   const intv i = CONVERT_INTV(x), j = CONVERT_INTV(z);
   const floatv u = x - CONVERT_FLOATV(i), v = z - CONVERT_FLOATV(j);
-  const intv k = select((intv)0, j * nx + i, valid);
-  const floatv h00 = fixed_height_view_v(gather_long(h, k), quantum),
-               h10 = fixed_height_view_v(gather_long(h, k + 1), quantum),
-               h01 = fixed_height_view_v(gather_long(h, k + nx), quantum),
-               h11 = fixed_height_view_v(gather_long(h, k + nx + 1), quantum);
+  const intv k00 = select((intv)0, j * nx + i, *valid);
+  const intv k10 = k00 + 1, k01 = k00 + nx, k11 = k00 + nx + 1;
+  const longv f00 = GATHER_LONG(h, k00), f10 = GATHER_LONG(h, k10), f01 = GATHER_LONG(h, k01),
+              f11 = GATHER_LONG(h, k11);
+  const floatv h00 = FIXED_HEIGHT_VIEW_V(f00, quantum), h10 = FIXED_HEIGHT_VIEW_V(f10, quantum),
+               h01 = FIXED_HEIGHT_VIEW_V(f01, quantum), h11 = FIXED_HEIGHT_VIEW_V(f11, quantum);
   *gx = (h10 - h00) * (1.0f - v) + (h11 - h01) * v;
   *gz = (h01 - h00) * (1.0f - u) + (h11 - h10) * u;
-  return h00 * (1.0f - u) * (1.0f - v) + h10 * u * (1.0f - v) + h01 * (1.0f - u) * v + h11 * u * v;
+  *height = h00 * (1.0f - u) * (1.0f - v) + h10 * u * (1.0f - v) + h01 * (1.0f - u) * v + h11 * u * v;
 }
 
 // Deposits `quanta` on the 4 corners of the cell with bilinear weights, exactly.
@@ -260,10 +261,10 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
   const floatv x = LOADV(w, state + DROPLET_X * stride), z = LOADV(w, state + DROPLET_Z * stride);
   const floatv dir_x0 = LOADV(w, state + DROPLET_DIR_X * stride), dir_z0 = LOADV(w, state + DROPLET_DIR_Z * stride);
   const floatv speed0 = LOADV(w, state + DROPLET_SPEED * stride), water0 = LOADV(w, state + DROPLET_WATER * stride);
-  const longv sediment0 = LOADV(w, load);
+  const longv sediment0 = LOADV_LONG(w, load);
   const intv live = ((intv)(int)(count - first) > LANE_INDEX) & (water0 >= 0.0f);
-  floatv gx, gz;
-  const floatv h_old = height_at(height_fixed, quantum, nx, x, z, live, &gx, &gz);
+  floatv h_old, gx, gz;
+  height_at(height_fixed, quantum, nx, &x, &z, &live, &h_old, &gx, &gz);
   const floatv ux = dir_x0 * DROPLET_INERTIA - gx * (1.0f - DROPLET_INERTIA);
   const floatv uz = dir_z0 * DROPLET_INERTIA - gz * (1.0f - DROPLET_INERTIA);
   const floatv len = sqrt(ux * ux + uz * uz);
@@ -273,17 +274,19 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
   const intv out = live & ~flat &
                    ((nx_pos < 0.0f) | (nz_pos < 0.0f) | (nx_pos >= (float)(nx - 1)) | (nz_pos >= (float)(ny - 1)));
   const intv moves = live & ~flat & ~out;
-  floatv gx2, gz2;
-  const floatv h_new = height_at(height_fixed, quantum, nx, nx_pos, nz_pos, moves, &gx2, &gz2);
+  floatv h_new, gx2, gz2;
+  height_at(height_fixed, quantum, nx, &nx_pos, &nz_pos, &moves, &h_new, &gx2, &gz2);
   const floatv dh = h_new - h_old;  // m
   const floatv capacity = fmax(-dh * speed0 * water0 * DROPLET_CAPACITY, DROPLET_MIN_CAPACITY);  // m of height
-  const floatv carried = CONVERT_FLOATV(sediment0) * quantum;
+  const floatv carried = LONGV_TO_FLOATV(sediment0) * quantum;
   const intv deposits = moves & ((dh > 0.0f) | (carried > capacity));
   const intv erodes = moves & ~deposits;
   const floatv deposit_amount = select((carried - capacity) * DROPLET_DEPOSIT, fmin(dh, carried), dh > 0.0f);
-  const longv deposited = max((longv)0, min(sediment0, CONVERT_LONGV(floor(deposit_amount / quantum))));
+  const longv deposit_quanta = FLOATV_TO_LONGV(floor(deposit_amount / quantum));
+  const longv deposited = MAX_LONGV((longv)0, MIN_LONGV(sediment0, deposit_quanta));
   const floatv erode_amount = fmin((capacity - carried) * DROPLET_ERODE, -dh);
-  longv taken = max((longv)0, CONVERT_LONGV(floor(erode_amount / quantum)));
+  const longv erode_quanta = FLOATV_TO_LONGV(floor(erode_amount / quantum));
+  longv taken = MAX_LONGV((longv)0, erode_quanta);
   if (!PLAIN_BRUSH) {  // the brush's weights decide: one lane at a time
     long t[LANES];
     int e[LANES];
@@ -294,24 +297,24 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
     STOREV(erode_amount, 0, amount);
     for (int l = 0; l < LANES; ++l)
       t[l] = e[l] ? max(0L, brush_quanta(nx, ny, px[l], pz[l], amount[l], quantum, erodibility)) : 0;
-    taken = LOADV(0, t);
+    taken = LOADV_LONG(0, t);
   }
   // The new state of each kind of lane; a finished or missing droplet keeps its own.
-  const longv lmoves = CONVERT_LONGV(moves), ldeposits = CONVERT_LONGV(deposits), lerodes = CONVERT_LONGV(erodes);
-  const longv lflat = CONVERT_LONGV(flat), lout = CONVERT_LONGV(out);
-  longv change = select((longv)0, deposited, ldeposits);
-  change = select(change, -taken, lerodes);
-  change = select(change, sediment0, lflat);
-  longv sediment = select(sediment0, sediment0 - deposited, ldeposits);
-  sediment = select(sediment, sediment0 + taken, lerodes);
-  sediment = select(sediment, (longv)0, lflat | lout);
+  const longv lmoves = INTV_TO_LONGV(moves), ldeposits = INTV_TO_LONGV(deposits), lerodes = INTV_TO_LONGV(erodes);
+  const longv lflat = INTV_TO_LONGV(flat), lout = INTV_TO_LONGV(out);
+  longv change = SELECT_LONGV((longv)0, deposited, ldeposits);
+  change = SELECT_LONGV(change, -taken, lerodes);
+  change = SELECT_LONGV(change, sediment0, lflat);
+  longv sediment = SELECT_LONGV(sediment0, sediment0 - deposited, ldeposits);
+  sediment = SELECT_LONGV(sediment, sediment0 + taken, lerodes);
+  sediment = SELECT_LONGV(sediment, (longv)0, lflat | lout);
   const floatv speed = select(speed0, sqrt(fmax(0.0f, speed0 * speed0 - dh * DROPLET_GRAVITY)), moves);
   floatv water = select(water0, water0 * (1.0f - DROPLET_EVAPORATE), moves);
   water = select(water, (floatv)(-1.0f), flat | out);
   longv final_deposit = (longv)0;
   if (step_index == DROPLET_LIFETIME - 1) {  // the end of its life: it deposits what it still carries
-    final_deposit = select((longv)0, sediment, lmoves);
-    sediment = select(sediment, (longv)0, lmoves);
+    final_deposit = SELECT_LONGV((longv)0, sediment, lmoves);
+    sediment = SELECT_LONGV(sediment, (longv)0, lmoves);
     water = select(water, (floatv)(-1.0f), moves);
   }
   STOREV(select(x, nx_pos, moves), w, state + DROPLET_X * stride);
@@ -320,13 +323,13 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
   STOREV(select(dir_z0, dir_z, moves), w, state + DROPLET_DIR_Z * stride);
   STOREV(speed, w, state + DROPLET_SPEED * stride);
   STOREV(water, w, state + DROPLET_WATER * stride);
-  STOREV(sediment, w, load);
-  STOREV(change, w, plan);
-  STOREV(final_deposit, w, plan + stride);
+  STOREV_LONG(sediment, w, load);
+  STOREV_LONG(change, w, plan);
+  STOREV_LONG(final_deposit, w, plan + stride);
   STOREV(x, w, plan_place);
   STOREV(z, w, plan_place + stride);
   // Atomics, one lane at a time: the outflow counters, and each droplet's place in its block.
-  const intv busy = (CONVERT_INTV(change != 0) | CONVERT_INTV(final_deposit != 0)) & live;
+  const intv busy = (LONGV_TO_INTV(change != 0) | LONGV_TO_INTV(final_deposit != 0)) & live;
   const uintv block =
       CONVERT_UINTV((CONVERT_INTV(z) / DROPLET_BLOCK_ROWS) * blocks_x + CONVERT_INTV(x) / DROPLET_BLOCK_WIDTH);
   int is_out[LANES], is_busy[LANES];
@@ -334,7 +337,7 @@ __kernel void droplet_move(const __global long* height_fixed, const int nx, cons
   uint blocks[LANES], bin[2 * LANES];
   STOREV(out, 0, is_out);
   STOREV(busy, 0, is_busy);
-  STOREV(sediment0, 0, carried_out);
+  STOREV_LONG(sediment0, 0, carried_out);
   STOREV(block, 0, blocks);
   for (int l = 0; l < LANES; ++l) {
     if (is_out[l]) {
