@@ -2,12 +2,15 @@
 #include "runnel/compute/context.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
 #include "runnel/compute/kernel_sources.hpp"
 #include "runnel/compute/launch.hpp"
+#include "runnel/compute/stderr_capture.hpp"
 #include "runnel/core/error.hpp"
 
 namespace runnel {
@@ -83,6 +86,7 @@ std::vector<DeviceInfo> list_devices() {
     info.global_memory = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
     info.local_memory = device.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
     info.max_alloc = device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+    info.preferred_float_width = device.getInfo<CL_DEVICE_PREFERRED_VECTOR_WIDTH_FLOAT>();
     infos.push_back(info);
   }
   return infos;
@@ -137,8 +141,25 @@ DeviceInfo select_device(const std::string& spec_in) {
   throw input_error("--device " + spec + ": no device matches (see 'runnel devices')");
 }
 
-ComputeContext::ComputeContext(const std::string& device_spec) {
+unsigned device_lanes(const DeviceInfo& device) {
+  if (device.type != "CPU") return 8;
+  return std::clamp(std::bit_floor(std::max(device.preferred_float_width, 1u)), 4u, kMostLanes);
+}
+
+unsigned lanes_from_environment() {
+  const char* env = std::getenv("RUNNEL_LANES");
+  if (!env) return 0;
+  const std::string value = trim(env);
+  if (value == "4" || value == "8" || value == "16") return static_cast<unsigned>(std::stoi(value));
+  throw input_error("RUNNEL_LANES=" + value + ": the lane kernels take 4, 8 or 16 lanes");
+}
+
+ComputeContext::ComputeContext(const std::string& device_spec, unsigned lanes) {
+  if (lanes != 0 && lanes != 4 && lanes != 8 && lanes != 16)
+    throw input_error("lanes " + std::to_string(lanes) + ": the lane kernels take 4, 8 or 16");
   info_ = select_device(device_spec);
+  if (lanes == 0) lanes = lanes_from_environment();
+  lanes_ = lanes != 0 ? lanes : device_lanes(info_);
   const auto devices = all_devices();
   device_ = devices[info_.index].second;
   context_ = cl::Context(device_);
@@ -159,8 +180,17 @@ std::string embedded_source(const std::string& path) {
   throw runtime_error("no embedded OpenCL source '" + path + "'");
 }
 
+void ComputeContext::keep_build_log(const std::string& name, const std::string& log) {
+  if (trim(log).empty()) return;
+  build_logs_[name] += log;
+  if (std::getenv("RUNNEL_KERNEL_LOG")) {
+    std::fprintf(stderr, "runnel: the compiler's log of %s (built for %u lanes):\n%s\n",
+                 name.c_str(), lanes_, log.c_str());
+  }
+}
+
 cl::Program ComputeContext::build_source(const std::string& source, const std::string& options,
-                                         Division division) {
+                                         Division division, const std::string& name) {
   cl::Program program(context_, source);
   // Fixed math options so every device computes the same way: no fast-math, denormals as the device
   // has them, and divisions and square roots correctly rounded wherever the device offers it unless
@@ -173,15 +203,21 @@ cl::Program ComputeContext::build_source(const std::string& source, const std::s
   const std::string all_options =
       std::string("-cl-std=CL1.2 -cl-kernel-arg-info ") +
       (exact_division ? "-cl-fp32-correctly-rounded-divide-sqrt " : "") +
-      "-DLANES=" + std::to_string(kLanes) + " " + options;
-  try {
-    program.build({device_}, all_options.c_str());
-  } catch (const cl::Error& e) {
+      "-DLANES=" + std::to_string(lanes_) + " " + options;
+  auto build_log = [&] {
     std::string log;
     try {
       log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
     } catch (const cl::Error&) {
     }
+    return log;
+  };
+  StderrCapture compiler_output;
+  try {
+    program.build({device_}, all_options.c_str());
+  } catch (const cl::Error& e) {
+    const std::string said = compiler_output.release();
+    const std::string log = build_log() + said;
     // Lead with the first diagnostic line (file:line:col: error: ...), then the whole log.
     std::string first;
     std::istringstream lines(log);
@@ -195,18 +231,25 @@ cl::Program ComputeContext::build_source(const std::string& source, const std::s
                         (first.empty() ? std::string(cl_error_name(e.err())) : first) +
                         "\n--- compiler log ---\n" + log);
   }
+  const std::string said = compiler_output.release();
+  keep_build_log(name, build_log() + said);
+  built_.push_back({name, source, all_options});
   return program;
 }
 
 cl::Program& ComputeContext::program(const std::vector<std::string>& files,
                                      const std::string& options, Division division) {
   std::string key = options + (division == Division::exact ? "|exact" : "|device");
-  for (auto& f : files) key += "|" + f;
+  std::string name;
+  for (auto& f : files) {
+    key += "|" + f;
+    name += (name.empty() ? "" : " + ") + f;
+  }
   auto it = programs_.find(key);
   if (it != programs_.end()) return it->second;
   std::string source;
   for (auto& f : files) source += embedded_source(f);
-  return programs_.emplace(key, build_source(source, options, division)).first->second;
+  return programs_.emplace(key, build_source(source, options, division, name)).first->second;
 }
 
 const char* cl_error_name(int code) {

@@ -23,7 +23,18 @@ struct DeviceInfo {
   unsigned long long global_memory = 0;  // bytes
   unsigned long long local_memory = 0;   // bytes
   unsigned long long max_alloc = 0;      // bytes
+  unsigned preferred_float_width = 1;    // CL_DEVICE_PREFERRED_VECTOR_WIDTH_FLOAT
 };
+
+// The lanes a lane kernel (cl/common.cl) takes on a device: a CPU's preferred float vector width
+// (its SIMD registers: 4 with SSE, 8 with AVX2, 16 with AVX-512), within 4..16; 8 on a GPU, whose
+// lanes are work-items anyway (the width measured there, docs/gpu.md). Results are the same bits
+// at every width; docs/performance.md has the measurements behind the choice.
+unsigned device_lanes(const DeviceInfo& device);
+
+// The lanes $RUNNEL_LANES asks for (4, 8 or 16), or 0 when it is not set; anything else is an
+// input error naming it.
+unsigned lanes_from_environment();
 
 // Every device on every platform. Throws an input error naming the package to install when there is
 // none.
@@ -38,7 +49,8 @@ DeviceInfo select_device(const std::string& spec);
 // and the programs built from the embedded cl/ sources.
 class ComputeContext {
  public:
-  explicit ComputeContext(const std::string& device_spec = "");
+  // lanes: the width of the lane kernels (4, 8 or 16); 0 takes $RUNNEL_LANES, else device_lanes().
+  explicit ComputeContext(const std::string& device_spec = "", unsigned lanes = 0);
   // Waits for what is still queued: an error thrown between launches must not let the process exit
   // while the device works (PoCL compiles a kernel for its first launch in a worker thread, and an
   // exit under that compile crashed with a segmentation fault instead of the error's exit 2).
@@ -53,6 +65,19 @@ class ComputeContext {
   bool wide() const { return wide_override_ ? *wide_override_ : info_.type != "CPU"; }
   // Tests run a GPU's cut on the CPU (the results must be the same bits).
   void set_wide(bool wide) { wide_override_ = wide; }
+  // The items a work-item of a lane kernel takes (cl/common.cl's LANES, which every program is
+  // built with): fixed for the context's life.
+  unsigned lanes() const { return lanes_; }
+  // What the compiler said while building each program that built (warnings, remarks), by the
+  // program's files; empty logs left out. Printed to stderr as it comes with $RUNNEL_KERNEL_LOG
+  // set; a build that fails throws with its log.
+  const std::map<std::string, std::string>& build_logs() const { return build_logs_; }
+  // Every program built, as it was given to the compiler: the kernels' portability test compiles
+  // them again for other targets.
+  struct BuiltProgram {
+    std::string name, source, options;
+  };
+  const std::vector<BuiltProgram>& built_programs() const { return built_; }
   cl::Context& context() { return context_; }
   cl::Device& device() { return device_; }
   cl::CommandQueue& queue() { return queue_; }
@@ -71,16 +96,21 @@ class ComputeContext {
                        Division division = Division::exact);
   // Builds a program from source text (used by tests to check error reporting).
   cl::Program build_source(const std::string& source, const std::string& options = "",
-                           Division division = Division::exact);
+                           Division division = Division::exact, const std::string& name = "source");
 
  private:
   DeviceInfo info_;
+  unsigned lanes_ = 8;
   std::optional<bool> wide_override_;
   cl::Context context_;
   cl::Device device_;
   cl::CommandQueue queue_;
   KernelProfiler profiler_{queue_};
   std::map<std::string, cl::Program> programs_;
+  std::map<std::string, std::string> build_logs_;
+  std::vector<BuiltProgram> built_;
+  // The log of the build of `name` (files or "source"): kept, and shown under $RUNNEL_KERNEL_LOG.
+  void keep_build_log(const std::string& name, const std::string& log);
 };
 
 // The text of an embedded source file, prefixed by a #line directive with its path.

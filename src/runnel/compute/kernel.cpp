@@ -106,6 +106,10 @@ void Kernel::launch(std::size_t global, const char* label) {
   compute_->profiler().launch(kernel_, global, label ? label : name_.c_str(), group);
 }
 
+void Kernel::launch_lanes(std::size_t n, const char* label) {
+  launch(lane_work(n, compute_->lanes()), label);
+}
+
 void Kernel::launch_groups(std::size_t groups, std::size_t group, const char* label) {
   check_arguments();
   if (group > max_group_) {

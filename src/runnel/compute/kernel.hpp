@@ -28,6 +28,8 @@ class Kernel {
   // Launches over `global` work-items through the profiler, timed under `label` (default: the
   // kernel's name).
   void launch(std::size_t global, const char* label = nullptr);
+  // Launches a lane kernel (cl/common.cl) over n items: a work-item per ComputeContext::lanes().
+  void launch_lanes(std::size_t n, const char* label = nullptr);
   // Launches `groups` work-groups of `group` work-items each (kernels that share local memory);
   // throws, naming the kernel, when the device cannot run groups that large.
   void launch_groups(std::size_t groups, std::size_t group, const char* label = nullptr);

@@ -10,16 +10,17 @@ namespace runnel {
 // Work sizes are rounded up to a multiple of this, so every device can pick a good work-group size;
 // kernels guard with `if (i >= n) return;`.
 inline constexpr std::size_t kWorkMultiple = 64;
-// Items a work-item of a lane kernel takes in the lanes of its vectors (cl/common.cl's LANES,
-// which every program is built with).
-inline constexpr unsigned kLanes = 8;
+// The widest a lane kernel's vectors are (cl/common.cl's LANES, ComputeContext::lanes()): buffers
+// read a vector at a time are padded to a multiple of it, so their layout is the same on every
+// device.
+inline constexpr unsigned kMostLanes = 16;
 
 inline std::size_t round_up_work(std::size_t n) {
   return (n + kWorkMultiple - 1) / kWorkMultiple * kWorkMultiple;
 }
-// The work size of a lane kernel over n items: a work-item per kLanes of them.
-inline std::size_t lane_work(std::size_t n) {
-  return round_up_work((n + kLanes - 1) / kLanes);
+// The work size of a lane kernel over n items: a work-item per `lanes` of them.
+inline std::size_t lane_work(std::size_t n, unsigned lanes) {
+  return round_up_work((n + lanes - 1) / lanes);
 }
 
 // A pass whose work-items each walk a run of items in order (a stable sort's blocks, a

@@ -178,7 +178,7 @@ double DropletModel::scratch_bytes() const {
 }
 
 long long DropletModel::plane_stride() const {
-  return (batch_size() + kLanes - 1) / kLanes * kLanes;
+  return (batch_size() + kMostLanes - 1) / kMostLanes * kMostLanes;
 }
 
 long long DropletSettings::batch_for(long long vertices) const {
@@ -248,7 +248,7 @@ void DropletModel::run_batch(cl_uint count, float spawn_x, float spawn_z, float 
   apply_kernel_.set("nx", terrain.nx()).set("ny", terrain.ny());
   const std::size_t group = std::min(blocks_.group, apply_kernel_.max_group());
   for (int step = 0; step < settings_.lifetime; ++step) {
-    move_kernel_.set("step_index", static_cast<cl_int>(step)).launch(lane_work(count));
+    move_kernel_.set("step_index", static_cast<cl_int>(step)).launch_lanes(count);
     bin_kernel_.launch_groups(1, kBinGroup);
     for (cl_int parity = 0; parity < 4; ++parity) {
       if (blocks_.has_parity(parity))

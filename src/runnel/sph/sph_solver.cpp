@@ -186,7 +186,7 @@ void SphSolver::measure_water_depth() {
   coarsen_water(levels);
   store_.bind(depth_gather_, {kDepth});
   depth_gather_.set("levels", levels);
-  depth_gather_.launch(lane_work(n));
+  depth_gather_.launch_lanes(n);
 }
 
 // The water counted on coarser grids for the films' depth (water_depth_reference.hpp), in one
@@ -284,7 +284,7 @@ void launch_bed_friction_factors(ParticleStore& store, Kernel& factors, Kernel& 
   const cl_uint n = static_cast<cl_uint>(store.size());
   cl::Buffer& factor = store.scratch(kRho);
   store.bind(factors, {kDepth});
-  factors.set("n", n).set("factor", factor).launch(lane_work(n));
+  factors.set("n", n).set("factor", factor).launch_lanes(n);
   drift.set("friction", factor);
 }
 
