@@ -29,6 +29,7 @@ void add_devices_command(CLI::App& app) {
                            .add("version", d.version)
                            .add("compute_units", d.compute_units)
                            .add("global_memory_bytes", d.global_memory)
+                           .add("lanes", device_lanes(d))
                            .add("default", d.index == chosen.index));
       }
       std::cout << JsonObject().add("devices", list).str() << "\n";
@@ -38,10 +39,10 @@ void add_devices_command(CLI::App& app) {
       std::printf(
           "%s [%d] platform %d device %d: %s (%s)\n      %s; %s; %u compute units, %.1f GiB global "
           "memory, "
-          "%.0f KiB local memory\n",
+          "%.0f KiB local memory, %u lanes\n",
           d.index == chosen.index ? "*" : " ", d.index, d.platform_index, d.device_index,
           d.name.c_str(), d.type.c_str(), d.platform.c_str(), d.version.c_str(), d.compute_units,
-          d.global_memory / 1073741824.0, d.local_memory / 1024.0);
+          d.global_memory / 1073741824.0, d.local_memory / 1024.0, device_lanes(d));
     }
     std::printf("* = the default device\n");
   });

@@ -264,6 +264,7 @@ JsonObject run_metrics(const ComputeContext& compute, Model& model, const RunSum
       .add("runnel_version", kVersion)
       .add("source_revision", kRevision)
       .add("device", compute.info().name)
+      .add("lanes", compute.lanes())
       .add("model", model.info().name)
       .add("model_class", model.info().class_name)
       .add("clock", clock_name(model.info().clock))

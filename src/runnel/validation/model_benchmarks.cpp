@@ -63,6 +63,7 @@ JsonObject benchmark_model(ComputeContext& compute, const std::string& name, int
   JsonObject o;
   o.add("benchmark", name)
       .add("device", compute.info().name)
+      .add("lanes", compute.lanes())
       .add("size", size)
       .add("steps", steps)
       .add("seconds", t.seconds)
@@ -91,6 +92,7 @@ JsonObject benchmark_generators(ComputeContext& compute, int size, int steps) {
   return JsonObject()
       .add("benchmark", "generate")
       .add("device", compute.info().name)
+      .add("lanes", compute.lanes())
       .add("size", size)
       .add("steps", steps)
       .add("generators", results);

@@ -100,6 +100,7 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
   out.add("benchmark", "sph")
       .add("scene", scene)
       .add("device", compute.info().name)
+      .add("lanes", compute.lanes())
       .add("particles", n)
       .add("steps", steps)
       .add("seconds", seconds)
