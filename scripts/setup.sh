@@ -24,6 +24,7 @@ packages=(
   libegl1 libegl-mesa0  # runnel-viewer --headless: EGL without a display (Mesa's surfaceless platform)
   clang-format
   clang libclang-rt-14-dev  # scripts/sanitize.sh: ASan + UBSan build and the libFuzzer targets
+  clang-15  # PoCL's own compiler: the kernels compiled for x86 CPUs without AVX-512 (tests/compute/test_lanes.cpp)
   patchelf  # scripts/gpu-bundle.sh: the bundle's binaries find their libraries through an RPATH
   oclgrind  # scripts/oclgrind-check.sh (a CTest): every kernel access checked, data races found
 )
