@@ -5,11 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <random>
 #include <sstream>
 
+#include "runnel/compute/stderr_capture.hpp"
 #include "runnel/core/error.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/grid_model.hpp"
@@ -185,6 +189,31 @@ TEST(KernelPortability, EveryProgramCompilesSilentlyForEveryX86CpuAtEveryWidth) 
     }
   }
   std::printf("note: %d compilations of runnel's programs, all silent\n", compiled);
+}
+
+// What the compiler says in a build that succeeds is kept, not printed; $RUNNEL_KERNEL_LOG prints
+// it.
+TEST(KernelPortability, ABuildsWarningsAreKeptAndShownOnlyWhenAskedFor) {
+  // A source no earlier run built: PoCL's kernel cache would skip the compiler.
+  const std::string source =
+      "// " + std::to_string(std::random_device{}()) + " " +
+      std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) +
+      "\n#warning \"a warning the test asked for\"\n"
+      "__kernel void noisy(__global int* out) { out[0] = 1; }\n";
+  ComputeContext compute(test::test_device());
+  StderrCapture quiet;
+  compute.build_source(source, "", ComputeContext::Division::exact, "noisy.cl");
+  EXPECT_EQ(quiet.release(), "");
+  ASSERT_EQ(compute.build_logs().count("noisy.cl"), 1u);
+  EXPECT_NE(compute.build_logs().at("noisy.cl").find("a warning the test asked for"),
+            std::string::npos);
+  setenv("RUNNEL_KERNEL_LOG", "1", 1);
+  StderrCapture shown;
+  compute.build_source(source, "-DAGAIN", ComputeContext::Division::exact, "noisy.cl");
+  const std::string said = shown.release();
+  unsetenv("RUNNEL_KERNEL_LOG");
+  EXPECT_NE(said.find("noisy.cl"), std::string::npos) << said;
+  EXPECT_NE(said.find("a warning the test asked for"), std::string::npos) << said;
 }
 
 // A successful run with an empty kernel cache (every program compiled, not loaded) writes nothing
