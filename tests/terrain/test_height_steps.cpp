@@ -55,6 +55,37 @@ TEST(HeightSteps, GeneratedHillsAndAHillOnAPlainAreNotStepped) {
   EXPECT_FALSE(height_steps(Heightmap(16, 16, 1.0, 3.0f)).stepped());
 }
 
+TEST(HeightSteps, APlaneOfConstantSlopeIsNotSteppedThoughItsHeightsComeInEqualSteps) {
+  // A 5 % plane along x on 0.5 m cells, the plane generator's and at an angle: its pairs along x
+  // are all one step (2.5 cm) apart and across it all level, half and half, as a staircase's could
+  // be; but no tread ends on a riser.
+  const auto plane = [](int nx, int ny, double cell, double azimuth_deg) {
+    Heightmap t(nx, ny, cell);
+    const double a = azimuth_deg * M_PI / 180;
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        t.at(i, j) = static_cast<float>(0.05 * cell * (std::cos(a) * i + std::sin(a) * j));
+    return t;
+  };
+  const HeightSteps along = height_steps(plane(200, 40, 0.5, 0));
+  EXPECT_NEAR(along.level_share, 0.5, 0.01);
+  EXPECT_NEAR(along.one_step_share, 0.5, 0.01);
+  EXPECT_EQ(along.tread_end_share, 0.0);
+  EXPECT_FALSE(along.stepped()) << along.caution();
+  EXPECT_FALSE(height_steps(plane(65, 65, 1.0, 30)).stepped());
+  const Heightmap generated =
+      generate_terrain("plane", 129, 33, 0.5, 1, {{"slope", 5.0}, {"azimuth", 90.0}});
+  EXPECT_FALSE(height_steps(generated).stepped()) << height_steps(generated).caution();
+  // The same heights cut into treads two cells wide both ways are a staircase.
+  Heightmap stairs(200, 40, 0.5);
+  for (int j = 0; j < stairs.ny; ++j)
+    for (int i = 0; i < stairs.nx; ++i)
+      stairs.at(i, j) = 0.025f * static_cast<float>(i / 2 + j / 2);
+  const HeightSteps s = height_steps(stairs);
+  EXPECT_GT(s.tread_end_share, 0.2);
+  EXPECT_TRUE(s.stepped());
+}
+
 TEST(HeightSteps, TheShippedDemIsSteppedAndARunOnItSaysSoFirst) {
   const std::string dem = test::source_dir() + "/data/terrains/jacksboro_fault_dem.asc";
   const HeightSteps s = height_steps(read_terrain(dem));
