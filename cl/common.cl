@@ -150,6 +150,8 @@ typedef LANE_VECTOR(uint) uintv;
    p[k.sc], p[k.sd], p[k.se], p[k.sf])
 #endif
 #define GATHER_LONG(p, k) ((longv)LANE_GATHER(p, k))
+#define GATHER_FLOAT(p, k) ((floatv)LANE_GATHER(p, k))
+#define GATHER_UINT(p, k) ((uintv)LANE_GATHER(p, k))
 
 // Long lane vectors through builtins in halves (each a float lane vector's bits), lane by lane the
 // same values as the whole-vector builtins.
@@ -168,8 +170,6 @@ typedef LANE_VECTOR(uint) uintv;
 #define SELECT_LONGV(a, b, mask) ((mask) ? (b) : (a))
 #define MAX_LONGV(a, b) ((a) > (b) ? (a) : (b))
 #define MIN_LONGV(a, b) ((a) < (b) ? (a) : (b))
-#define GATHER_FLOAT(p, k) ((floatv)LANE_GATHER(p, k))
-#define GATHER_UINT(p, k) ((uintv)LANE_GATHER(p, k))
 
 inline int grid_index(int i, int j, int nx) { return j * nx + i; }
 

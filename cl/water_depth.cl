@@ -155,8 +155,9 @@ __kernel void water_depth_coarsen(__global long* water, const int nx, const int 
 // the scalar code it replaced.
 
 // footprint_weight, lane by lane (a macro: no lane vector crosses a call, common.cl).
-#define FOOTPRINT_WEIGHT_V(d) footprint_weight_squared_v(fmax(0.0f, 1.0f - (d) * (d) * (1.0f / (FOOTPRINT_RADIUS * FOOTPRINT_RADIUS))))
-#define footprint_weight_squared_v(t) ((t) * (t))
+// SQUARE_V takes the bracket once as an argument, so it is computed once.
+#define FOOTPRINT_WEIGHT_V(d) SQUARE_V(fmax(0.0f, 1.0f - (d) * (d) * (1.0f / (FOOTPRINT_RADIUS * FOOTPRINT_RADIUS))))
+#define SQUARE_V(t) ((t) * (t))
 
 // The water depth at (x, z) read on level l (nx × ny vertices, each the mean of the fine vertices of
 // its block, standing at the block's centre) with the footprint scaled by 2^l, and the depth the

@@ -131,4 +131,20 @@ Heightmap rough_terrain(int nx, int ny, float relief, unsigned seed) {
   return rough;
 }
 
+void expect_same_state(const CheckpointData& a, const CheckpointData& b) {
+  EXPECT_EQ(a.height_fixed, b.height_fixed);
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.time, b.time);
+  ASSERT_EQ(a.fields.size(), b.fields.size());
+  for (std::size_t k = 0; k < a.fields.size(); ++k) {
+    EXPECT_EQ(a.fields[k].name, b.fields[k].name);
+    EXPECT_EQ(a.fields[k].f32, b.fields[k].f32) << a.fields[k].name;
+    EXPECT_EQ(a.fields[k].i64, b.fields[k].i64) << a.fields[k].name;
+  }
+  EXPECT_EQ(a.model_counters, b.model_counters);
+  EXPECT_EQ(a.particles.id, b.particles.id);
+  for (int f = 0; f < kPersistentFieldCount; ++f) EXPECT_EQ(a.particles.f[f], b.particles.f[f]);
+  EXPECT_EQ(a.particles.sediment, b.particles.sediment);
+}
+
 }  // namespace runnel::test

@@ -10,6 +10,7 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
+#include "runnel/models/checkpoint.hpp"
 
 namespace runnel::test {
 
@@ -56,6 +57,10 @@ inline std::string param_name(std::string name) {
   for (char& c : name) c = c == '-' ? '_' : c;
   return name;
 }
+
+// Everything a restart needs (heights, steps, clock, fields, counters, particles), compared bit for
+// bit.
+void expect_same_state(const CheckpointData& a, const CheckpointData& b);
 
 // The number after "KEY": in a JSON text (the first occurrence); -1e300 if the key is absent.
 double json_number(const std::string& json, const std::string& key);

@@ -18,6 +18,7 @@ namespace runnel {
 namespace {
 
 using test::compute;
+using test::expect_same_state;
 
 // A small, steep terrain every model acts on within a few dozen steps: slopes above the 40° talus
 // angle for thermal, valleys for the water.
@@ -60,23 +61,6 @@ std::unique_ptr<Model> make(const std::string& name) {
 // Steps that let every model move material: SPH needs its drops to land first.
 int busy_steps(const Model& m) {
   return m.info().name == "sph" ? 120 : 30;
-}
-
-// Everything a restart needs, for comparing two states bit for bit.
-void expect_same_state(const CheckpointData& a, const CheckpointData& b) {
-  EXPECT_EQ(a.height_fixed, b.height_fixed);
-  EXPECT_EQ(a.steps, b.steps);
-  EXPECT_EQ(a.time, b.time);
-  ASSERT_EQ(a.fields.size(), b.fields.size());
-  for (std::size_t k = 0; k < a.fields.size(); ++k) {
-    EXPECT_EQ(a.fields[k].name, b.fields[k].name);
-    EXPECT_EQ(a.fields[k].f32, b.fields[k].f32) << a.fields[k].name;
-    EXPECT_EQ(a.fields[k].i64, b.fields[k].i64) << a.fields[k].name;
-  }
-  EXPECT_EQ(a.model_counters, b.model_counters);
-  EXPECT_EQ(a.particles.id, b.particles.id);
-  for (int f = 0; f < kPersistentFieldCount; ++f) EXPECT_EQ(a.particles.f[f], b.particles.f[f]);
-  EXPECT_EQ(a.particles.sediment, b.particles.sediment);
 }
 
 class ModelConformance : public ::testing::TestWithParam<std::string> {};

@@ -146,17 +146,29 @@ unsigned device_lanes(const DeviceInfo& device) {
   return std::clamp(std::bit_floor(std::max(device.preferred_float_width, 1u)), 4u, kMostLanes);
 }
 
+namespace {
+
+// The widths cl/common.cl is written for; `what` names the value in the error.
+unsigned checked_lanes(unsigned lanes, const std::string& what) {
+  if (lanes == 4 || lanes == 8 || lanes == 16) return lanes;
+  throw input_error(what + ": the lane kernels take 4, 8 or 16 lanes");
+}
+
+}  // namespace
+
 unsigned lanes_from_environment() {
   const char* env = std::getenv("RUNNEL_LANES");
   if (!env) return 0;
   const std::string value = trim(env);
-  if (value == "4" || value == "8" || value == "16") return static_cast<unsigned>(std::stoi(value));
-  throw input_error("RUNNEL_LANES=" + value + ": the lane kernels take 4, 8 or 16 lanes");
+  const bool digits =
+      !value.empty() && value.size() < 4 &&
+      std::all_of(value.begin(), value.end(), [](unsigned char c) { return std::isdigit(c); });
+  return checked_lanes(digits ? static_cast<unsigned>(std::stoi(value)) : 0,
+                       "RUNNEL_LANES=" + value);
 }
 
 ComputeContext::ComputeContext(const std::string& device_spec, unsigned lanes) {
-  if (lanes != 0 && lanes != 4 && lanes != 8 && lanes != 16)
-    throw input_error("lanes " + std::to_string(lanes) + ": the lane kernels take 4, 8 or 16");
+  if (lanes != 0) checked_lanes(lanes, "lanes " + std::to_string(lanes));
   info_ = select_device(device_spec);
   if (lanes == 0) lanes = lanes_from_environment();
   lanes_ = lanes != 0 ? lanes : device_lanes(info_);

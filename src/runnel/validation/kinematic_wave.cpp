@@ -14,6 +14,12 @@ double steady_storage_to(double x, double rain, double alpha) {
   return 0.625 * x * std::pow(rain * x / alpha, 0.6);
 }
 
+// How far the characteristic that left the divide at t = 0 has come while it rains: x = α (i t)^m /
+// i.
+double front(double t, double rain, double alpha) {
+  return alpha * std::pow(rain * t, kM) / rain;
+}
+
 }  // namespace
 
 double KinematicPlane::alpha() const {
@@ -42,8 +48,7 @@ double KinematicPlane::depth(double x, double t) const {
   if (t <= duration) {
     // Where the characteristic that left the divide at t = 0 has passed, the depth is steady;
     // ahead of it every characteristic started on the plane at t = 0 and has gathered i t.
-    const double reached = a * std::pow(rain * t, kM) / rain;
-    return x <= reached ? equilibrium_depth(x) : rain * t;
+    return x <= front(t, rain, a) ? equilibrium_depth(x) : rain * t;
   }
   // Recession (the plane was at equilibrium when the rain stopped): the characteristic through
   // (x, t) left x0 = α h0^m / i at t = D with the steady depth h0 and keeps it, travelling at
@@ -71,7 +76,7 @@ double KinematicPlane::outflow(double t) const {
 double KinematicPlane::storage(double t) const {
   const double a = alpha();
   if (t <= duration) {
-    const double reached = std::min(a * std::pow(rain * t, kM) / rain, length);
+    const double reached = std::min(front(t, rain, a), length);
     return steady_storage_to(reached, rain, a) + (length - reached) * rain * t;
   }
   // Simpson's rule in s with x = L s²: the depth's x^(3/5) near the divide becomes smooth in s.
