@@ -12,7 +12,10 @@
 //                        (m³/s) into the pipes' flux planes, which the sediment transport and the bed
 //                        load read as they read Mei's pipes; then what pipe_water leaves for the
 //                        erosion stages (previous depth, capacity, CFL speeds).
-// Edges: closed, a mirror cell (reflecting); outflow, a copy of the cell (the water leaves freely).
+// Edges: closed, a mirror cell (reflecting); outflow, a free overfall: beyond the edge the ground
+// falls away and is dry, so the water leaves at critical depth or faster and nothing comes back in
+// (a copy of the cell, the usual transmissive edge, keeps a sheet's momentum but not the bed's
+// slope: the last cell lost half its push and water piled up there).
 // Built after pipe.cl (PIPE_* defines, pipe_capacity, pipe_inverse_cbrt).
 
 #define GODUNOV_DRY 1e-6f  // m: thinner water has no velocity
@@ -45,6 +48,25 @@ inline float3 reconstructed_flux(float za, float ha, float una, float uta, float
   return hll_flux(fmax(0.0f, ha + za - z), una, uta, fmax(0.0f, hb + zb - z), unb, utb);
 }
 
+// The flux through the map's edge after a cell (its right or lower face), for its depth and its
+// normal and tangential velocities: against a mirror (closed) or a dry, lower ground (outflow).
+inline float3 edge_flux_after(float h, float un, float ut) {
+#if PIPE_CLOSED
+  return hll_flux(h, un, ut, h, -un, ut);
+#else
+  return hll_flux(h, un, ut, 0.0f, 0.0f, 0.0f);
+#endif
+}
+
+// The same before a cell (its left or upper face), which no cell owns.
+inline float3 edge_flux_before(float h, float un, float ut) {
+#if PIPE_CLOSED
+  return hll_flux(h, -un, ut, h, un, ut);
+#else
+  return hll_flux(0.0f, 0.0f, 0.0f, h, un, ut);
+#endif
+}
+
 __kernel void pipe_godunov_faces(const __global float* height_view, const __global float* depth,
                                  const __global float* velocity, __global float* face_flux, const int nx,
                                  const int ny, const float dt, const __global float* rain_weight,
@@ -62,7 +84,7 @@ __kernel void pipe_godunov_faces(const __global float* height_view, const __glob
     fx = reconstructed_flux(z, h, u, v, height_view[m], depth[m] + rain * RAIN_WEIGHT(rain_weight, m), velocity[m],
                    velocity[n + m]);
   } else {
-    fx = reconstructed_flux(z, h, u, v, z, h, PIPE_CLOSED ? -u : u, v);
+    fx = edge_flux_after(h, u, v);
   }
   // Lower face (z): normal velocity v, tangential u.
   float3 fz;
@@ -71,15 +93,10 @@ __kernel void pipe_godunov_faces(const __global float* height_view, const __glob
     fz = reconstructed_flux(z, h, v, u, height_view[m], depth[m] + rain * RAIN_WEIGHT(rain_weight, m), velocity[n + m],
                    velocity[m]);
   } else {
-    fz = reconstructed_flux(z, h, v, u, z, h, PIPE_CLOSED ? -v : v, u);
+    fz = edge_flux_after(h, v, u);
   }
   face_flux[0 * n + k] = fx.x, face_flux[1 * n + k] = fx.y, face_flux[2 * n + k] = fx.z;
   face_flux[3 * n + k] = fz.x, face_flux[4 * n + k] = fz.y, face_flux[5 * n + k] = fz.z;
-}
-
-// The left and upper faces at the map's edge, which no cell owns: a mirror or a copy of the cell.
-inline float3 edge_flux(float z, float h, float un, float ut) {
-  return reconstructed_flux(z, h, PIPE_CLOSED ? -un : un, ut, z, h, un, ut);
 }
 
 __kernel void pipe_godunov_update(__global float* depth, __global float* velocity, __global float* flux,
@@ -98,10 +115,10 @@ __kernel void pipe_godunov_update(__global float* depth, __global float* velocit
   const float3 lower = (float3)(face_flux[3 * n + k], face_flux[4 * n + k], face_flux[5 * n + k]);
   const float3 left = i > 0 ? (float3)(face_flux[0 * n + k - 1], face_flux[1 * n + k - 1],
                                        face_flux[2 * n + k - 1])
-                            : edge_flux(z, h, u, v);
+                            : edge_flux_before(h, u, v);
   const float3 upper = j > 0 ? (float3)(face_flux[3 * n + k - nx], face_flux[4 * n + k - nx],
                                         face_flux[5 * n + k - nx])
-                             : edge_flux(z, h, v, u);
+                             : edge_flux_before(h, v, u);
   // Audusse's pressure corrections: each face's momentum flux as this cell sees it, with the
   // hydrostatic pressure of its own depth against the reconstructed one.
   float zr = z, zl = z, zu = z, zd = z;

@@ -40,6 +40,7 @@ void add_resume_command(CLI::App& app) {
     RunOptions options = run_options_from(model->parameters(), model->info().clock);
     options.until_step = model->steps() + static_cast<std::uint64_t>(opt->steps);
     options.out_dir = opt->out;
+    options.resumed_counters = data.model_counters;
     options.quiet = opt->quiet;
     opt->output.apply(options);
     const RunSummary s = run_model(compute, *model, options);

@@ -9,6 +9,7 @@
 #include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 #include "runnel/validation/mobile_bed.hpp"
+#include "runnel/validation/overland.hpp"
 #include "runnel/validation/stream_power_validation.hpp"
 #include "runnel/validation/validation.hpp"
 
@@ -22,7 +23,26 @@ struct ValidateFlags {
   double settle = 0;
   std::vector<std::string> sets;
   std::vector<std::string> models;
+  OverlandCase overland;  // overland's own flags
 };
+
+// The flags only `runnel validate overland` reads.
+const std::vector<std::string>& overland_flags() {
+  static const std::vector<std::string> flags = {"--length", "--width",     "--slope",
+                                                 "--manning-n", "--rain",   "--duration",
+                                                 "--recession", "--cell",   "--spacing"};
+  return flags;
+}
+
+// Rain on a plane against the kinematic wave, every run of the case, as one JSON object.
+void print_overland(ComputeContext& compute, const ValidateFlags& opt, const ValidationOptions& v) {
+  OverlandCase c = opt.overland;
+  if (!opt.models.empty()) c.runs = opt.models;
+  c.params = v.params;
+  c.out_dir = v.out_dir;
+  c.progress = v.progress;
+  std::cout << validate_overland(compute, c).str() << "\n";
+}
 
 // The stream-power model against its analytic steady states, as JSON on stdout.
 void print_stream_power_validation() {
@@ -67,8 +87,23 @@ void validate(const ValidateFlags& opt, const CLI::App& cmd) {
     throw input_error("--settle: must be more than 0 and at most 10000 s");
   v.settle_time = opt.settle;
   apply_overrides(v.params, opt.sets);
-  if (cmd.count("--models") && opt.which != "mobile-bed")
-    throw input_error("--models: only mobile-bed runs with a choice of models");
+  if (cmd.count("--models") && opt.which != "mobile-bed" && opt.which != "overland")
+    throw input_error("--models: only mobile-bed and overland run with a choice of models");
+  if (opt.which == "mobile-bed")
+    for (const std::string& m : opt.models)
+      if (m != "pipe" && m != "sph")
+        throw input_error("--models: mobile-bed runs pipe or sph (got '" + m + "')");
+  for (const std::string& flag : overland_flags())
+    if (cmd.count(flag) && opt.which != "overland")
+      throw input_error(flag + ": only overland takes it");
+  if (opt.which == "overland") {
+    if (cmd.count("--resolution") || cmd.count("--settle"))
+      throw input_error(std::string(cmd.count("--resolution") ? "--resolution" : "--settle") +
+                        ": overland takes --cell and --spacing instead");
+    OverlandCase c = opt.overland;
+    if (!opt.models.empty()) c.runs = opt.models;
+    c.check();  // before --out is created
+  }
   if (cmd.count("--terrain")) {
     if (opt.which != "erosion-convergence")
       throw input_error("--terrain: only erosion-convergence rains on a terrain");
@@ -91,6 +126,10 @@ void validate(const ValidateFlags& opt, const CLI::App& cmd) {
     return;
   }
   ComputeContext compute(opt.device);
+  if (opt.which == "overland") {
+    print_overland(compute, opt, v);
+    return;
+  }
   if (opt.which == "mobile-bed" && !opt.models.empty()) {
     print_mobile_bed_runs(compute, v, opt.models);
     return;
@@ -117,12 +156,15 @@ void add_validate_command(CLI::App& app) {
       "stream-power model against its analytic steady states: a 1-D channel, a "
       "2-D grid's slope-area relation, the diffusion hillslope), or mobile-bed (the pipe model's "
       "bed load in the dam break over a sand bed of Soares-Frazao et al. 2012: gauges and final "
-      "bed against the experiment's repeats)");
+      "bed against the experiment's repeats), or overland (rain on a walled plane with an open "
+      "foot, every model that moves water against the kinematic wave: depths, the outflow "
+      "hydrograph, the water stored)");
   cmd->add_option("case", opt->which,
-                  "hydrostatic, dambreak, droplet, erosion-convergence, stream-power or mobile-bed")
+                  "hydrostatic, dambreak, droplet, erosion-convergence, stream-power, mobile-bed "
+                  "or overland")
       ->required()
       ->check(CLI::IsMember({"hydrostatic", "dambreak", "droplet", "erosion-convergence",
-                             "stream-power", "mobile-bed"}));
+                             "stream-power", "mobile-bed", "overland"}));
   cmd->add_option("--resolution", opt->resolution,
                   "particles across the length scale (hydrostatic: layers in the "
                   "column, default 16; dambreak: across L, default 20); erosion-convergence: "
@@ -142,9 +184,26 @@ void add_validate_command(CLI::App& app) {
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--models", opt->models,
                   "mobile-bed: the models to run it with, each in DIR/MODEL (e.g. pipe,sph; "
-                  "default: the scenario's, pipe)")
+                  "default: the scenario's, pipe); overland: the runs (pipes, local-inertial, "
+                  "godunov: the pipe model's fluxes; wcsph, dfsph: SPH at each --spacing; "
+                  "default: all five)")
+      ->delimiter(',');
+  OverlandCase& o = opt->overland;
+  cmd->add_option("--length", o.length, "overland: the plane's length, m")->capture_default_str();
+  cmd->add_option("--width", o.width, "overland: between the side walls, m")->capture_default_str();
+  cmd->add_option("--slope", o.slope, "overland: m/m")->capture_default_str();
+  cmd->add_option("--manning-n", o.manning_n, "overland: Manning's n of every model, s/m^(1/3)")
+      ->capture_default_str();
+  cmd->add_option("--rain", o.rain_mm_h,
+                  "overland: mm/h (the default makes a sheet about 0.55 m deep at the foot, which "
+                  "SPH resolves at 0.1 m)")
+      ->capture_default_str();
+  cmd->add_option("--duration", o.duration, "overland: seconds of rain (default 2 t_e)");
+  cmd->add_option("--recession", o.recession, "overland: seconds run after the rain (default t_e)");
+  cmd->add_option("--cell", o.cell, "overland: the terrain's cell, m")->capture_default_str();
+  cmd->add_option("--spacing", o.spacings, "overland: SPH's particle spacings, m")
       ->delimiter(',')
-      ->check(CLI::IsMember({"pipe", "sph"}));
+      ->capture_default_str();
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
   cmd->callback([opt, cmd] { validate(*opt, *cmd); });
 }

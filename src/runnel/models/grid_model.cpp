@@ -166,6 +166,17 @@ bool GridModel::start_standing_water(const Parameters& params) {
   return true;
 }
 
+std::optional<WaterBudget> GridModel::water_budget() {
+  if (!state_.has(kSurfaceWaterDepth)) return std::nullopt;
+  WaterBudget b;
+  b.rain = rain_volume();
+  b.stored = water_volume();
+  b.per_edge = true;
+  b.edges = edge_water_outflow();
+  for (double v : b.edges) b.outflow += v;
+  return b;
+}
+
 double GridModel::water_volume() {
   double depth = 0;
   for (float d : state_.download_float(kSurfaceWaterDepth)) depth += d;
@@ -282,6 +293,13 @@ std::int64_t counter_value(const std::vector<std::pair<std::string, std::int64_t
   for (auto& [key, value] : counters)
     if (key == name) return value;
   throw input_error("checkpoint: counter " + name + " is missing");
+}
+
+std::int64_t counter_value_or(const std::vector<std::pair<std::string, std::int64_t>>& counters,
+                              const std::string& name, std::int64_t absent) {
+  for (auto& [key, value] : counters)
+    if (key == name) return value;
+  return absent;
 }
 
 }  // namespace runnel

@@ -40,6 +40,8 @@ class GridModel : public Model, public Interactive {
   Heightmap erosion_reference() final;
   double rain_volume() override { return painted_volume_; }
   double initial_water_volume() const override { return initial_water_volume_; }
+  // Rain, edge outflow and the water standing now, for a model with a water depth field.
+  std::optional<WaterBudget> water_budget() final;
   CheckpointData checkpoint() final;
   void restore(const CheckpointData& data) final;
   std::string status() override;
@@ -53,6 +55,9 @@ class GridModel : public Model, public Interactive {
   Ground* ground() final { return ground_.get(); }
   // Height quanta that left the map (outflow edges), and that the model has in suspension.
   virtual long long outflow_quanta() { return 0; }
+  // m³ of water that has left the map over each edge (kEdgeNames' order); none where the edges are
+  // closed.
+  virtual std::array<double, 4> edge_water_outflow() { return {}; }
   // Height quanta a documented non-conserving option destroyed (negative: created).
   virtual long long lost_quanta() { return 0; }
   // Height quanta tectonic uplift added (stream-power), in all and per vertex (empty: none).
@@ -139,5 +144,8 @@ class GridModel : public Model, public Interactive {
 // The value of counter `name` in a restored list; throws an input error if it is missing.
 std::int64_t counter_value(const std::vector<std::pair<std::string, std::int64_t>>& counters,
                            const std::string& name);
+// The same, or `absent` for a counter that files written before it existed do not hold.
+std::int64_t counter_value_or(const std::vector<std::pair<std::string, std::int64_t>>& counters,
+                              const std::string& name, std::int64_t absent);
 
 }  // namespace runnel

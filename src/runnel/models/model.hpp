@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,6 +48,17 @@ struct ModelInfo {
   // implementation may abort on a failed allocation. A test holds each model to it.
   double device_bytes_per_vertex = 128;
 };
+
+// Where a model's water has gone so far (m³; an iteration model's rain is per iteration): the rain it
+// has received, the water that has left over the terrain's edges, and the water on the terrain now.
+// `edges` splits the outflow by edge (west, east, north, south: x = 0, x = max, the first row, the
+// last row) for the models that count it so (`per_edge`). outflow.csv is made of these.
+struct WaterBudget {
+  double rain = 0, outflow = 0, stored = 0;
+  bool per_edge = false;
+  std::array<double, 4> edges{};
+};
+inline constexpr const char* kEdgeNames[4] = {"west", "east", "north", "south"};
 
 // One erosion model on one terrain. Every model advances the same way (`advance(dt)`, Landlab's
 // run_one_step), reports the same mass balance and is checkpointed through the same HDF5 files.
@@ -98,6 +111,9 @@ class Model {
   virtual double rain_volume() = 0;
   // Water standing on the terrain at t = 0 ([[water.bodies]], water.depth), m³.
   virtual double initial_water_volume() const { return 0.0; }
+  // The water's budget now (outflow.csv, the overland-flow validation); none for a model whose
+  // water is not a flow on the terrain (stream-power, thermal, the droplets).
+  virtual std::optional<WaterBudget> water_budget() { return std::nullopt; }
 
   // The whole state for an exact restart, and back; restore() expects a model built from the
   // checkpoint's parameters and initial terrain (make_model_from_checkpoint does both).

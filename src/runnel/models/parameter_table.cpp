@@ -50,6 +50,8 @@ std::vector<ParamSpec> assemble() {
       {"run.sim_years", T::kReal, "0", "yr", 0, 1e12, {}, "simulated years to run when run.steps is 0, for models whose clock is years (stream-power), so one scenario can give seconds of rain and years of landscape evolution (runnel compare); 0: run.sim_time, read as years"},
       {"run.iterations", T::kInteger, "100", "iterations", 0, 1e12, {}, "iterations to run when run.steps is 0 (models counting iterations: droplet batches, olsen, thermal)"},
       {"run.probe_every", T::kReal, "0.1", "s", 1e-6, 1e12, {}, "clock time between the gauges' readings in probes.csv ([[probes]]; the model's clock: s for sph and pipe)"},
+      {"run.outflow_every", T::kReal, "1", "s", 0, 1e12, {}, "clock time between the rows of outflow.csv, the water's budget (rain and outflow in m^3 per clock unit, the water on the terrain in m^3) for models with water (sph, pipe, olsen); 0: no outflow.csv"},
+      {"run.outflow_edges", T::kBool, "false", "", 0, 0, {}, "outflow.csv also splits the outflow by edge (west, east, north, south; the grid models)"},
       {"run.report_every", T::kInteger, "200", "steps", 1, 1e12, {}, "steps between mass-balance reports (progress lines when not on a terminal)"},
       // clang-format on
   };

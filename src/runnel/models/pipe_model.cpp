@@ -106,6 +106,9 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   lost_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(outflow_, cl_long{0}, 0, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(lost_, cl_long{0}, 0, sizeof(cl_long));
+  const std::size_t edge_faces = 2 * static_cast<std::size_t>(terrain.nx + terrain.ny);
+  edge_water_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, edge_faces * sizeof(cl_long));
+  compute.queue().enqueueFillBuffer(edge_water_, cl_long{0}, 0, edge_faces * sizeof(cl_long));
   std::vector<std::string> sources = {"cl/common.cl", "cl/models/pipe.cl"};
   if (settings_.inertial()) sources.push_back("cl/models/pipe_inertial.cl");
   if (settings_.godunov()) sources.push_back("cl/models/pipe_godunov.cl");
@@ -135,6 +138,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   receive_kernel_ = Kernel(compute, program, "pipe_receive");
   edge_outflow_kernel_ = Kernel(compute, program, "pipe_edge_outflow");
   advect_kernel_ = Kernel(compute, program, "pipe_advect");
+  edge_water_kernel_ = Kernel(compute, program, "pipe_edge_water");
   stats_kernel_ = Kernel(compute, program, "pipe_stats");
   flux_kernel_.set("rain_weight", rain_weight());
   water_kernel_.set("rain_weight", rain_weight());
@@ -150,7 +154,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
 
 double PipeModel::scratch_bytes() const {
   return buffer_bytes({&previous_depth_, &capacity_, &cfl_speed2_, &sediment_next_, &sent_, &stats_,
-                       &outflow_, &lost_, &sendable_, &bed_sent_, &height_next_, &bed_moved_,
+                       &outflow_, &lost_, &edge_water_, &sendable_, &bed_sent_, &height_next_, &bed_moved_,
                        &old_flux_, &face_flux_}) +
          (talus_ ? talus_->device_bytes() : 0.0);
 }
@@ -193,9 +197,11 @@ double PipeModel::take_step() {
       .set("deposited_fraction", static_cast<float>(-std::expm1(-settings_.deposit * dt_)));
   if (settings_.bedload()) {
     for (Kernel* k : {&flux_kernel_, &water_kernel_}) k->launch(work);
+    count_edge_water(flux, dt);
     move_bed_load(depth, flux, dt);
   } else {
     for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) k->launch(work);
+    count_edge_water(flux, dt);
     transport(sediment, flux, velocity, dt);
     std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment
   }
@@ -232,6 +238,47 @@ void PipeModel::transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& ve
   receive_kernel_.set("nx", nx).set("ny", ny).launch(work);
   edge_outflow_kernel_.set("sent", sent_).set("nx", nx).set("ny", ny).set("outflow", outflow_);
   edge_outflow_kernel_.launch(round_up_work(2 * static_cast<std::size_t>(nx + ny)));
+}
+
+// The water each edge face let out this step (the pipes' outflows there, as the water pass used them).
+void PipeModel::count_edge_water(cl::Buffer& flux, float dt) {
+  const int nx = state_.terrain().nx(), ny = state_.terrain().ny();
+  edge_water_kernel_.set("flux", flux).set("nx", nx).set("ny", ny).set("dt", dt);
+  edge_water_kernel_.set("water_quantum", static_cast<float>(water_count_volume()));
+  edge_water_kernel_.set("edge_water", edge_water_);
+  edge_water_kernel_.launch(round_up_work(2 * static_cast<std::size_t>(nx + ny)));
+}
+
+double PipeModel::water_count_volume() const {
+  const double cell = state_.initial_terrain().cell;
+  return kPipeWaterCountDepth * cell * cell;
+}
+
+namespace {
+// Which edge (kEdgeNames' order) face f of pipe_edge_water is: the rows' west and east faces
+// alternate, then the columns' north and south faces.
+int edge_of_face(std::size_t f, int ny) {
+  return f < 2 * static_cast<std::size_t>(ny) ? static_cast<int>(f & 1) : 2 + static_cast<int>(f & 1);
+}
+const char* const kEdgeWaterCounters[4] = {"water_out_west", "water_out_east", "water_out_north",
+                                           "water_out_south"};
+}  // namespace
+
+std::array<long long, 4> PipeModel::edge_water_counts() {
+  const int ny = state_.terrain().ny();
+  std::vector<cl_long> faces(2 * static_cast<std::size_t>(state_.terrain().nx() + ny));
+  compute_.queue().enqueueReadBuffer(edge_water_, CL_TRUE, 0, faces.size() * sizeof(cl_long),
+                                     faces.data());
+  std::array<long long, 4> counts{};
+  for (std::size_t f = 0; f < faces.size(); ++f) counts[edge_of_face(f, ny)] += faces[f];
+  return counts;
+}
+
+std::array<double, 4> PipeModel::edge_water_outflow() {
+  const std::array<long long, 4> counts = edge_water_counts();
+  std::array<double, 4> volumes{};
+  for (int e = 0; e < 4; ++e) volumes[e] = static_cast<double>(counts[e]) * water_count_volume();
+  return volumes;
 }
 
 // The next step: the CFL limit of the shallow-water waves and the flow (Fritz 2016 saw oscillation
@@ -287,6 +334,8 @@ std::vector<std::pair<std::string, std::int64_t>> PipeModel::counters() {
   std::vector<std::pair<std::string, std::int64_t>> c = {{"outflow_quanta", outflow_quanta()},
                                                          {"lost_quanta", lost_quanta()}};
   if (settings_.bedload()) c.emplace_back("bed_moved_quanta", bed_moved_quanta());
+  const std::array<long long, 4> out = edge_water_counts();
+  for (int e = 0; e < 4; ++e) c.emplace_back(kEdgeWaterCounters[e], out[e]);
   return c;
 }
 
@@ -295,6 +344,15 @@ void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::i
                 lost = counter_value(c, "lost_quanta");
   compute_.queue().enqueueWriteBuffer(outflow_, CL_TRUE, 0, sizeof(outflow), &outflow);
   compute_.queue().enqueueWriteBuffer(lost_, CL_TRUE, 0, sizeof(lost), &lost);
+  // Each edge's total goes to one of its faces: only the sums are ever read. (A file written
+  // before the water was counted continues from none.)
+  const int ny = state_.terrain().ny();
+  std::vector<cl_long> faces(2 * static_cast<std::size_t>(state_.terrain().nx() + ny), 0);
+  const std::size_t first_face[4] = {0, 1, 2 * static_cast<std::size_t>(ny),
+                                     2 * static_cast<std::size_t>(ny) + 1};
+  for (int e = 0; e < 4; ++e) faces[first_face[e]] = counter_value_or(c, kEdgeWaterCounters[e], 0);
+  compute_.queue().enqueueWriteBuffer(edge_water_, CL_TRUE, 0, faces.size() * sizeof(cl_long),
+                                      faces.data());
   if (settings_.bedload()) {
     const cl_long moved = counter_value(c, "bed_moved_quanta");
     compute_.queue().enqueueWriteBuffer(bed_moved_, CL_TRUE, 0, sizeof(moved), &moved);

@@ -18,6 +18,9 @@ inline constexpr std::uint64_t kPipeBedloadStream = 0x7062646cULL;    // "pbdl"
 // The most quanta of a cell's suspended sediment one transport step shares among its pipes
 // (pipe.cl's pipe_send computes in 32 bits); a cell holding more keeps the rest for later steps.
 inline constexpr long long kPipeSendable = 1LL << 30;
+// The water leaving over the edges is counted in whole counts of this depth over a cell (m): exact
+// integer totals, the same on every device, good for 9·10⁹ cells' worth of water a face.
+inline constexpr double kPipeWaterCountDepth = 1e-9;
 
 struct PipeSettings {
   // The pipe.* parameters (defaults, units, meaning: the table in pipe_model.cpp).
@@ -65,6 +68,7 @@ class PipeModel final : public GridModel {
   std::vector<float> depth() { return state_.download_float(kSurfaceWaterDepth); }
   long long outflow_quanta() override;
   long long lost_quanta() override;
+  std::array<double, 4> edge_water_outflow() override;
   // Bed quanta the bed load has moved out of cells so far (0 under the capacity law).
   long long bed_moved_quanta();
   double rain_volume() override;
@@ -81,6 +85,9 @@ class PipeModel final : public GridModel {
 
  private:
   void choose_next_dt();
+  void count_edge_water(cl::Buffer& flux, float dt);
+  double water_count_volume() const;
+  std::array<long long, 4> edge_water_counts();
   PipeSettings settings_;
   double dt_ = 0;
   int depth_, flux_, velocity_, sediment_;  // GridState handles
@@ -99,6 +106,8 @@ class PipeModel final : public GridModel {
   double talus_interval_ = 0;
   cl::Buffer previous_depth_, capacity_, cfl_speed2_, sediment_next_, sent_, stats_, outflow_,
       lost_;
+  cl::Buffer edge_water_;  // counts of water out through each edge face (pipe_edge_water)
+  Kernel edge_water_kernel_;
   cl::Buffer sendable_;  // pipe_erode's 32-bit copy of the sediment for pipe_send (pipe.cl)
   Kernel flux_kernel_, water_kernel_, erode_kernel_, send_kernel_, receive_kernel_,
       edge_outflow_kernel_, advect_kernel_, stats_kernel_;

@@ -122,6 +122,15 @@ double SphModel::rain_volume() {
   return static_cast<double>(sim_->rain().spawned()) * spacing * spacing * spacing;
 }
 
+std::optional<WaterBudget> SphModel::water_budget() {
+  const double volume = std::pow(sim_->solver().settings().spacing, 3);
+  WaterBudget b;
+  b.rain = rain_volume();
+  b.outflow = static_cast<double>(sim_->counters().outflow_particles) * volume;
+  b.stored = static_cast<double>(sim_->particles()) * volume;
+  return b;
+}
+
 JsonObject SphModel::diagnostics() {
   const SphCounters c = sim_->counters();
   const WaterResolution w = water_resolution();

@@ -36,6 +36,9 @@ class SphModel final : public Model, public Interactive {
   }
   double rain_volume() override;
   double initial_water_volume() const override { return sim_->initial_water_volume(); }
+  // Each particle stands for spacing³ of water: rain as spawned, outflow as the particles that left
+  // over an open edge, stored as those alive (the edges are not told apart).
+  std::optional<WaterBudget> water_budget() override;
   CheckpointData checkpoint() override { return sim_->checkpoint(); }
   void restore(const CheckpointData& data) override;
   JsonObject diagnostics() override;

@@ -50,7 +50,8 @@ const std::vector<std::string>& run_output_names() {
       "final.h5",          "height_initial.png", "height_final.png",
       "erosion.png",       "final.asc",          "final.npy",
       "final.tif",         "erosion.tif",        "drainage_area.npy",
-      "metrics.json",      "probes.csv",         "series.h5",
+      "metrics.json",      "probes.csv",         "outflow.csv",
+      "series.h5",
       "series.h5.partial", "series.xmf",         "geology.png",
       "exposed_layer.tif", "exposed_layer.npy",  "sediment_thickness.tif"};
   return names;

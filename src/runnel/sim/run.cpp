@@ -21,6 +21,7 @@
 #include "runnel/io/progress.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/sim/hydrograph.hpp"
 #include "runnel/sim/output_folder.hpp"
 #include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/height_steps.hpp"
@@ -97,6 +98,14 @@ void require_run_length(const Parameters& params, ModelClock clock) {
 
 namespace {
 
+// The model's checkpoint with the run's own place in it (outflow.csv's recorder), so that a resumed
+// run goes on writing what the uninterrupted one writes.
+CheckpointData checkpoint_of_run(Model& model, const Hydrograph& hydrograph) {
+  CheckpointData data = model.checkpoint();
+  for (auto& counter : hydrograph.place()) data.model_counters.push_back(counter);
+  return data;
+}
+
 // The checkpoints this run writes into DIR/checkpoints. Rotation only ever removes files this run
 // wrote; checkpoints of another run were refused or removed with the folder (OutputFolder).
 class RollingCheckpoints {
@@ -108,13 +117,13 @@ class RollingCheckpoints {
       remove_stale_temporaries(dir_.string(), "step_");  // left by a writer that was killed
   }
 
-  void write(Model& model) {
+  void write(Model& model, const Hydrograph& hydrograph) {
     namespace fs = std::filesystem;
     fs::create_directories(dir_);
     char name[64];
     std::snprintf(name, sizeof name, "step_%08llu.h5",
                   static_cast<unsigned long long>(model.steps()));
-    write_checkpoint((dir_ / name).string(), model.checkpoint());
+    write_checkpoint((dir_ / name).string(), checkpoint_of_run(model, hydrograph));
     written_.push_back(dir_ / name);
     while (written_.size() > static_cast<std::size_t>(keep_)) {
       fs::remove(written_.front());
@@ -159,7 +168,7 @@ struct Stepped {
 // The steps, with progress, mass-balance reports, rolling checkpoints and the series.
 Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions& options,
                         RollingCheckpoints& checkpoints, SeriesWriter& series,
-                        ProbeRecorder& probes, Progress& progress) {
+                        ProbeRecorder& probes, Hydrograph& hydrograph, Progress& progress) {
   Stepped r;
   if (probes.due(model.time())) read_gauges(model, probes);
   const auto start = std::chrono::steady_clock::now();
@@ -191,8 +200,10 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
                               .add("sim_time", model.time())
                               .add("balance", m.json()));
     }
+    // The step's row before its checkpoint, which carries the recorder's place past it.
+    if (hydrograph.due(model.time())) hydrograph.record(model.time(), *model.water_budget());
     if (options.checkpoint_every > 0 && model.steps() % options.checkpoint_every == 0) {
-      checkpoints.write(model);
+      checkpoints.write(model, hydrograph);
     }
     series.after_step(model);
     if (probes.due(model.time())) read_gauges(model, probes);
@@ -303,6 +314,11 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   if (options.particles_every > 0 && model.info().name != "sph") {
     throw input_error("--particles-every: the " + model.info().name + " model has no particles");
   }
+  const std::optional<WaterBudget> budget = model.water_budget();
+  if (budget && !budget->per_edge && model.parameters().boolean("run.outflow_edges") &&
+      model.parameters().real("run.outflow_every") > 0)
+    throw input_error("run.outflow_edges: the " + model.info().name +
+                      " model counts its outflow over all edges together");
   const OutputFolder folder(
       options.out_dir, run_identity(parameters_toml(model.parameters()), model.initial_terrain()),
       options.overwrite);
@@ -321,13 +337,19 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   SeriesWriter series(out, options.series_every, options.particles_every, model.initial_terrain());
   ProbeRecorder probes(probes_of(model.parameters(), model.initial_terrain()),
                        model.parameters().real("run.probe_every"));
+  const double outflow_every = budget ? model.parameters().real("run.outflow_every") : 0.0;
+  Hydrograph hydrograph(outflow_every, model.parameters().boolean("run.outflow_edges"),
+                        model.time(), budget.value_or(WaterBudget{}));
+  hydrograph.resume_from(options.resumed_counters);
   series.start(model);
-  const Stepped stepped =
-      step_until_done(compute, model, options, checkpoints, series, probes, progress);
+  const Stepped stepped = step_until_done(compute, model, options, checkpoints, series, probes,
+                                          hydrograph, progress);
   if (probes.active()) write_text_atomically((out / "probes.csv").string(), probes.csv());
+  if (hydrograph.active())
+    write_text_atomically((out / "outflow.csv").string(), hydrograph.csv());
   const JsonObject kernels = kernel_report(compute);
 
-  write_checkpoint((out / "final.h5").string(), model.checkpoint());
+  write_checkpoint((out / "final.h5").string(), checkpoint_of_run(model, hydrograph));
   const Heightmap final_terrain = model.terrain();
   const std::vector<double> area = write_terrain_outputs(out, model, final_terrain);
   JsonObject ground_report;

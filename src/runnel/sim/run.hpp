@@ -21,6 +21,8 @@ struct RunOptions {
   long long series_every = 0;      // steps between heightmap frames in series.h5; 0: none
   long long particles_every = 0;   // steps between SPH particle snapshots in series.h5; 0: none
   bool overwrite = false;          // replace checkpoints another run left in out_dir/checkpoints
+  // The counters of the checkpoint a resumed run starts from: where outflow.csv's recorder was.
+  std::vector<std::pair<std::string, std::int64_t>> resumed_counters;
 };
 
 struct RunSummary {
