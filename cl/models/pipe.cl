@@ -4,8 +4,8 @@
 // exactly); water depth d (m), pipe fluxes f (m³/s, L R T B) and velocity v (m/s) are floats.
 // One step of Δt, each pass reading only what the previous passes wrote:
 //   pipe_flux:      d1 = d + Δt·r (read only: neighbours read d too);  f_X = max(0, f_X + Δt·A·g·Δh_X/l);  with
-//                   pipe.manning_n > 0 (not in Mei 2007) Manning's bed friction, implicitly,
-//                   f_X /= 1 + Δt (A/(l·d1)) g n² v / d1^(4/3), v = f_X/(l·d1) (d1 at least 1 mm); scale all four by
+//                   pipe.manning_n > 0 (not in Mei 2007) the bed friction of the SPH model, implicitly,
+//                   f_X /= 1 + Δt g n² v / d1^(4/3), v = f_X/(l·d1) (d1 at least 1 mm); scale all four by
 //                   K = min(1, d1·l²/(Σf·Δt))   (outflow edges: outside b = d = 0; closed edges: f = 0)
 //   pipe_water:     d2 = d1 + Δt(Σf_in − Σf_out)/l²;  v from the mean flux through the cell;
 //                   C = min(K_c · max(sin α, sin α_min) · |v|, d2); then evaporation d = d2·e^(−K_e·Δt)
@@ -48,12 +48,12 @@ inline float pipe_inverse_cbrt(float x) {
 
 // The new outflux through one face: the old one accelerated by the level difference (`accel` =
 // Δt·A·g/l), never negative, and (with pipe.manning_n > 0) slowed implicitly by Manning's bed
-// friction. A pipe accelerates as a column of cross-section A, not as the water's own l·d, so the
-// friction is scaled by the same A/(l·d): f /= 1 + Δt (A/(l d)) g n² v / d^(4/3) with v = f/(l·d),
-// which is f /= 1 + friction·f, `friction` = Δt A g n² / (l² d^(10/3)). Then a steady pipe carries
-// Manning's discharge, f² = A g Δh/l / (friction/Δt) = l² d^(10/3) (Δh/l) / n², whatever A, and a
-// sheet runs as fast as its friction lets it (docs/models.md, "pipe"). One division per face.
-// Outside the map: b = d = 0, or no face at all when the edges are closed.
+// friction, f /= 1 + Δt g n² v / d^(4/3) with v = f/(l·d), which is f /= 1 + friction·f, `friction` =
+// Δt g n² / (l d^(7/3)): one division per face. A pipe accelerates as a column of cross-section A,
+// not of the water's own l·d, so this friction does not give Manning's discharge: a steady pipe
+// carries √(A/(l d)) times it, and a sheet runs several times too fast (docs/models.md, "pipe";
+// the godunov flux honours the law). Outside the map: b = d = 0, or no face at all when the edges
+// are closed.
 inline float pipe_face_flux(float old_flux, float level, float other_level, int inside, float accel,
                             float friction) {
 #if PIPE_CLOSED
@@ -83,8 +83,7 @@ __kernel void pipe_flux(const __global float* height_view, const __global float*
   float friction = 0.0f;
 #if PIPE_FRICTION_ON
   const float d = fmax(d1, 1e-3f), third = pipe_inverse_cbrt(d), third2 = third * third;  // d^(−1/3), d^(−2/3)
-  const float third4 = third2 * third2, third10 = third4 * third4 * third2;                   // d^(−10/3)
-  friction = dt * (PIPE_GRAVITY_N2 * PIPE_AREA) / (cell * cell) * third10;
+  friction = dt * PIPE_GRAVITY_N2 / cell * (third2 * third2 * third2 * third);                // d^(−7/3)
 #endif
   // A neighbour outside the map reads this cell (the select in pipe_face_flux discards it).
   // Each face reads the one before through 0·f (exactly +0: the fluxes are finite and ≥ 0). Without that

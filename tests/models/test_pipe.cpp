@@ -20,10 +20,17 @@ namespace {
 
 using test::compute;
 
+// Mei's pipes (pipe.flux = "pipes"), whose kernels and oracle these tests follow.
+Parameters mei_parameters() {
+  Parameters p = default_parameters();
+  p.set("pipe.flux", std::string("pipes"));
+  return p;
+}
+
 TEST(PipeModel, StaysFiniteAndConservesUnderHeavyRain) {
   const Heightmap rough =
       generate_terrain("diamond-square", 49, 49, 1.0, 4, {{"relief", 0.3}, {"roughness", 0.5}});
-  Parameters p = default_parameters();
+  Parameters p = mei_parameters();
   p.set("pipe.rain", 0.2);  // heavy: 20 cm of water a second
   PipeModel model(compute(), p, rough);
   DeviceTerrain& terrain = model.state().terrain();
@@ -50,7 +57,7 @@ TEST(PipeModel, ErodedVolumeDoesNotMoveWithTheTimeStep) {
   const Heightmap hills = generate_terrain("fbm", 65, 65, 2.0, 7, {{"relief", 0.12}});
   std::vector<double> eroded;
   for (double cfl : {0.25, 0.125}) {
-    Parameters p = default_parameters();
+    Parameters p = mei_parameters();
     p.set("pipe.cfl", cfl);
     PipeModel model(compute(), p, hills);
     while (model.time() < 20.0) model.step();
@@ -63,7 +70,7 @@ TEST(PipeModel, ErodedVolumeDoesNotMoveWithTheTimeStep) {
 TEST(PipeModel, IsDeterministic) {
   std::vector<std::vector<std::int64_t>> results;
   for (int run = 0; run < 2; ++run) {
-    PipeModel model(compute(), default_parameters(),
+    PipeModel model(compute(), mei_parameters(),
                     generate_terrain("fbm", 41, 41, 1.0, 2, {{"relief", 0.2}}));
     for (int k = 0; k < 300; ++k) model.step();
     results.push_back(model.state().terrain().download_fixed());
@@ -73,7 +80,7 @@ TEST(PipeModel, IsDeterministic) {
 
 // A collapsing time step stops the run with an error naming the step, never carries on.
 TEST(PipeModel, TimeStepCollapseStopsTheRun) {
-  Parameters p = default_parameters();
+  Parameters p = mei_parameters();
   p.set("pipe.rain", 0.5);
   p.set("pipe.dt_min", 0.045);  // absurdly large, so that the CFL step falls below it
   PipeModel model(compute(), p,
@@ -90,7 +97,7 @@ TEST(PipeModel, TimeStepCollapseStopsTheRun) {
 // Mei's semi-Lagrangian advection does not conserve sediment: the option reports what it loses, so
 // the balance still closes exactly, with a non-zero lost term.
 TEST(PipeModel, SemiLagrangianReportsItsLossExactly) {
-  Parameters p = default_parameters();
+  Parameters p = mei_parameters();
   p.set("pipe.transport", std::string("semi-lagrangian"));
   p.set("pipe.rain", 0.05);
   PipeModel model(compute(), p, generate_terrain("fbm", 41, 41, 1.0, 3, {{"relief", 0.3}}));
@@ -128,7 +135,7 @@ TEST(PipeModel, StepsMatchThePlainCppReference) {
   const int nx = 19, ny = 15;
   const Heightmap rough = test::rough_terrain(nx, ny, 1.0f, 12);
   for (const char* edges : {"outflow", "closed"}) {
-    Parameters p = default_parameters();
+    Parameters p = mei_parameters();
     p.set("pipe.edges", std::string(edges));
     p.set("pipe.rain", 0.2);  // deep enough water after a few steps to carry sediment
     PipeModel model(compute(), p, rough);
@@ -175,7 +182,7 @@ TEST(PipeModel, StepsMatchThePlainCppReference) {
 TEST(PipeModel, FollowsTheOracleWhenACellHoldsMoreSedimentThanOneStepShares) {
   const int nx = 19, ny = 15;
   const Heightmap rough = test::rough_terrain(nx, ny, 1.0f, 5);
-  Parameters p = default_parameters();
+  Parameters p = mei_parameters();
   p.set("erosion.height_quantum", 1e-11, "test");
   p.set("pipe.rain", 0.2, "test");
   p.set("pipe.capacity", 100.0, "test");
@@ -213,7 +220,7 @@ TEST(PipeModel, StatsKernelFindsTheMaximaAndLetsANaNThrough) {
   const int n = 300, blocks = 3, chunk = 100;
   cl::Program& program =
       compute().program({"cl/common.cl", "cl/models/pipe.cl"},
-                        PipeSettings::from(default_parameters()).build_options());
+                        PipeSettings::from(mei_parameters()).build_options());
   Kernel stats(compute(), program, "pipe_stats");
   std::vector<float> depth(n), speed2(n);
   for (int k = 0; k < n; ++k) {
@@ -255,7 +262,7 @@ TEST(PipeModel, StatsKernelFindsTheMaximaAndLetsANaNThrough) {
 TEST(PipeModel, WaterPassCountsTheSpeedOfDeepUndrainedCellsOnly) {
   const int nx = 8, ny = 6, n = nx * ny;
   const float cell = 2.0f, dt = 0.01f, evaporation = 0.9f;
-  const PipeSettings settings = PipeSettings::from(default_parameters());
+  const PipeSettings settings = PipeSettings::from(mei_parameters());
   cl::Program& program =
       compute().program({"cl/common.cl", "cl/models/pipe.cl"}, settings.build_options());
   Kernel water(compute(), program, "pipe_water");

@@ -16,9 +16,9 @@ namespace runnel {
 struct OverlandCase {
   double length = 50;       // m, from the upstream wall to the open foot
   double width = 0.5;       // m between the side walls
-  double slope = 0.05;      // m/m
+  double slope = 0.2;       // m/m: supercritical at the foot, the sheet thin against the slope
   double manning_n = 0.1;   // s/m^(1/3), every model's
-  double rain_mm_h = 60000;  // mm/h: a sheet SPH resolves at 0.1 m
+  double rain_mm_h = 120000;  // mm/h: a sheet 0.55 m deep at the foot, which SPH resolves at 0.1 m
   double duration = 0;      // s of rain; 0: 2 t_e
   double recession = 0;     // s run after the rain; 0: t_e
   double cell = 0.1;        // m, the terrain's grid (the grid models' cells)

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: MIT
+// `runnel validate overland`: a small plane (20 m, 0.1 m cells, k = 12) with the default flux
+// against the kinematic wave, the outputs a run leaves, and the planes and spacings it refuses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "runnel/validation/kinematic_wave.hpp"
+#include "test_support.hpp"
+
+namespace runnel {
+namespace {
+
+// Every number after `"key": ` in `json`, in order.
+std::vector<double> all_numbers(const std::string& json, const std::string& key) {
+  std::vector<double> v;
+  const std::string tag = "\"" + key + "\": ";
+  for (std::size_t at = json.find(tag); at != std::string::npos; at = json.find(tag, at + 1))
+    v.push_back(std::stod(json.substr(at + tag.size())));
+  return v;
+}
+
+TEST(ValidateOverlandCli, TheDefaultFluxRunsOffASmallPlaneAsTheKinematicWaveSays) {
+  test::ScratchDir dir;
+  const auto r = test::run_cli({"validate", "overland", "--models", "godunov", "--length", "20",
+                                "--rain", "80000", "--out", dir.path("out")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The case as posed: the analytic figures come from the parameters alone.
+  KinematicPlane plane;
+  plane.length = 20, plane.slope = 0.2, plane.manning_n = 0.1, plane.rain = 80000 / 3.6e6;
+  EXPECT_NEAR(test::json_number(r.out, "equilibrium_time_s"), plane.equilibrium_time(), 1e-9);
+  EXPECT_GE(test::json_number(r.out, "kinematic_number"), 10);
+  // Water is conserved to the float depths' round-off, and all the rain leaves at equilibrium:
+  // nothing piles up at the open foot.
+  EXPECT_LT(std::fabs(test::json_number(r.out, "water_balance_rel")), 1e-4);
+  EXPECT_LT(std::fabs(test::json_number(r.out, "equilibrium_outflow_error")), 0.01);
+  // The depths along the plane, the hydrograph and the water stored, against the analytic values
+  // (the targets are 10 %, 5 % and 5 % at convergence; at this cell 10 %, 7.6 % and 5.2 %).
+  const std::vector<double> errors = all_numbers(r.out, "error");
+  ASSERT_EQ(errors.size(), 9u) << r.out;
+  for (double e : errors) EXPECT_LT(std::fabs(e), 0.12) << r.out;
+  EXPECT_LT(errors.back(), 0.08) << "the last gauge, 2 m above the foot";
+  EXPECT_LT(test::json_number(r.out, "outflow_worst_error_of_iA"), 0.10);
+  EXPECT_LT(std::fabs(test::json_number(r.out, "storage_error")), 0.08);
+  EXPECT_TRUE(std::filesystem::exists(dir.path("out/overland.png")));
+  EXPECT_NE(test::read_text(dir.path("out/godunov/outflow.csv")).find("t,rain,outflow,stored"),
+            std::string::npos);
+}
+
+TEST(ValidateOverlandCli, RefusesAPlaneOutsideTheKinematicWaveAndTooCoarseASpacing) {
+  test::ScratchDir dir;
+  // 5 m of smooth plane: k = L g n² / h_L^(4/3) far below 3.
+  const auto short_plane = test::run_cli({"validate", "overland", "--length", "5", "--manning-n",
+                                          "0.02", "--out", dir.path("a")});
+  EXPECT_EQ(short_plane.exit_code, 2);
+  EXPECT_NE(short_plane.err.find("kinematic number k"), std::string::npos) << short_plane.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("a")));
+  // 0.5 m particles in a sheet 0.55 m deep at the foot: fewer than two.
+  const auto coarse = test::run_cli(
+      {"validate", "overland", "--models", "wcsph", "--spacing", "0.5", "--out", dir.path("b")});
+  EXPECT_EQ(coarse.exit_code, 2);
+  EXPECT_NE(coarse.err.find("at most 0.27"), std::string::npos) << coarse.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("b")));
+  const auto other_case = test::run_cli({"validate", "dambreak", "--slope", "0.1"});
+  EXPECT_EQ(other_case.exit_code, 2);
+  EXPECT_NE(other_case.err.find("--slope"), std::string::npos) << other_case.err;
+  const auto unknown = test::run_cli({"validate", "overland", "--models", "pipe"});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("unknown run 'pipe'"), std::string::npos) << unknown.err;
+}
+
+}  // namespace
+}  // namespace runnel
