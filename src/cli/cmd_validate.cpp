@@ -28,9 +28,9 @@ struct ValidateFlags {
 
 // The flags only `runnel validate overland` reads.
 const std::vector<std::string>& overland_flags() {
-  static const std::vector<std::string> flags = {"--length", "--width",     "--slope",
-                                                 "--manning-n", "--rain",   "--duration",
-                                                 "--recession", "--cell",   "--spacing"};
+  static const std::vector<std::string> flags = {"--length",    "--width", "--slope",
+                                                 "--manning-n", "--rain",  "--duration",
+                                                 "--recession", "--cell",  "--spacing"};
   return flags;
 }
 

@@ -99,7 +99,7 @@ TEST(CliGeoTiff, AProjectedDemRunsAndItsOutputsOverlayTheInput) {
   ScratchDir dir;
   const std::string input = projected_dem(dir);
   const GdalInfo in = gdalinfo(input);
-  const auto r = run_cli({"run", "--terrain", input, "--model", "pipe", "--steps", "10", "--out",
+  const auto r = run_cli({"run", "--terrain", input, "--model", "pipe", "--steps", "40", "--out",
                           dir.path("run"), "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* name : {"final.tif", "erosion.tif"}) {

@@ -233,6 +233,19 @@ TEST(CliModels, CompareWritesTableFigureAndReportWithOneRainBudget) {
   const std::string report = test::read_text(dir.path("cmp/report.md"));
   EXPECT_NE(report.find("!["), std::string::npos);
   EXPECT_NE(report.find("(compare.png)"), std::string::npos);
+  // The hydrograph of the models whose clock is in seconds (sph, pipe), each from its outflow.csv,
+  // whose rain adds up to the budget it received.
+  EXPECT_NE(report.find("(hydrograph.png)"), std::string::npos);
+  EXPECT_EQ(test::read_text(dir.path("cmp/hydrograph.png")).substr(1, 3), "PNG");
+  for (const char* model : {"sph", "pipe"}) {
+    const std::string csv = test::read_text(dir.path(std::string("cmp/") + model + "/outflow.csv"));
+    const std::size_t last = csv.rfind('\n', csv.size() - 2) + 1;
+    std::vector<double> cells;
+    std::istringstream line(csv.substr(last));
+    for (std::string cell; std::getline(line, cell, ',');) cells.push_back(std::stod(cell));
+    ASSERT_EQ(cells.size(), 6u) << model;
+    EXPECT_NEAR(cells[4], budget, 0.03 * budget) << model << ": rain_volume at the end";
+  }
   for (const char* m : models)
     EXPECT_NE(report.find(std::string("| [") + m + "]"), std::string::npos) << m;
   EXPECT_NE(report.find("- pipe: pipe.rain = "), std::string::npos) << "how pipe got its rain";

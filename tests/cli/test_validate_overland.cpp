@@ -51,8 +51,8 @@ TEST(ValidateOverlandCli, TheDefaultFluxRunsOffASmallPlaneAsTheKinematicWaveSays
 TEST(ValidateOverlandCli, RefusesAPlaneOutsideTheKinematicWaveAndTooCoarseASpacing) {
   test::ScratchDir dir;
   // 5 m of smooth plane: k = L g n² / h_L^(4/3) far below 3.
-  const auto short_plane = test::run_cli({"validate", "overland", "--length", "5", "--manning-n",
-                                          "0.02", "--out", dir.path("a")});
+  const auto short_plane = test::run_cli(
+      {"validate", "overland", "--length", "5", "--manning-n", "0.02", "--out", dir.path("a")});
   EXPECT_EQ(short_plane.exit_code, 2);
   EXPECT_NE(short_plane.err.find("kinematic number k"), std::string::npos) << short_plane.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path("a")));

@@ -218,9 +218,8 @@ namespace {
 // is not a maximum.
 TEST(PipeModel, StatsKernelFindsTheMaximaAndLetsANaNThrough) {
   const int n = 300, blocks = 3, chunk = 100;
-  cl::Program& program =
-      compute().program({"cl/common.cl", "cl/models/pipe.cl"},
-                        PipeSettings::from(mei_parameters()).build_options());
+  cl::Program& program = compute().program({"cl/common.cl", "cl/models/pipe.cl"},
+                                           PipeSettings::from(mei_parameters()).build_options());
   Kernel stats(compute(), program, "pipe_stats");
   std::vector<float> depth(n), speed2(n);
   for (int k = 0; k < n; ++k) {

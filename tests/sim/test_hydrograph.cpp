@@ -68,7 +68,8 @@ TEST(Hydrograph, ThePipeModelsBudgetBalancesAndItsRainIsTheRainThatFell) {
   const double rain = 1e-3;  // m/s on 33 × 17 cells of 1 m²
   Parameters p = scenario(
       "[run]\nmodel = \"pipe\"\noutflow_every = 0.5\noutflow_edges = true\n"
-      "[pipe]\nrain = 0.001\nevaporation = 0\ncapacity = 0\nflux = \"godunov\"\nmanning_n = 0.05\n");
+      "[pipe]\nrain = 0.001\nevaporation = 0\ncapacity = 0\nflux = \"godunov\"\nmanning_n = "
+      "0.05\n");
   std::unique_ptr<Model> model = make_model(compute(), p, tilted_plane());
   RunOptions o = options_into(dir.path("run"), 0);
   o.until_time = 30;
@@ -86,8 +87,7 @@ TEST(Hydrograph, ThePipeModelsBudgetBalancesAndItsRainIsTheRainThatFell) {
     // The edges add up to the outflow; water runs east, and the closed-by-nothing sides let some
     // out too, but none climbs the slope out of the west edge faster than rain falls there.
     ASSERT_EQ(r.edges.size(), 4u);
-    EXPECT_NEAR(r.edges[0] + r.edges[1] + r.edges[2] + r.edges[3], r.outflow,
-                1e-6 * rain * area);
+    EXPECT_NEAR(r.edges[0] + r.edges[1] + r.edges[2] + r.edges[3], r.outflow, 1e-6 * rain * area);
     EXPECT_GE(r.t, previous_t + 0.5 - 1e-9);
     previous_t = r.t;
   }

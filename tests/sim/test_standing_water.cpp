@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <sstream>
 
 #include "runnel/core/parameters_toml.hpp"
@@ -299,6 +301,90 @@ TEST(StandingWater, AGodunovDamBreakFollowsRittersSolution) {
     if (depth[2 * 201 + i] > 1e-4f) front = i;
   EXPECT_LT(front * 0.05 - gate, 2 * c0 * t + 0.1);
   EXPECT_GT(front * 0.05 - gate, 1.5 * c0 * t);
+}
+
+}  // namespace
+}  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// A flume 10 m long between terrain walls, its west end closed and its east end open: a dam of
+// 0.2 m at x = 5 m released on the dry, frictionless bed. Ritter's wave is supercritical past the
+// gate, so the open end changes nothing upstream of it: until the rarefaction reaches the west
+// wall (3.6 s) the exact depth everywhere is Ritter's, right up to the end. Water that piled up
+// at the end, as against a wall, would show there first.
+struct OpenFlume {
+  // Vertex i stands at x = i·cell: column 0 is the west wall, the water reaches x = 4.95 m (its
+  // cell's face at 4.975 m is the gate) and the last column is the open end at x = 10.05 m.
+  static constexpr double h0 = 0.2, g = 9.81, gate = 4.975, cell = 0.05;
+  static constexpr int nx = 202, ny = 5, row = 2;
+  std::unique_ptr<PipeModel> model;
+
+  OpenFlume(const std::string& flux, double manning_n) {
+    Heightmap t(nx, ny, cell);
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) t.at(i, j) = (i == 0 || j == 0 || j == ny - 1) ? 1.0f : 0.0f;
+    t.origin_x = t.origin_z = -0.5 * cell;
+    const Parameters p =
+        with_scenario("[pipe]\nrain = 0\nevaporation = 0\nedges = \"outflow\"\nflux = \"" + flux +
+                      "\"\nmanning_n = " + std::to_string(manning_n) +
+                      "\ncapacity = 0\n[[water.bodies]]\nx0 = 0\nx1 = 4.96\n"
+                      "y0 = -1\ny1 = 1\nlevel = 0.2\n");
+    model = std::make_unique<PipeModel>(compute(), p, t);
+  }
+  double depth_at(double x) const {
+    return model->depth()[row * nx + static_cast<int>(std::lround(x / cell))];
+  }
+  // The mean depth of the middle row between x0 and x1.
+  double mean_depth(double x0, double x1) const {
+    const std::vector<float> d = model->depth();
+    double sum = 0;
+    int cells = 0;
+    for (int i = static_cast<int>(std::lround(x0 / cell)); i <= std::lround(x1 / cell);
+         ++i, ++cells)
+      sum += d[row * nx + i];
+    return sum / cells;
+  }
+  static double ritter(double x, double t) {
+    const double c0 = std::sqrt(g * h0), xi = x - gate, r = 2 * c0 - xi / t;
+    if (xi < -c0 * t) return h0;
+    return xi > 2 * c0 * t ? 0.0 : r * r / (9 * g);
+  }
+};
+
+TEST(OpenEdges, AGodunovDamBreakLeavesAnOpenFlumeAsRittersWaveDoes) {
+  OpenFlume f("godunov", 0.0);
+  f.model->advance(3.0);
+  const double t = f.model->time();
+  double worst = 0, worst_x = 0;
+  std::ostringstream profile;
+  for (double x : {3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 9.5, 9.9, 10.05}) {
+    const double err = f.depth_at(x) - OpenFlume::ritter(x, t);
+    profile << " x=" << x << ": " << f.depth_at(x) << " (" << OpenFlume::ritter(x, t) << ")";
+    if (std::abs(err) > std::abs(worst)) worst = err, worst_x = x;
+  }
+  // Against a wall the end would hold a reflected bore several times Ritter's 1.4 cm there.
+  EXPECT_LT(std::abs(worst), 0.025 * OpenFlume::h0)
+      << "worst " << worst << " m at x = " << worst_x << " m;" << profile.str();
+}
+
+TEST(OpenEdges, EveryFluxEmptiesTheReservoirThroughTheOpenEndOnly) {
+  // With a flume's friction (n = 0.01). How each flux carries the wave differs (docs/models.md);
+  // what none may do is hold the water back at the end, lose it, or let it out elsewhere.
+  for (const char* flux : {"godunov", "local-inertial", "pipes"}) {
+    OpenFlume f(flux, 0.01);
+    const double v0 = f.model->water_budget()->stored;
+    f.model->advance(20.0);
+    const double level = f.mean_depth(0.05, 2.0);
+    const WaterBudget b = *f.model->water_budget();
+    std::printf("%s after %.0f s: stored %.4f of %.4f m3, out east %.4f, level upstream %.4f m\n",
+                flux, f.model->time(), b.stored, v0, b.edges[1], level);
+    EXPECT_NEAR(b.stored + b.edges[1], v0, 1e-4 * v0) << flux << ": the water balance";
+    EXPECT_EQ(b.edges[0] + b.edges[2] + b.edges[3], 0.0) << flux << ": water left through a wall";
+    EXPECT_LT(b.stored, 0.5 * v0) << flux << ": the flume keeps its water";
+    EXPECT_LT(level, 0.25 * OpenFlume::h0) << flux << ": the reservoir's level stays up";
+  }
 }
 
 }  // namespace

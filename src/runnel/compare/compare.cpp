@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/compare/compare.hpp"
+#include "runnel/sim/hydrograph.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -149,6 +150,10 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
       const double vq = ground->quantum() * terrain.cell * terrain.cell;
       for (std::int64_t q : t.eroded) r.eroded_per_material.push_back(static_cast<double>(q) * vq);
     }
+    if (model->info().clock == ModelClock::kSeconds)
+      for (const HydrographPoint& row :
+           read_hydrograph((fs::path(run.out_dir) / "outflow.csv").string()))
+        r.hydrograph.emplace_back(row.t, row.outflow);
     initial = model->initial_terrain();  // the same for every model: the input rounded to q
     results.push_back(std::move(r));
   }
@@ -156,7 +161,13 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
   const std::string csv = metrics_csv(results);
   write_text_atomically((out / "metrics.csv").string(), csv);
   write_compare_png((out / "compare.png").string(), initial, results);
-  const std::string report = report_markdown(results, budget, initial, options);
+  const bool hydrograph = write_hydrograph_png((out / "hydrograph.png").string(), results);
+  std::string report = report_markdown(results, budget, initial, options);
+  if (hydrograph)
+    report +=
+        "\nThe water leaving the terrain over its edges, each model with a clock in seconds "
+        "(its DIR/MODEL/outflow.csv holds the rain and the water stored beside it):\n\n"
+        "![outflow hydrograph of each model](hydrograph.png)\n";
   write_text_atomically((out / "report.md").string(), report);
   return results;
 }

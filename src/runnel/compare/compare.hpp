@@ -46,6 +46,8 @@ struct ModelResult {
   std::optional<Strata> strata;
   std::vector<int> exposed;
   std::vector<double> eroded_per_material;
+  // Its outflow.csv as (t, outflow m³/s), for the models whose clock is in seconds (empty else).
+  std::vector<std::pair<double, double>> hydrograph;
 };
 
 struct Options {
@@ -62,6 +64,9 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
 
 // metrics.csv: a header, then a row per model.
 std::string metrics_csv(const std::vector<ModelResult>& results);
+// hydrograph.png: each model's outflow against time in one chart; false (nothing written) when no
+// model's clock is in seconds.
+bool write_hydrograph_png(const std::string& path, const std::vector<ModelResult>& results);
 // compare.png: the initial terrain, then each model's final terrain above its erosion map, all
 // with one height range and one Δh colour scale.
 void write_compare_png(const std::string& path, const Heightmap& initial,

@@ -49,10 +49,10 @@ struct ModelInfo {
   double device_bytes_per_vertex = 128;
 };
 
-// Where a model's water has gone so far (m³; an iteration model's rain is per iteration): the rain it
-// has received, the water that has left over the terrain's edges, and the water on the terrain now.
-// `edges` splits the outflow by edge (west, east, north, south: x = 0, x = max, the first row, the
-// last row) for the models that count it so (`per_edge`). outflow.csv is made of these.
+// Where a model's water has gone so far (m³; an iteration model's rain is per iteration): the rain
+// it has received, the water that has left over the terrain's edges, and the water on the terrain
+// now. `edges` splits the outflow by edge (west, east, north, south: x = 0, x = max, the first row,
+// the last row) for the models that count it so (`per_edge`). outflow.csv is made of these.
 struct WaterBudget {
   double rain = 0, outflow = 0, stored = 0;
   bool per_edge = false;

@@ -154,8 +154,8 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
 
 double PipeModel::scratch_bytes() const {
   return buffer_bytes({&previous_depth_, &capacity_, &cfl_speed2_, &sediment_next_, &sent_, &stats_,
-                       &outflow_, &lost_, &edge_water_, &sendable_, &bed_sent_, &height_next_, &bed_moved_,
-                       &old_flux_, &face_flux_}) +
+                       &outflow_, &lost_, &edge_water_, &sendable_, &bed_sent_, &height_next_,
+                       &bed_moved_, &old_flux_, &face_flux_}) +
          (talus_ ? talus_->device_bytes() : 0.0);
 }
 
@@ -240,7 +240,8 @@ void PipeModel::transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& ve
   edge_outflow_kernel_.launch(round_up_work(2 * static_cast<std::size_t>(nx + ny)));
 }
 
-// The water each edge face let out this step (the pipes' outflows there, as the water pass used them).
+// The water each edge face let out this step (the pipes' outflows there, as the water pass used
+// them).
 void PipeModel::count_edge_water(cl::Buffer& flux, float dt) {
   const int nx = state_.terrain().nx(), ny = state_.terrain().ny();
   edge_water_kernel_.set("flux", flux).set("nx", nx).set("ny", ny).set("dt", dt);
@@ -258,7 +259,8 @@ namespace {
 // Which edge (kEdgeNames' order) face f of pipe_edge_water is: the rows' west and east faces
 // alternate, then the columns' north and south faces.
 int edge_of_face(std::size_t f, int ny) {
-  return f < 2 * static_cast<std::size_t>(ny) ? static_cast<int>(f & 1) : 2 + static_cast<int>(f & 1);
+  return f < 2 * static_cast<std::size_t>(ny) ? static_cast<int>(f & 1)
+                                              : 2 + static_cast<int>(f & 1);
 }
 const char* const kEdgeWaterCounters[4] = {"water_out_west", "water_out_east", "water_out_north",
                                            "water_out_south"};

@@ -4,6 +4,8 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
 namespace runnel {
 namespace {
@@ -37,8 +39,8 @@ void Hydrograph::record(double t, const WaterBudget& b) {
   const double span = t - last_t_;
   auto rate = [&](double now, double before) { return span > 0 ? (now - before) / span : 0.0; };
   text_ += number(t) + "," + number(rate(b.rain, last_.rain)) + "," +
-           number(rate(b.outflow, last_.outflow)) + "," + number(b.stored) + "," +
-           number(b.rain) + "," + number(b.outflow);
+           number(rate(b.outflow, last_.outflow)) + "," + number(b.stored) + "," + number(b.rain) +
+           "," + number(b.outflow);
   if (per_edge_)
     for (int e = 0; e < 4; ++e) text_ += "," + number(rate(b.edges[e], last_.edges[e]));
   text_ += "\n";
@@ -81,6 +83,21 @@ void Hydrograph::resume_from(const std::vector<std::pair<std::string, std::int64
   last_.rain = real(kRain);
   last_.outflow = real(kOut);
   for (int e = 0; e < 4; ++e) last_.edges[e] = real(kEdgeOut[e]);
+}
+
+std::vector<HydrographPoint> read_hydrograph(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<HydrographPoint> rows;
+  std::string line;
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) {
+    std::istringstream cells(line);
+    std::string t, rain, outflow;
+    if (std::getline(cells, t, ',') && std::getline(cells, rain, ',') &&
+        std::getline(cells, outflow, ','))
+      rows.push_back({std::stod(t), std::stod(outflow)});
+  }
+  return rows;
 }
 
 }  // namespace runnel

@@ -42,4 +42,11 @@ class Hydrograph {
   std::size_t rows_ = 0;
 };
 
+// One row of an outflow.csv read back: the time and the mean outflow rate since the row before.
+struct HydrographPoint {
+  double t = 0, outflow = 0;
+};
+// The rows of an outflow.csv (empty when the file is absent).
+std::vector<HydrographPoint> read_hydrograph(const std::string& path);
+
 }  // namespace runnel

@@ -46,14 +46,25 @@ std::vector<fs::path> earlier_outputs(const fs::path& dir) {
 }  // namespace
 
 const std::vector<std::string>& run_output_names() {
-  static const std::vector<std::string> names = {
-      "final.h5",          "height_initial.png", "height_final.png",
-      "erosion.png",       "final.asc",          "final.npy",
-      "final.tif",         "erosion.tif",        "drainage_area.npy",
-      "metrics.json",      "probes.csv",         "outflow.csv",
-      "series.h5",
-      "series.h5.partial", "series.xmf",         "geology.png",
-      "exposed_layer.tif", "exposed_layer.npy",  "sediment_thickness.tif"};
+  static const std::vector<std::string> names = {"final.h5",
+                                                 "height_initial.png",
+                                                 "height_final.png",
+                                                 "erosion.png",
+                                                 "final.asc",
+                                                 "final.npy",
+                                                 "final.tif",
+                                                 "erosion.tif",
+                                                 "drainage_area.npy",
+                                                 "metrics.json",
+                                                 "probes.csv",
+                                                 "outflow.csv",
+                                                 "series.h5",
+                                                 "series.h5.partial",
+                                                 "series.xmf",
+                                                 "geology.png",
+                                                 "exposed_layer.tif",
+                                                 "exposed_layer.npy",
+                                                 "sediment_thickness.tif"};
   return names;
 }
 

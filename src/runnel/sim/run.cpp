@@ -342,11 +342,10 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                         model.time(), budget.value_or(WaterBudget{}));
   hydrograph.resume_from(options.resumed_counters);
   series.start(model);
-  const Stepped stepped = step_until_done(compute, model, options, checkpoints, series, probes,
-                                          hydrograph, progress);
+  const Stepped stepped =
+      step_until_done(compute, model, options, checkpoints, series, probes, hydrograph, progress);
   if (probes.active()) write_text_atomically((out / "probes.csv").string(), probes.csv());
-  if (hydrograph.active())
-    write_text_atomically((out / "outflow.csv").string(), hydrograph.csv());
+  if (hydrograph.active()) write_text_atomically((out / "outflow.csv").string(), hydrograph.csv());
   const JsonObject kernels = kernel_report(compute);
 
   write_checkpoint((out / "final.h5").string(), checkpoint_of_run(model, hydrograph));

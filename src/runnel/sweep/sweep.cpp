@@ -333,7 +333,8 @@ void run_member(const SweepSpec& spec, const SweepMember& member, const std::str
     // An interrupted member goes on from its newest checkpoint (bit for bit the run it would have
     // been).
     const std::string checkpoint = newest_checkpoint(dir / "checkpoints");
-    const CheckpointData resumed = checkpoint.empty() ? CheckpointData{} : read_checkpoint(checkpoint);
+    const CheckpointData resumed =
+        checkpoint.empty() ? CheckpointData{} : read_checkpoint(checkpoint);
     const std::unique_ptr<Model> model =
         checkpoint.empty() ? make_model(compute, member.params, load_terrain(member.params))
                            : make_model_from_checkpoint(compute, resumed, checkpoint);

@@ -24,18 +24,20 @@ namespace {
 
 constexpr double kGravity = 9.81;
 // The targets (docs/validation.md, "Overland flow").
-constexpr double kGridDepthTarget = 0.10;     // depths at equilibrium, away from the last metre
-constexpr double kGridOutflowTarget = 0.05;   // the hydrograph at every time, of i·A
-constexpr double kGridStorageTarget = 0.05;   // the water on the plane at equilibrium
-constexpr double kSphDepthTarget = 0.15;      // where at least three particles deep
+constexpr double kGridDepthTarget = 0.10;       // depths at equilibrium, away from the last metre
+constexpr double kGridOutflowTarget = 0.05;     // the hydrograph at every time, of i·A
+constexpr double kGridStorageTarget = 0.05;     // the water on the plane at equilibrium
+constexpr double kSphDepthTarget = 0.15;        // where at least three particles deep
 constexpr double kSphEquilibriumTarget = 0.02;  // the outflow at equilibrium against i·A
-constexpr double kSphRiseTarget = 0.15;       // the time the outflow reaches 95 % of i·A
+constexpr double kSphRiseTarget = 0.15;         // the time the outflow reaches 95 % of i·A
 // Rows of the hydrograph per t_e, and the share of t_e before the rain stops that is averaged as
 // the equilibrium.
 constexpr double kRowsPerEquilibriumTime = 40;
 constexpr double kEquilibriumWindow = 0.25;
 
-bool is_sph(const std::string& run) { return run == "wcsph" || run == "dfsph"; }
+bool is_sph(const std::string& run) {
+  return run == "wcsph" || run == "dfsph";
+}
 
 // The plane on the terrain's grid: column 0 and the first and last rows are walls, the plane
 // runs from column 1 to the open east edge. A grid cell is centred on its vertex, so the rained
@@ -178,8 +180,7 @@ RunRecord run_case(ComputeContext& compute, const OverlandCase& c, const PlaneGr
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!c.out_dir.empty()) {
     const std::filesystem::path dir =
-        std::filesystem::path(c.out_dir) /
-        (is_sph(run) ? run + "-" + format_number(spacing) : run);
+        std::filesystem::path(c.out_dir) / (is_sph(run) ? run + "-" + format_number(spacing) : run);
     std::filesystem::create_directories(dir);
     write_text_atomically((dir / "outflow.csv").string(), hydrograph.csv());
   }
@@ -244,12 +245,12 @@ RunScore score(const OverlandCase& c, const PlaneGrid& g, const RunRecord& r) {
     const WaterBudget& b = r.rows.back().budget;
     s.balance = b.rain > 0 ? (b.rain - b.outflow - b.stored) / b.rain : 0;
   }
-  s.meets = is_sph(r.name) ? s.depth_gauges > 0 && s.depth_worst <= kSphDepthTarget &&
-                                 std::fabs(s.equilibrium) <= kSphEquilibriumTarget &&
-                                 std::fabs(s.rise) <= kSphRiseTarget
-                           : s.depth_worst <= kGridDepthTarget &&
-                                 s.outflow_worst <= kGridOutflowTarget &&
-                                 std::fabs(s.storage) <= kGridStorageTarget;
+  s.meets = is_sph(r.name)
+                ? s.depth_gauges > 0 && s.depth_worst <= kSphDepthTarget &&
+                      std::fabs(s.equilibrium) <= kSphEquilibriumTarget &&
+                      std::fabs(s.rise) <= kSphRiseTarget
+                : s.depth_worst <= kGridDepthTarget && s.outflow_worst <= kGridOutflowTarget &&
+                      std::fabs(s.storage) <= kGridStorageTarget;
   return s;
 }
 
@@ -282,9 +283,9 @@ JsonObject run_json(const RunRecord& r, const RunScore& s) {
 
 void write_figure(const std::string& path, const OverlandCase& c, const PlaneGrid& g,
                   const std::vector<RunRecord>& records) {
-  static const PlotColour palette[] = {{200, 60, 30},  {40, 90, 200},  {30, 150, 60},
-                                       {150, 60, 170}, {220, 150, 20}, {20, 160, 170},
-                                       {120, 120, 120}, {170, 40, 90}, {90, 60, 20}};
+  static const PlotColour palette[] = {{200, 60, 30},   {40, 90, 200},  {30, 150, 60},
+                                       {150, 60, 170},  {220, 150, 20}, {20, 160, 170},
+                                       {120, 120, 120}, {170, 40, 90},  {90, 60, 20}};
   const KinematicPlane plane = c.plane();
   const double te = plane.equilibrium_time(), W = g.width(), iA = plane.rain * W * plane.length;
   Plot hydro("outflow hydrograph", "t / t_e", "outflow / (rain x area)");
@@ -354,7 +355,8 @@ void OverlandCase::check() const {
   if (!(duration >= 0) || !(recession >= 0))
     throw input_error("--duration, --recession: must not be negative");
   if (length / cell < 4 || width / cell < 1)
-    throw input_error("--cell: " + format_number(cell) + " m leaves fewer than 4 cells along or 1 across the plane");
+    throw input_error("--cell: " + format_number(cell) +
+                      " m leaves fewer than 4 cells along or 1 across the plane");
   if (length / cell * (width / cell + 2) > 2e7)
     throw input_error("--cell: " + format_number(cell) + " m makes a grid of over 2·10⁷ cells");
   for (const std::string& run : runs)
@@ -369,17 +371,20 @@ void OverlandCase::check() const {
                       format_number(p.equilibrium_time()) + " s)");
   const double k = p.kinematic_number(kGravity);
   if (k < 3)
-    throw input_error("the plane is outside the kinematic wave: kinematic number k = L g n^2 / "
-                      "h_L^(4/3) = " + format_number(k) +
-                      " (at least 3; 10 for a close match): make it longer, rougher or the rain lighter");
+    throw input_error(
+        "the plane is outside the kinematic wave: kinematic number k = L g n^2 / "
+        "h_L^(4/3) = " +
+        format_number(k) +
+        " (at least 3; 10 for a close match): make it longer, rougher or the rain lighter");
   const bool has_sph = std::any_of(runs.begin(), runs.end(), is_sph);
   const double foot = p.equilibrium_depth(p.length);
   for (double s : spacings) {
     positive("--spacing", s, 10);
     if (has_sph && foot < 2 * s)
-      throw input_error("--spacing: " + format_number(s) + " m puts fewer than two particles in the "
-                        "depth at the foot (" + format_number(foot) + " m): at most " +
-                        format_number(foot / 2) + " m");
+      throw input_error("--spacing: " + format_number(s) +
+                        " m puts fewer than two particles in the "
+                        "depth at the foot (" +
+                        format_number(foot) + " m): at most " + format_number(foot / 2) + " m");
   }
 }
 
@@ -390,9 +395,9 @@ JsonObject validate_overland(ComputeContext& compute, const OverlandCase& c) {
   const PlaneGrid g = plane_grid(c);
   const double foot = plane.equilibrium_depth(plane.length);
   const Heightmap terrain = plane_terrain(g, c.slope, std::max(1.0, 4 * foot));
-  const fs::path scratch =
-      c.out_dir.empty() ? fs::temp_directory_path() / ("runnel-overland-" + std::to_string(::getpid()))
-                        : fs::path(c.out_dir);
+  const fs::path scratch = c.out_dir.empty() ? fs::temp_directory_path() /
+                                                   ("runnel-overland-" + std::to_string(::getpid()))
+                                             : fs::path(c.out_dir);
   fs::create_directories(scratch);
   const std::string rain_mask = (scratch / "rain_mask.asc").string();
   write_terrain(rain_mask, plane_rain_mask(g));

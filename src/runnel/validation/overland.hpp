@@ -5,8 +5,8 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/parameters.hpp"
-#include "runnel/models/parameter_table.hpp"
 #include "runnel/io/json.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/validation/kinematic_wave.hpp"
 
 namespace runnel {
@@ -14,19 +14,19 @@ namespace runnel {
 // `runnel validate overland`: rain on a walled plane with an open foot, every model that moves
 // water against the kinematic wave (kinematic_wave.hpp; docs/validation.md, "Overland flow").
 struct OverlandCase {
-  double length = 50;       // m, from the upstream wall to the open foot
-  double width = 0.5;       // m between the side walls
-  double slope = 0.2;       // m/m: supercritical at the foot, the sheet thin against the slope
-  double manning_n = 0.1;   // s/m^(1/3), every model's
+  double length = 50;         // m, from the upstream wall to the open foot
+  double width = 0.5;         // m between the side walls
+  double slope = 0.2;         // m/m: supercritical at the foot, the sheet thin against the slope
+  double manning_n = 0.1;     // s/m^(1/3), every model's
   double rain_mm_h = 120000;  // mm/h: a sheet 0.55 m deep at the foot, which SPH resolves at 0.1 m
-  double duration = 0;      // s of rain; 0: 2 t_e
-  double recession = 0;     // s run after the rain; 0: t_e
-  double cell = 0.1;        // m, the terrain's grid (the grid models' cells)
+  double duration = 0;        // s of rain; 0: 2 t_e
+  double recession = 0;       // s run after the rain; 0: t_e
+  double cell = 0.1;          // m, the terrain's grid (the grid models' cells)
   std::vector<double> spacings = {0.1, 0.05};  // m, SPH's particle spacings
   // The runs: pipes, local-inertial, godunov (the pipe model's fluxes), wcsph, dfsph.
   std::vector<std::string> runs = {"pipes", "local-inertial", "godunov", "wcsph", "dfsph"};
   Parameters params = default_parameters();  // further overrides (--set)
-  std::string out_dir;  // each run's outflow.csv and the figure; empty: none
+  std::string out_dir;                       // each run's outflow.csv and the figure; empty: none
   bool progress = false;
 
   // The analytic plane the case is scored against (the rain in m/s, the duration resolved).
