@@ -48,6 +48,42 @@ TEST(ValidateOverlandCli, TheDefaultFluxRunsOffASmallPlaneAsTheKinematicWaveSays
             std::string::npos);
 }
 
+TEST(ValidateOverlandCli, BothSphSolversCarryTheRainOffAShortPlane) {
+  // 10 m under 200 mm/h·1000 (k = 5.2, t_e = 5.1 s), 0.1 m particles: too shallow for a gauge
+  // three particles deep, but the water's budget and the hydrograph are scored. The walls stay
+  // put (nothing erodes or slumps), so what is stored is the sheet's own water.
+  test::ScratchDir dir;
+  const auto r = test::run_cli({"validate", "overland", "--models", "wcsph,dfsph", "--length", "10",
+                                "--rain", "200000", "--spacing", "0.1", "--out", dir.path("out")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<double> balance = all_numbers(r.out, "water_balance_rel");
+  const std::vector<double> equilibrium = all_numbers(r.out, "equilibrium_outflow_error");
+  const std::vector<double> storage = all_numbers(r.out, "storage_error");
+  const std::vector<double> rise = all_numbers(r.out, "rise_time_95_error");
+  const std::vector<double> bed = all_numbers(r.out, "bed_moved_m3");
+  ASSERT_EQ(balance.size(), 2u) << r.out;
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT(bed[k], 1e-4) << "the walls slumped or the bed eroded (float round-off: 10⁻⁷ m³)";
+    EXPECT_LT(std::fabs(balance[k]), 1e-12) << "particles are counted, not summed";
+    EXPECT_LT(std::fabs(equilibrium[k]), 0.05) << r.out;
+    EXPECT_LT(std::fabs(storage[k]), 0.35) << r.out;
+    EXPECT_LT(std::fabs(rise[k]), 0.15) << r.out;
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir.path("out/dfsph-0.1/outflow.csv")));
+}
+
+TEST(ValidateOverlandCli, ARunThatStopsIsReportedAndTheOthersGoOn) {
+  // A density limit every SPH run crosses at once: each stops as unstable, godunov still runs.
+  const auto r =
+      test::run_cli({"validate", "overland", "--models", "wcsph,godunov", "--length", "20",
+                     "--rain", "80000", "--spacing", "0.1", "--set", "sph.density_max=1.001"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("wcsph at 0.1 m stopped: SPH step"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("\"error\": \"SPH step"), std::string::npos) << r.out;
+  EXPECT_EQ(all_numbers(r.out, "depth_gauges_scored").size(), 1u) << "godunov's scores";
+  EXPECT_NE(r.out.find("\"all_targets_met\": false"), std::string::npos);
+}
+
 TEST(ValidateOverlandCli, RefusesAPlaneOutsideTheKinematicWaveAndTooCoarseASpacing) {
   test::ScratchDir dir;
   // 5 m of smooth plane: k = L g n² / h_L^(4/3) far below 3.

@@ -39,14 +39,17 @@ bool is_sph(const std::string& run) {
   return run == "wcsph" || run == "dfsph";
 }
 
-// The plane on the terrain's grid: column 0 and the first and last rows are walls, the plane
-// runs from column 1 to the open east edge. A grid cell is centred on its vertex, so the rained
-// plane starts at x = cell/2 and ends at the edge, (nx − 1/2)·cell: its length is (nx − 1)·cell.
+// The plane on the terrain's grid: column 0, row 0 and the rows below the plane's are walls, the
+// plane's rows 1 … rows run from column 1 to the open east edge. A grid cell is centred on its
+// vertex, so the rained plane starts at x = cell/2 and ends at the edge, (nx − 1/2)·cell: its
+// length is (nx − 1)·cell. The terrain has at least 16 rows (the SPH model's smallest terrain);
+// rows past the plane's second wall are more wall.
 struct PlaneGrid {
-  int nx = 0, ny = 0;
+  int nx = 0, ny = 0, rows = 0;
   double cell = 0;
   double length() const { return (nx - 1) * cell; }
-  double width() const { return (ny - 2) * cell; }
+  double width() const { return rows * cell; }
+  bool walled(int i, int j) const { return i == 0 || j == 0 || j > rows; }
   double world_x(double x) const { return x + 0.5 * cell; }  // from the upstream wall's face
 };
 
@@ -54,7 +57,8 @@ PlaneGrid plane_grid(const OverlandCase& c) {
   PlaneGrid g;
   g.cell = c.cell;
   g.nx = static_cast<int>(std::lround(c.length / c.cell)) + 1;
-  g.ny = static_cast<int>(std::lround(c.width / c.cell)) + 2;
+  g.rows = static_cast<int>(std::lround(c.width / c.cell));
+  g.ny = std::max(g.rows + 2, 16);
   return g;
 }
 
@@ -63,8 +67,8 @@ Heightmap plane_terrain(const PlaneGrid& g, double slope, double wall) {
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
       const double bed = 1.0 + slope * (g.nx - 1 - i) * g.cell;
-      const bool walled = i == 0 || j == 0 || j == g.ny - 1;
-      t.h[static_cast<std::size_t>(j) * g.nx + i] = static_cast<float>(bed + (walled ? wall : 0));
+      t.h[static_cast<std::size_t>(j) * g.nx + i] =
+          static_cast<float>(bed + (g.walled(i, j) ? wall : 0));
     }
   return t;
 }
@@ -72,8 +76,9 @@ Heightmap plane_terrain(const PlaneGrid& g, double slope, double wall) {
 // Rain on the plane only: a mask of 1 inside the walls, 0 on them.
 Heightmap plane_rain_mask(const PlaneGrid& g) {
   Heightmap m(g.nx, g.ny, g.cell, 0.0f);
-  for (int j = 1; j < g.ny - 1; ++j)
-    for (int i = 1; i < g.nx; ++i) m.h[static_cast<std::size_t>(j) * g.nx + i] = 1.0f;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      if (!g.walled(i, j)) m.h[static_cast<std::size_t>(j) * g.nx + i] = 1.0f;
   return m;
 }
 
@@ -83,6 +88,8 @@ Parameters run_parameters(const OverlandCase& c, const std::string& run, double 
   const KinematicPlane plane = c.plane();
   p.set("run.seed", std::int64_t{1}, "overland");
   p.set("ground.rain_mask", rain_mask, "overland");
+  // Nothing erodes: the walls would otherwise slump onto the plane at the talus angle.
+  p.set("thermal.interval", 0.0, "overland");
   if (is_sph(run)) {
     p.set("run.model", std::string("sph"), "overland");
     p.set("sph.solver", run, "overland");
@@ -109,9 +116,9 @@ Parameters run_parameters(const OverlandCase& c, const std::string& run, double 
 double depth_across(const Heightmap& bed, const std::vector<float>& depth, const PlaneGrid& g,
                     double x) {
   double sum = 0;
-  for (int j = 1; j < g.ny - 1; ++j)
+  for (int j = 1; j <= g.rows; ++j)
     sum += read_probe(bed, depth, Probe{"", g.world_x(x), j * g.cell}).depth;
-  return sum / (g.ny - 2);
+  return sum / g.rows;
 }
 
 // The analytic outflow per unit width averaged over [t0, t1] (Simpson's rule on 16 pieces; the
@@ -137,6 +144,7 @@ struct RunRecord {
   std::vector<double> gauge_x, gauge_depth;  // the equilibrium depths (window means)
   long long steps = 0;
   double wall_seconds = 0;
+  double bed_moved = 0;  // Σ |Δh| · cell² at the end (m³): the case assumes a fixed bed
 };
 
 RunRecord run_case(ComputeContext& compute, const OverlandCase& c, const PlaneGrid& g,
@@ -176,6 +184,9 @@ RunRecord run_case(ComputeContext& compute, const OverlandCase& c, const PlaneGr
   model->interaction().set_global_rain(false);
   model->advance(c.recession > 0 ? c.recession : te, after_step);
   for (double& d : r.gauge_depth) d /= std::max(window_samples, 1);
+  const Heightmap before = model->initial_terrain(), after = model->terrain();
+  for (std::size_t k = 0; k < before.h.size(); ++k)
+    r.bed_moved += std::fabs(static_cast<double>(after.h[k]) - before.h[k]) * g.cell * g.cell;
   r.steps = static_cast<long long>(model->steps());
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!c.out_dir.empty()) {
@@ -277,6 +288,7 @@ JsonObject run_json(const RunRecord& r, const RunScore& s) {
       .add("rise_time_95_s", s.rise_time)
       .add("rise_time_95_error", s.rise)
       .add("water_balance_rel", s.balance)
+      .add("bed_moved_m3", r.bed_moved)
       .add("meets_targets", s.meets)
       .add("gauges", gauges);
 }
@@ -412,7 +424,21 @@ JsonObject validate_overland(ComputeContext& compute, const OverlandCase& c) {
   for (const std::string& run : c.runs) {
     const std::vector<double> spacings = is_sph(run) ? c.spacings : std::vector<double>{0.0};
     for (double s : spacings) {
-      records.push_back(run_case(compute, c, g, terrain, run, s, rain_mask, gauges));
+      // A run that stops (a numerical blow-up) is a result too: it is reported as failed, with
+      // its reason, and the other runs go on. Bad input still ends the command.
+      try {
+        records.push_back(run_case(compute, c, g, terrain, run, s, rain_mask, gauges));
+      } catch (const Error& e) {
+        if (e.code() != ExitCode::kRuntime) throw;
+        std::fprintf(stderr, "runnel: overland: %s%s stopped: %s\n", run.c_str(),
+                     is_sph(run) ? (" at " + format_number(s) + " m").c_str() : "", e.what());
+        all = false;
+        JsonObject failed;
+        failed.add("run", run).add("model", is_sph(run) ? "sph" : "pipe");
+        if (is_sph(run)) failed.add("spacing_m", s);
+        runs.push_back(failed.add("error", std::string(e.what())).add("meets_targets", false));
+        continue;
+      }
       const RunScore sc = score(c, g, records.back());
       all = all && sc.meets;
       runs.push_back(run_json(records.back(), sc));
