@@ -45,6 +45,25 @@ TEST(CliModels, RunEveryGridModelWithItsMetrics) {
   }
 }
 
+TEST(CliModels, ARunOfAGivenTimeEndsOnItWhateverTheLargestStep) {
+  // A step limit far longer than the run: the last step is cut to the run's end, so the pipe model
+  // rains for 0.01 s (pipe.rain on 49 × 49 cells of 4 m²), not for the 5 s step it would take.
+  ScratchDir dir;
+  const auto pipe = run_cli(with({"run", "--model", "pipe", "--set", "pipe.dt_max=5", "--sim-time",
+                                  "0.01", "--out", dir.path("pipe"), "--quiet"},
+                                 kSmallTerrain));
+  ASSERT_EQ(pipe.exit_code, 0) << pipe.err;
+  const std::string m = test::read_text(dir.path("pipe/metrics.json"));
+  EXPECT_NEAR(json_number(m, "sim_time"), 0.01, 1e-12);
+  EXPECT_NEAR(json_number(m, "rain_volume"), 0.01 * 49 * 49 * 4 * 0.01, 1e-6);
+  const auto sph =
+      run_cli(with({"run", "--model", "sph", "--set", "sph.solver=dfsph", "--set", "sph.dt_max=5",
+                    "--sim-time", "1", "--out", dir.path("sph"), "--quiet"},
+                   kSmallTerrain));
+  ASSERT_EQ(sph.exit_code, 0) << sph.err;
+  EXPECT_NEAR(json_number(test::read_text(dir.path("sph/metrics.json")), "sim_time"), 1.0, 1e-9);
+}
+
 TEST(CliModels, DrainageAreaMapIsTheFinalTerrainsFlowAccumulation) {
   ScratchDir dir;
   ASSERT_EQ(

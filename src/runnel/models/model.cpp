@@ -29,13 +29,21 @@ void Model::advance(double dt, const std::function<void()>& after_step) {
     for (long long k = std::llround(dt); k > 0; --k) one_step();
     return;
   }
-  // A relative tolerance, so that a clock summed from many steps still lands on the target; a model
-  // whose steps are adaptive shortens its last one to land on it.
   const double target = time() + dt;
-  while (time() < target - 1e-12 * std::max(1.0, std::fabs(target))) {
-    limit_next_step(target - time());
-    one_step();
+  while (!reached(target)) {
+    step_towards(target);
+    if (after_step) after_step();
   }
+}
+
+bool Model::reached(double target) const {
+  return time() >= target - 1e-12 * std::max(1.0, std::fabs(target));
+}
+
+// A model whose steps are adaptive shortens its last one to land on the target.
+void Model::step_towards(double target) {
+  limit_next_step(target - time());
+  step();
 }
 
 void Model::set_rain_rates(const std::vector<float>&) {

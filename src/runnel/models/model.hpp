@@ -75,6 +75,11 @@ class Model {
   // target, their last step shortened to it (limit_next_step). dt = 0 changes nothing.
   // `after_step`, if given, runs after each step (a validation watching the state as it goes).
   void advance(double dt, const std::function<void()>& after_step = {});
+  // Whether the clock has reached `target` (to a relative 10⁻¹², so that a clock summed from many
+  // steps still lands on it), and one step that does not pass it: the loop advance() runs, for
+  // callers that do their own work between steps (runnel run).
+  bool reached(double target) const;
+  void step_towards(double target);
 
   virtual double time() const = 0;
   // The length of the next step, in clock units: the step an adaptive model's stability limit chose

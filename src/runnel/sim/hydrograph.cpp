@@ -42,7 +42,10 @@ void Hydrograph::record(double t, const WaterBudget& b) {
            number(rate(b.outflow, last_.outflow)) + "," + number(b.stored) + "," + number(b.rain) +
            "," + number(b.outflow);
   if (per_edge_)
-    for (int e = 0; e < 4; ++e) text_ += "," + number(rate(b.edges[e], last_.edges[e]));
+    for (int e = 0; e < 4; ++e) {
+      text_ += ',';
+      text_ += number(rate(b.edges[e], last_.edges[e]));
+    }
   text_ += "\n";
   ++rows_;
   last_t_ = t;

@@ -174,12 +174,16 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t first_step = model.steps();
   const double first_time = model.time();
+  // A run of a length in time ends on it: its last step is shortened to land there.
   auto done = [&] {
     return options.until_step > 0 ? model.steps() >= options.until_step
-                                  : model.time() >= options.until_time;
+                                  : model.reached(options.until_time);
   };
   while (!done()) {
-    model.step();
+    if (options.until_step > 0)
+      model.step();
+    else
+      model.step_towards(options.until_time);
     r.work += model.step_work();
     const bool report = model.steps() % options.report_every == 0;
     const double elapsed =
