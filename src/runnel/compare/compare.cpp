@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/compare/compare.hpp"
-#include "runnel/sim/hydrograph.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -150,10 +149,7 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
       const double vq = ground->quantum() * terrain.cell * terrain.cell;
       for (std::int64_t q : t.eroded) r.eroded_per_material.push_back(static_cast<double>(q) * vq);
     }
-    if (model->info().clock == ModelClock::kSeconds)
-      for (const HydrographPoint& row :
-           read_hydrograph((fs::path(run.out_dir) / "outflow.csv").string()))
-        r.hydrograph.emplace_back(row.t, row.outflow);
+    if (model->info().clock == ModelClock::kSeconds) r.hydrograph = s.hydrograph;
     initial = model->initial_terrain();  // the same for every model: the input rounded to q
     results.push_back(std::move(r));
   }

@@ -10,6 +10,7 @@
 #include "runnel/core/parameters.hpp"
 #include "runnel/ground/strata.hpp"
 #include "runnel/models/mass_balance.hpp"
+#include "runnel/sim/hydrograph.hpp"
 
 // runnel compare: several erosion models on one terrain with one rain budget (docs/models.md).
 namespace runnel::compare {
@@ -46,8 +47,9 @@ struct ModelResult {
   std::optional<Strata> strata;
   std::vector<int> exposed;
   std::vector<double> eroded_per_material;
-  // Its outflow.csv as (t, outflow m³/s), for the models whose clock is in seconds (empty else).
-  std::vector<std::pair<double, double>> hydrograph;
+  // Its outflow.csv's rows (t, outflow m³/s), for the models whose clock is in seconds (empty
+  // else).
+  std::vector<HydrographPoint> hydrograph;
 };
 
 struct Options {

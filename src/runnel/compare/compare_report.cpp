@@ -187,18 +187,16 @@ std::string layers_table(const std::vector<ModelResult>& results) {
 }  // namespace
 
 bool write_hydrograph_png(const std::string& path, const std::vector<ModelResult>& results) {
-  static const PlotColour palette[] = {kPlotSimulation, kPlotSecondary, kPlotPeer,
-                                       {150, 60, 170},  {220, 150, 20}, {20, 160, 170}};
   Plot plot("outflow hydrograph", "t (s)", "outflow (m3/s)");
   std::size_t drawn = 0;
   for (const ModelResult& r : results) {
     if (r.hydrograph.empty()) continue;
     std::vector<double> t, q;
-    for (auto [time, outflow] : r.hydrograph) {
-      t.push_back(time);
-      q.push_back(outflow);
+    for (const HydrographPoint& row : r.hydrograph) {
+      t.push_back(row.t);
+      q.push_back(row.outflow);
     }
-    plot.line(t, q, palette[drawn++ % (sizeof palette / sizeof palette[0])], r.model);
+    plot.line(t, q, plot_series_colour(drawn++), r.model);
   }
   if (drawn == 0) return false;
   write_png_rgb(path, with_title(plot.render(), "runnel compare: the water leaving the terrain"));

@@ -14,6 +14,14 @@ inline constexpr PlotColour kPlotReference{20, 20, 20};    // measurements, anal
 inline constexpr PlotColour kPlotSimulation{200, 60, 30};  // runnel
 inline constexpr PlotColour kPlotSecondary{40, 90, 200};   // a second series or reading
 inline constexpr PlotColour kPlotPeer{30, 150, 60};        // another code's result
+// The k-th of several series of one kind (the runs of a case, the models of a comparison),
+// starting with the three above and cycling through nine.
+inline PlotColour plot_series_colour(std::size_t k) {
+  static constexpr PlotColour kSeries[] = {kPlotSimulation, kPlotSecondary, kPlotPeer,
+                                           {150, 60, 170},  {220, 150, 20}, {20, 160, 170},
+                                           {120, 120, 120}, {170, 40, 90},  {90, 60, 20}};
+  return kSeries[k % (sizeof kSeries / sizeof kSeries[0])];
+}
 
 // A small x–y chart for validation figures (front.png, pressure.png): axes with round ticks,
 // lines and marked points, a legend. The axes span every series given, with 5 % padding.

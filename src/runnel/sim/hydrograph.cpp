@@ -4,8 +4,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 namespace runnel {
 namespace {
@@ -47,7 +45,7 @@ void Hydrograph::record(double t, const WaterBudget& b) {
       text_ += number(rate(b.edges[e], last_.edges[e]));
     }
   text_ += "\n";
-  ++rows_;
+  points_.push_back({t, rate(b.outflow, last_.outflow)});
   last_t_ = t;
   last_ = b;
   // The next sampling time is a whole multiple of `every`, so the times do not drift.
@@ -86,21 +84,6 @@ void Hydrograph::resume_from(const std::vector<std::pair<std::string, std::int64
   last_.rain = real(kRain);
   last_.outflow = real(kOut);
   for (int e = 0; e < 4; ++e) last_.edges[e] = real(kEdgeOut[e]);
-}
-
-std::vector<HydrographPoint> read_hydrograph(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<HydrographPoint> rows;
-  std::string line;
-  std::getline(in, line);  // the header
-  while (std::getline(in, line)) {
-    std::istringstream cells(line);
-    std::string t, rain, outflow;
-    if (std::getline(cells, t, ',') && std::getline(cells, rain, ',') &&
-        std::getline(cells, outflow, ','))
-      rows.push_back({std::stod(t), std::stod(outflow)});
-  }
-  return rows;
 }
 
 }  // namespace runnel

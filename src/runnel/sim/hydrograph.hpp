@@ -17,6 +17,11 @@ namespace runnel {
 // and with per_edge the outflow rate over each edge. The recorder's place (the next sampling time
 // and the last row's totals) travels in the checkpoints, so a resumed run writes the rows the
 // uninterrupted run writes from there on, bit for bit.
+// One row of the hydrograph: the time and the mean outflow rate since the row before.
+struct HydrographPoint {
+  double t = 0, outflow = 0;
+};
+
 class Hydrograph {
  public:
   // `every` 0 records nothing. `start` is the budget where the run begins.
@@ -25,7 +30,9 @@ class Hydrograph {
   bool due(double t) const { return active() && t >= (next_ - 1e-9) * every_; }
   void record(double t, const WaterBudget& budget);
   std::string csv() const;
-  std::size_t rows() const { return rows_; }
+  std::size_t rows() const { return points_.size(); }
+  // The rows this recorder wrote (t, outflow), as outflow.csv holds them.
+  const std::vector<HydrographPoint>& points() const { return points_; }
 
   // The recorder's place as named checkpoint counters, and back from a checkpoint's counters (a
   // file without them: the recorder starts where the run resumes).
@@ -39,14 +46,7 @@ class Hydrograph {
   double last_t_;
   WaterBudget last_;
   std::string text_;
-  std::size_t rows_ = 0;
+  std::vector<HydrographPoint> points_;
 };
-
-// One row of an outflow.csv read back: the time and the mean outflow rate since the row before.
-struct HydrographPoint {
-  double t = 0, outflow = 0;
-};
-// The rows of an outflow.csv (empty when the file is absent).
-std::vector<HydrographPoint> read_hydrograph(const std::string& path);
 
 }  // namespace runnel

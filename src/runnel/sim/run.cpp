@@ -382,6 +382,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   progress.finish(buf);
   s.caution = model.caution();
   s.model_values = model.summary_values();
+  s.hydrograph = hydrograph.points();
   if (!s.caution.empty())
     std::fprintf(stderr, "runnel: caution: %s\n", terminal_safe(s.caution).c_str());
   return s;

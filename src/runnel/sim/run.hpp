@@ -7,6 +7,7 @@
 #include "runnel/core/parameters.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/models/model.hpp"
+#include "runnel/sim/hydrograph.hpp"
 
 namespace runnel {
 
@@ -35,6 +36,7 @@ struct RunSummary {
   JsonObject metrics;                                          // what metrics.json holds
   std::string caution;  // Model::caution() at the end, printed after the summary (empty: none)
   std::vector<std::pair<std::string, double>> model_values;  // Model::summary_values()
+  std::vector<HydrographPoint> hydrograph;                   // outflow.csv's rows (t, outflow)
 };
 
 // Advances `model` to the target, reporting the mass balance every report_every steps, writing

@@ -265,6 +265,15 @@ RunScore score(const OverlandCase& c, const PlaneGrid& g, const RunRecord& r) {
   return s;
 }
 
+// What names a run in the JSON, scored or failed: the run, its model and, for SPH, the spacing.
+JsonObject run_header(const std::string& run, double spacing) {
+  JsonObject o;
+  o.add("run", run);
+  o.add("model", is_sph(run) ? "sph" : "pipe");
+  if (is_sph(run)) o.add("spacing_m", spacing);
+  return o;
+}
+
 JsonObject run_json(const RunRecord& r, const RunScore& s) {
   std::vector<JsonObject> gauges;
   for (std::size_t k = 0; k < r.gauge_x.size(); ++k)
@@ -272,11 +281,8 @@ JsonObject run_json(const RunRecord& r, const RunScore& s) {
                          .add("x_m", r.gauge_x[k])
                          .add("depth_m", r.gauge_depth[k])
                          .add("error", s.depth_errors[k]));
-  JsonObject o;
-  o.add("run", r.name);
-  o.add("model", is_sph(r.name) ? "sph" : "pipe");
-  if (is_sph(r.name)) o.add("spacing_m", r.spacing);
-  return o.add("steps", r.steps)
+  return run_header(r.name, r.spacing)
+      .add("steps", r.steps)
       .add("wall_seconds", r.wall_seconds)
       .add("depth_worst_error", s.depth_worst)
       .add("depth_mean_error", s.depth_mean)
@@ -295,9 +301,6 @@ JsonObject run_json(const RunRecord& r, const RunScore& s) {
 
 void write_figure(const std::string& path, const OverlandCase& c, const PlaneGrid& g,
                   const std::vector<RunRecord>& records) {
-  static const PlotColour palette[] = {{200, 60, 30},   {40, 90, 200},  {30, 150, 60},
-                                       {150, 60, 170},  {220, 150, 20}, {20, 160, 170},
-                                       {120, 120, 120}, {170, 40, 90},  {90, 60, 20}};
   const KinematicPlane plane = c.plane();
   const double te = plane.equilibrium_time(), W = g.width(), iA = plane.rain * W * plane.length;
   Plot hydro("outflow hydrograph", "t / t_e", "outflow / (rain x area)");
@@ -322,7 +325,7 @@ void write_figure(const std::string& path, const OverlandCase& c, const PlaneGri
       rt.push_back(0.5 * (r.rows[m].t + r.rows[m - 1].t) / te);
       rq.push_back((r.rows[m].budget.outflow - r.rows[m - 1].budget.outflow) / span / iA);
     }
-    const PlotColour colour = palette[k % (sizeof palette / sizeof palette[0])];
+    const PlotColour colour = plot_series_colour(k);
     hydro.line(rt, rq, colour, label);
     profile.points(r.gauge_x, r.gauge_depth, colour, label);
   }
@@ -433,10 +436,8 @@ JsonObject validate_overland(ComputeContext& compute, const OverlandCase& c) {
         std::fprintf(stderr, "runnel: overland: %s%s stopped: %s\n", run.c_str(),
                      is_sph(run) ? (" at " + format_number(s) + " m").c_str() : "", e.what());
         all = false;
-        JsonObject failed;
-        failed.add("run", run).add("model", is_sph(run) ? "sph" : "pipe");
-        if (is_sph(run)) failed.add("spacing_m", s);
-        runs.push_back(failed.add("error", std::string(e.what())).add("meets_targets", false));
+        runs.push_back(
+            run_header(run, s).add("error", std::string(e.what())).add("meets_targets", false));
         continue;
       }
       const RunScore sc = score(c, g, records.back());
