@@ -108,8 +108,9 @@ void expect_exact_resume(const std::string& solver, int steps) {
   EXPECT_NE(d.parameters_toml.find(solver), std::string::npos);  // the file records its solver
   if (solver ==
       "dfsph") {  // and the pressures its solves start from (some water is under pressure)
-    ASSERT_EQ(d.kappa.size(), d.particles.size());
-    EXPECT_GT(std::count_if(d.kappa.begin(), d.kappa.end(), [](float k) { return k > 0; }), 0);
+    const std::vector<float>& kappa = d.solver_state.at(kKappa);
+    ASSERT_EQ(kappa.size(), d.particles.size());
+    EXPECT_GT(std::count_if(kappa.begin(), kappa.end(), [](float k) { return k > 0; }), 0);
   }
   auto model = make_model_from_checkpoint(compute(), d);
   for (int k = 0; k < steps - steps / 2; ++k) model->step();

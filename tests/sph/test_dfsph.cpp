@@ -131,10 +131,11 @@ TEST(Dfsph, DensityAndFactorMatchABruteForceSum) {
 TEST(Dfsph, PerParticleBuffersAreWhatTheBudgetCounts) {
   const SphSettings s = SphSettings::from(dfsph_parameters(), 0.1, 2.0);
   SphSolver solver(compute(), s, flat_floor(20, 20, 0.1), 2.0);
-  EXPECT_EQ(solver.dfsph()->allocated_bytes(), 0u);
+  EXPECT_EQ(solver.pressure_solver().allocated_bytes(), 0u);
   solver.add(block_on_floor(5));
   solver.prepare();
-  const std::size_t bytes = solver.dfsph()->allocated_bytes(), each = Dfsph::bytes_per_particle();
+  const std::size_t bytes = solver.pressure_solver().allocated_bytes(),
+                    each = solver.pressure_solver().bytes_per_particle();
   EXPECT_EQ(bytes % each, 0u);
   EXPECT_GE(bytes / each, solver.particles().size());
 }

@@ -110,7 +110,7 @@ std::string digest_of(const CheckpointData& d) {
   g.add(d.particles.sediment).add(d.particles.contacts).add(d.particles.id);
   g.add(d.ax).add(d.ay).add(d.az).add(d.drho).add(d.depth).add(d.next_id);
   // Only when present, so files of the weakly compressible solver verify as before.
-  if (!d.kappa.empty() || !d.kappa_v.empty()) g.add(d.kappa).add(d.kappa_v);
+  for (const auto& [field, values] : d.solver_state) g.add(values);
   g.add(d.time).add(d.dt).add(d.steps).add(d.rain_spawned).add(d.rain_carry).add(d.seed);
   // Only when some rain was held back, so files without the count verify as before.
   if (d.rain_held_back > 0) g.add(d.rain_held_back);
@@ -212,8 +212,8 @@ void write_particles_group(H5File& f, const CheckpointData& d) {
   f.write("/particles/az", d.az, {n});
   f.write("/particles/drho", d.drho, {n});
   f.write("/particles/depth", d.depth, {n});
-  if (!d.kappa.empty()) f.write("/particles/kappa", d.kappa, {n});
-  if (!d.kappa_v.empty()) f.write("/particles/kappa_v", d.kappa_v, {n});
+  for (const auto& [field, values] : d.solver_state)
+    f.write(dataset_path("particles", particle_field_info(field).name), values, {n});
   f.attribute("/particles", "count", static_cast<std::int64_t>(n));
   f.attribute("/particles", "next_id", static_cast<std::int64_t>(d.next_id));
   f.attribute("/particles", "sediment_quantum_m3",
@@ -372,10 +372,13 @@ void read_particles_group(const H5File& f, const std::string& path, CheckpointDa
   d.az = f.read_float("/particles/az", n);
   d.drho = f.read_float("/particles/drho", n);
   d.depth = f.read_float("/particles/depth", n);
-  if (f.exists("/particles/kappa")) d.kappa = f.read_float("/particles/kappa", n);
-  if (f.exists("/particles/kappa_v")) d.kappa_v = f.read_float("/particles/kappa_v", n);
-  require_finite(path, "/particles/kappa", d.kappa);
-  require_finite(path, "/particles/kappa_v", d.kappa_v);
+  for (int k = kSolverStateFirst; k < kFieldCount; ++k) {
+    const auto field = static_cast<ParticleField>(k);
+    const std::string name = dataset_path("particles", particle_field_info(field).name);
+    if (!f.exists(name)) continue;
+    d.solver_state[field] = f.read_float(name, n);
+    require_finite(path, name, d.solver_state[field]);
+  }
   for (auto* rates : {&d.ax, &d.ay, &d.az, &d.drho})
     require_finite(path, "/particles rates", *rates);
   d.next_id = static_cast<std::uint32_t>(f.read_int_attribute("/particles", "next_id"));

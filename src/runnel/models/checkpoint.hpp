@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -30,9 +31,9 @@ struct CheckpointData {
   // Particles in their current (sorted) order, with the rates of the last force pass.
   HostParticles particles;
   std::vector<float> ax, ay, az, drho, depth;
-  // dfsph's kept pressures (the warm start of its solves); empty with wcsph and in files that
-  // have none.
-  std::vector<float> kappa, kappa_v;
+  // The state the pressure solver keeps between steps (PressureSolver::kept_fields(): dfsph's
+  // pressures, the warm start of its solves); empty with wcsph and in files that have none.
+  std::map<ParticleField, std::vector<float>> solver_state;
   std::uint32_t next_id = 0;
   // Clocks and counters.
   double time = 0, dt = 0;

@@ -205,10 +205,8 @@ CheckpointData Simulation::checkpoint() {
   d.az = store.read_field(kAz);
   d.drho = store.read_field(kDrho);
   d.depth = store.read_field(kDepth);
-  if (solver_->settings().incompressible()) {
-    d.kappa = store.read_field(kKappa);
-    d.kappa_v = store.read_field(kKappaV);
-  }
+  for (ParticleField field : solver_->pressure_solver().kept_fields())
+    d.solver_state[field] = store.read_field(field);
   d.next_id = store.next_id();
   d.time = solver_->time();
   d.dt = solver_->dt();
@@ -240,11 +238,12 @@ void Simulation::restore(const CheckpointData& d) {
   store.upload_field(kAz, d.az);
   store.upload_field(kDrho, d.drho);
   store.upload_field(kDepth, d.depth);
-  if (solver_->settings().incompressible()) {
-    // A checkpoint of the other solver has none: the solves then start cold.
-    const std::vector<float> cold(d.particles.size(), 0.0f);
-    store.upload_field(kKappa, d.kappa.empty() ? cold : d.kappa);
-    store.upload_field(kKappaV, d.kappa_v.empty() ? cold : d.kappa_v);
+  for (ParticleField field : solver_->pressure_solver().kept_fields()) {
+    // A checkpoint of another solver has none: the solves then start cold.
+    const auto kept = d.solver_state.find(field);
+    store.upload_field(field, kept != d.solver_state.end()
+                                  ? kept->second
+                                  : std::vector<float>(d.particles.size(), 0.0f));
   }
   store.set_next_id(d.next_id);
   solver_->restore_clock(d.time, d.dt, d.steps);

@@ -27,9 +27,12 @@ enum ParticleField : int {
   kAx = kPersistentFieldCount, kAy, kAz,  // acceleration, m/s²
   kDrho,                                  // dρ/dt, kg/m³/s
   kDepth,                                 // local water depth (m), from the force pass
-  kKappa,     // dfsph: the constant-density solve's pressure κ (m²/s²), kept as κ·dt² (m²) between
-              // steps for the next solve's warm start; the sort carries it
-  kKappaV,    // dfsph: the divergence-free solve's κ, kept as κ·dt (m²/s); the sort carries it
+  // What a pressure solver keeps between steps (PressureSolver::kept_fields): the sort carries it,
+  // a checkpoint stores it.
+  kSolverStateFirst,
+  kKappa = kSolverStateFirst,  // dfsph: the constant-density solve's pressure κ (m²/s²), kept as
+                               // κ·dt² (m²) for the next solve's warm start
+  kKappaV,                     // dfsph: the divergence-free solve's κ, kept as κ·dt (m²/s)
   kFieldCount
   // clang-format on
 };

@@ -199,7 +199,7 @@ void SpatialHash::begin_build(ParticleStore& store) {
   std::vector<ParticleField> carried;
   for (int k = 0; k < kPersistentFieldCount; ++k) carried.push_back(static_cast<ParticleField>(k));
   if (carry_depth_) carried.push_back(kDepth);
-  if (carry_pressure_) carried.insert(carried.end(), {kKappa, kKappaV});
+  carried.insert(carried.end(), carried_fields_.begin(), carried_fields_.end());
   const int fields = static_cast<int>(carried.size());
   const int launches = (fields + kSlots - 1) / kSlots;
   const int per_launch = (fields + launches - 1) / launches;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "runnel/compute/context.hpp"
@@ -51,8 +52,8 @@ class SpatialHash {
   // Whether the sort also carries each particle's water depth (a rate field, otherwise measured
   // again after every sort): for a solver that measures it only every so often.
   void carry_water_depth(bool on) { carry_depth_ = on; }
-  // The sort gathers the dfsph solves' kept pressures (kKappa, kKappaV) too: their warm start.
-  void carry_solver_pressure(bool on) { carry_pressure_ = on; }
+  // The sort gathers these rate fields too: the state a pressure solver keeps between steps.
+  void carry_fields(std::vector<ParticleField> fields) { carried_fields_ = std::move(fields); }
 
   const GridSpec& grid() const { return grid_; }
   const cl::Buffer& cell_start() const { return cell_start_; }
@@ -125,9 +126,9 @@ class SpatialHash {
   cl_uint summary_host_[4] = {0, 0, 0, 0};  // live particles, large, small and lone tiles
   cl::Event summary_read_;
   bool summary_pending_ = false;
-  bool per_particle_ = false;    // the last build's tiles are single particles: no list
-  bool carry_depth_ = false;     // the sort gathers kDepth too (carry_water_depth)
-  bool carry_pressure_ = false;  // and kKappa, kKappaV (carry_solver_pressure)
+  bool per_particle_ = false;  // the last build's tiles are single particles: no list
+  bool carry_depth_ = false;   // the sort gathers kDepth too (carry_water_depth)
+  std::vector<ParticleField> carried_fields_;  // and these (carry_fields)
   std::uint32_t tiles_ = 0, small_tiles_ = 0, lone_tiles_ = 0;
   std::size_t capacity_ = 0;
   cl_uint sorted_ = 0;  // keys in keys_[sorted_in_] from the last build: their cells are filled

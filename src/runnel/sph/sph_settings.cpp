@@ -9,15 +9,25 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/parameter_groups.hpp"
 #include "runnel/core/settings_table.hpp"
+#include "runnel/sph/pressure/registry.hpp"
 
 namespace runnel {
 
 namespace {
 
+// "the pressure solver: NAME, SUMMARY; NAME, SUMMARY", from the registry.
+std::string solver_help() {
+  std::string help = "the pressure solver: ";
+  const auto& methods = pressure_methods();
+  for (std::size_t k = 0; k < methods.size(); ++k)
+    help += (k > 0 ? "; " : "") + methods[k].name + ", " + methods[k].summary;
+  return help;
+}
+
 // clang-format off
 const SettingsTable<SphSettings> kSphTable = {
       // sph: the SPH fluid (physics.md §2, docs/sph.md)
-      {"sph.solver", "\"wcsph\"", "", 0, 0, {"wcsph", "dfsph"}, "the pressure solver: wcsph, weakly compressible (Tait equation, time step set by the sound speed c0); dfsph, incompressible (divergence-free SPH: two pressure solves a step, time step set by the flow, sph.cfl_flow)", &SphSettings::solver},
+      {"sph.solver", "\"" + pressure_methods().front().name + "\"", "", 0, 0, pressure_method_names(), solver_help(), &SphSettings::solver},
       {"sph.spacing", "0", "m", 0, 1e4, {}, "particle spacing dx (particle volume dx³); 0: derived from the case (half the terrain's cell size for runs: several particles across a channel)", &SphSettings::spacing},
       {"sph.h_factor", "1.2", "1", 0.8, 2.5, {}, "smoothing length h = h_factor · dx (support radius 2h)", &SphSettings::h_factor},
       {"sph.rho0", "1000", "kg/m^3", 1, 1e5, {}, "rest density ρ0", &SphSettings::rho0, "SPH_RHO0"},
@@ -58,7 +68,7 @@ SphSettings SphSettings::from(const Parameters& p, double default_spacing, doubl
   if (!(s.c0 > 0)) s.c0 = 10.0 * reference_speed;
   if (!(s.c0 > 0))
     throw input_error("sph.c0: must be positive (no reference speed to derive it from)");
-  if (!(s.dt_max > 0)) s.dt_max = default_dt_max(s.incompressible());
+  if (!(s.dt_max > 0)) s.dt_max = pressure_method(s.solver).default_dt_max;
   if (s.dt_min >= s.dt_max) throw input_error("sph.dt_min: must be smaller than sph.dt_max");
   if (!(s.density_min < 1.0 && s.density_max > 1.0)) {
     throw input_error(
@@ -74,8 +84,8 @@ double particle_spacing(const Parameters& params, double terrain_cell) {
   return params.real("sph.spacing") > 0 ? params.real("sph.spacing") : 0.5 * terrain_cell;
 }
 
-double default_dt_max(bool incompressible) {
-  return incompressible ? 0.05 : 0.01;
+bool SphSettings::incompressible() const {
+  return pressure_method(solver).incompressible;
 }
 
 double footprint_radius(const SphSettings& s, double terrain_cell) {

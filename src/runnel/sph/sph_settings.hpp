@@ -7,10 +7,6 @@
 namespace runnel {
 
 struct SphSettings;
-// sph.dt_max = 0 resolves to this: 0.01 s for wcsph (never binding at its acoustic steps), 0.05 s
-// for dfsph (whose flow CFL step would otherwise grow without bound where the water is slow).
-double default_dt_max(bool incompressible);
-
 // The particle spacing of a run on terrain cells of `terrain_cell` m: sph.spacing, or by default
 // half a cell, so a channel a few cells wide is several particles across (docs/erosion.md).
 double particle_spacing(const Parameters& params, double terrain_cell);
@@ -21,7 +17,7 @@ double footprint_radius(const SphSettings& s, double terrain_cell);
 // The SPH parameters of one run, resolved: no "auto" values left. The sph.* parameters fill it
 // from their table (sph_settings.cpp: defaults, units, meaning); from() resolves the rest.
 struct SphSettings {
-  std::string solver;  // "wcsph" (weakly compressible) or "dfsph" (incompressible, docs/sph.md)
+  std::string solver;  // a registered pressure solver (pressure/registry.cpp, docs/sph.md)
   double spacing;      // dx, m
   double h_factor;
   double h;     // smoothing length h_factor · dx, m
@@ -46,7 +42,8 @@ struct SphSettings {
   bool clamp_negative_pressure;
   bool walls;
 
-  bool incompressible() const { return solver == "dfsph"; }
+  // Water at rest is at ρ0 with this solver (PressureMethod::incompressible).
+  bool incompressible() const;
   double mass() const { return rho0 * spacing * spacing * spacing; }  // kg
   // The kernel summed over a cubic lattice of spacing dx, in particle volumes dx³: 1.0175 at
   // h = 1.2 dx. dfsph's summation density divides by it, so that water at rest at the spacing

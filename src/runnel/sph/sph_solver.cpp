@@ -9,6 +9,7 @@
 #include "runnel/compute/launch.hpp"
 #include "runnel/core/clock.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/sph/pressure/registry.hpp"
 #include "runnel/sph/water_depth_reference.hpp"
 
 namespace runnel {
@@ -87,11 +88,8 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   // The drift and the projection sample the contact surface (SPH_CONTACT_RADIUS, the same float).
   terrain_.carry_contact_surface(static_cast<float>(settings.contact_radius));
   cl::Program& program = sph_program(compute, settings, floor.cell);
-  forces_ = Kernel(compute, program, "sph_forces");
-  forces_direct_ = Kernel(compute, program, "sph_forces_direct");
-  forces_inputs_ = Kernel(compute, program, "forces_inputs");
-  continuity_ = Kernel(compute, program, "sph_continuity");
-  continuity_direct_ = Kernel(compute, program, "sph_continuity_direct");
+  pressure_ = pressure_method(settings.solver).make(compute, program, settings);
+  hash_.carry_fields(pressure_->kept_fields());
   drift_ = Kernel(compute, program, "drift");
   friction_factors_ = Kernel(compute, program, "bed_friction_factors");
   stats_ = Kernel(compute, program, "step_stats");
@@ -100,10 +98,6 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   depth_scatter_runs_ = Kernel(compute, program, "water_depth_scatter_runs");
   depth_gather_ = Kernel(compute, program, "water_depth_gather");
   depth_coarsen_ = Kernel(compute, program, "water_depth_coarsen");
-  if (settings.incompressible()) {
-    dfsph_ = std::make_unique<Dfsph>(compute, program, settings);
-    hash_.carry_solver_pressure(true);
-  }
   water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE,
                       film_level_vertices(floor.nx, floor.ny) * sizeof(cl_long));
   stat_blocks_ = compute.wide() ? kStatBlocksGpu : kStatBlocksCpu;
@@ -125,12 +119,8 @@ void SphSolver::prepare() {
   sort_particles();
   measure_water_depth();
   drop_dead_particles();
-  if (dfsph_) {
-    dfsph_->measure_density(store_, hash_, terrain_);
-    dfsph_->non_pressure_accelerations(store_, hash_, terrain_);
-  } else {
-    compute_forces();
-  }
+  SphPipeline p = pipeline();
+  pressure_->measure_rates(p);
   choose_next_dt();
   rates_ready_ = true;
 }
@@ -141,27 +131,19 @@ void SphSolver::step() {
   complete_step();
 }
 
+// v(n+½) = v(n) + a(n)·dt/2 (with whatever impulse the pressure solver adds first), then x(n+1):
+// walls, outflow, terrain contact, bed friction; the drift's midpoints and velocities for a
+// continuity pass; and the pressure solver makes the new state current.
 void SphSolver::drift() {
   if (!rates_ready_) prepare();
+  SphPipeline p = pipeline();
   if (hash_stale_) {  // a restored state: same order, cell tables rebuilt
     build_hash();
-    if (dfsph_) dfsph_->measure_density(store_, hash_, terrain_);  // the solver's factors
+    pressure_->rehashed(p);
   }
-  if (dfsph_) {
-    // The pressure impulse that keeps the density at ρ0 over the step, then the drift as for
-    // wcsph: v(n+½) = v(n) + dt·a(κ) + a(n)·dt/2, x(n+1) = x(n) + v(n+½)·dt (walls, outflow,
-    // terrain contact, bed friction). The non-pressure forces are leapfrogged, so a drop's flight
-    // and bounce are the weakly compressible solver's.
-    dfsph_->solve_density(store_, hash_, terrain_, dt_);
-    drift_and_collide();
-    store_.swap_scratch({kX, kY, kZ});  // x(n+1); ρ(n+1) is measured after the sort
-    return;
-  }
-  // v(n+½) = v(n) + a(n)·dt/2, then x(n+1) into scratch: walls, outflow, terrain contact, bed
-  // friction; and the drift's midpoints and velocities for the continuity pass.
+  pressure_->before_drift(p, dt_);
   drift_and_collide();
-  integrate_density();  // ρ(n+1) = ρ(n) + dt·dρ/dt at x(n) with the actual displacements
-  store_.swap_scratch({kX, kY, kZ, kRho});  // x(n+1), ρ(n+1) become the state
+  pressure_->after_drift(p, dt_);
 }
 
 // Between the hash's two halves the store still counts the dead particles at its end: both water
@@ -204,19 +186,13 @@ void SphSolver::complete_step() {
   // D at x(n+1), new drops included: the next step's friction and erosion.
   if (depth_interval_ <= 0) measure_water_depth();
   drop_dead_particles();  // the hash's live count and tiles, read while any depth pass runs
-  if (dfsph_) {
-    dfsph_->measure_density(store_, hash_, terrain_);             // ρ(n+1), the solver's factors
-    dfsph_->non_pressure_accelerations(store_, hash_, terrain_);  // a(n+1): viscosity, gravity
-    dfsph_->half_kick(store_, dt_);                               // v(n+1) = v(n+½) + a(n+1)·dt/2
-    dfsph_->solve_divergence(store_, hash_, terrain_, dt_);       // made divergence-free
-  } else {
-    compute_forces();  // a(n+1) at x(n+1), ρ(n+1)
-  }
+  SphPipeline p = pipeline();
+  pressure_->complete(p, dt_);  // a(n+1) at x(n+1)
   time_ += dt_;
   ++steps_;
-  // wcsph: v(n+1) = v(n+½) + a(n+1)·dt/2 in the pass that measures the state; then the CFL and
-  // acceleration limits. Stops on NaN or a collapsing step.
-  choose_next_dt(/*closing_kick=*/!dfsph_);
+  // v(n+1) = v(n+½) + a(n+1)·dt/2 in the pass that measures the state, unless the pressure solver
+  // gave it; then the solver's time-step limits. Stops on NaN or a collapsing step.
+  choose_next_dt(pressure_->closing_kick_in_stats());
   // Or D only before a step that will exchange with the bed (its dt is now chosen).
   if (depth_interval_ > 0 && interval_credit(depth_interval_, time_, dt_) > 0)
     measure_water_depth();
@@ -267,12 +243,6 @@ void SphSolver::terrain_replaced() {
   hash_stale_ = true;
 }
 
-// The terrain boundary and the domain's extent (walls): what both neighbour passes see.
-void SphSolver::bind_domain(Kernel& k) {
-  terrain_.bind(k);
-  terrain_.bind_extent(k);
-}
-
 void bind_continuity_inputs(ParticleStore& store, Kernel& k) {
   const char* inputs[] = {"mid_x", "mid_y", "mid_z", "drift_vx", "drift_vy", "drift_vz", "volume"};
   static_assert(std::size(inputs) <= ParticleStore::kSpareCount);
@@ -288,39 +258,12 @@ void launch_bed_friction_factors(ParticleStore& store, Kernel& factors, Kernel& 
   drift.set("friction", factor);
 }
 
-void SphSolver::integrate_density() {
-  // Its inputs come from the drift (drift_and_collide).
-  for (Kernel* k : {&continuity_, &continuity_direct_}) {
-    store_.bind(*k, {kX, kY, kZ, kRho, kDrho});
-    store_.bind_new(*k, {kRho});
-    bind_continuity_inputs(store_, *k);
-    bind_domain(*k);
-    k->set("dt", static_cast<float>(dt_));
-  }
-  hash_.launch_tiled(continuity_, continuity_direct_);
-}
-
-void SphSolver::compute_forces() {
-  const cl_uint n = static_cast<cl_uint>(store_.size());
-  const char* inputs[] = {"pressure", "p_over_rho2", "volume"};
-  store_.bind(forces_inputs_, {kRho});
-  for (int s = 0; s < 3; ++s) forces_inputs_.set(inputs[s], store_.spare(s));
-  forces_inputs_.launch(round_up_work(n));
-
-  for (Kernel* k : {&forces_, &forces_direct_}) {
-    store_.bind(*k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kAx, kAy, kAz});
-    for (int s = 0; s < 3; ++s) k->set(inputs[s], store_.spare(s));
-    bind_domain(*k);
-  }
-  hash_.launch_tiled(forces_, forces_direct_);
-}
-
 void SphSolver::choose_next_dt(bool closing_kick) {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   health_ = SphHealth{};
   const auto& s = settings_;
-  if (n == 0) {  // no fluid yet: the acoustic limit, so rain that arrives next starts stable
-    dt_ = s.incompressible() ? s.dt_max : std::min(s.cfl * s.h / s.c0, s.dt_max);
+  if (n == 0) {  // no fluid yet
+    dt_ = pressure_->first_dt();
     return;
   }
   // A CPU: a few contiguous runs; a GPU: thousands of interleaved ones (step_stats in
@@ -353,9 +296,9 @@ void SphSolver::choose_next_dt(bool closing_kick) {
       "SPH step " + std::to_string(steps_) + " (t = " + std::to_string(time_) + " s): ";
   if (bad > 0)
     throw runtime_error(where + std::to_string(bad) + " particles have NaN or infinite values");
-  // (dfsph's summation density is below ρ0 wherever the water thins: only its upper bound is
-  // a sign of trouble.)
-  const bool too_thin = !s.incompressible() && rmin < s.density_min * s.rho0;
+  // (A summation density is below ρ0 wherever the water thins: only its upper bound is a sign of
+  // trouble.)
+  const bool too_thin = pressure_->density_floor_checked() && rmin < s.density_min * s.rho0;
   if (too_thin || rmax > s.density_max * s.rho0) {
     std::ostringstream msg;
     msg << where << "density " << (too_thin ? rmin : rmax) << " kg/m^3 is outside the sane range ["
@@ -365,7 +308,7 @@ void SphSolver::choose_next_dt(bool closing_kick) {
     // compressive side, reach here.)
     throw runtime_error(msg.str());
   }
-  dt_ = next_dt(s, health_);
+  dt_ = std::min(pressure_->next_dt(health_), s.dt_max);
   const double dt = dt_;
   if (dt < s.dt_min) {
     std::ostringstream msg;
@@ -375,47 +318,12 @@ void SphSolver::choose_next_dt(bool closing_kick) {
   }
 }
 
-// wcsph: the acoustic CFL and the acceleration limit, dt = cfl · min(h/(c0 + |v|max),
-// sqrt(h/|a|max)). dfsph: the flow's, dt = cfl_flow · min(dx/|v|max, ½ sqrt(dx/|a|max)) with the
-// non-pressure accelerations, and the explicit viscosity's diffusion limit 0.125 h²/ν,
-// ν = α c0 h / 10. Both at most dt_max.
-double next_dt(const SphSettings& s, const SphHealth& health) {
-  double dt;
-  if (s.incompressible()) {
-    dt = s.dt_max / s.cfl_flow;
-    if (health.v_max > 0) dt = std::min(dt, s.spacing / health.v_max);
-    // Half the acoustic rule's factor on the acceleration: g dt²/dx = (cfl_flow/2)² = 0.04 at the
-    // default. At cfl_flow² = 0.16 a column 16 particles deep compressed faster than the density
-    // solve's Jacobi iterations caught up, and the run blew up in 6 steps.
-    if (health.a_max > 0) dt = std::min(dt, 0.5 * std::sqrt(s.spacing / health.a_max));
-    dt *= s.cfl_flow;
-    const double nu = s.alpha_visc * s.c0 * s.h / 10.0;
-    if (nu > 0) dt = std::min(dt, 0.125 * s.h * s.h / nu);
-  } else {
-    dt = s.h / (s.c0 + health.v_max);
-    if (health.a_max > 0) dt = std::min(dt, std::sqrt(s.h / health.a_max));
-    dt *= s.cfl;
-  }
-  return std::min(dt, s.dt_max);
-}
-
 void SphSolver::restore_clock(double time, double dt, std::uint64_t steps) {
   time_ = time;
   dt_ = dt;
   steps_ = steps;
   rates_ready_ = true;  // the restored accelerations belong to the restored state
   hash_stale_ = true;   // but the cell tables must be rebuilt before the next continuity pass
-}
-
-std::vector<float> SphSolver::pressure() {
-  if (dfsph_) return dfsph_->pressure(store_);
-  std::vector<float> p = store_.read_field(kRho);
-  for (float& v : p) {
-    const double r = v / settings_.rho0;
-    const double tait = settings_.tait_b() * (std::pow(r, 7.0) - 1.0);
-    v = static_cast<float>(settings_.clamp_negative_pressure ? std::max(0.0, tait) : tait);
-  }
-  return p;
 }
 
 SphCounters SphSolver::counters() {

@@ -5,21 +5,13 @@
 
 #include "runnel/compute/context.hpp"
 #include "runnel/core/heightmap.hpp"
-#include "runnel/sph/dfsph.hpp"
 #include "runnel/sph/particle_store.hpp"
+#include "runnel/sph/pressure/pressure_solver.hpp"
 #include "runnel/sph/spatial_hash.hpp"
 #include "runnel/sph/sph_settings.hpp"
 #include "runnel/terrain/device_terrain.hpp"
 
 namespace runnel {
-
-// Health of the particle state after a step, from the step_stats kernel.
-struct SphHealth {
-  double v_max = 0, a_max = 0;      // m/s, m/s²
-  double rho_min = 0, rho_max = 0;  // kg/m³
-  double drho_max = 0;              // kg/m³/s
-  long long nonfinite = 0;          // particles with NaN or inf
-};
 
 // Events counted on the device (64-bit integer atomics: the counts do not depend on order).
 // The order is the one of cl/counters.cl.
@@ -45,12 +37,10 @@ void bind_continuity_inputs(ParticleStore& store, Kernel& k);
 // of ρ (free until the continuity pass writes ρ(n+1) there), and sets it as the drift's friction.
 void launch_bed_friction_factors(ParticleStore& store, Kernel& factors, Kernel& drift);
 
-// The next time step after a step that left the particles in `health` (docs/sph.md).
-double next_dt(const SphSettings& settings, const SphHealth& health);
-
-// The SPH solver (physics.md §2) on a terrain floor with an adaptive time step: weakly compressible
-// with kick-drift-kick leapfrog (host code of cl/sph_continuity.cl, cl/sph_forces.cl and
-// cl/integrate.cl, with cl/collide.cl), or incompressible, DFSPH (Dfsph; docs/sph.md).
+// The SPH solver (physics.md §2) on a terrain floor with an adaptive time step: the pipeline every
+// pressure solver shares (host code of cl/integrate.cl with cl/collide.cl, and of
+// cl/water_depth.cl), with the pressure solver sph.solver names (PressureSolver, registered in
+// pressure/registry.cpp: wcsph, weakly compressible; dfsph, incompressible; docs/sph.md).
 class SphSolver {
  public:
   // `top` is the highest y the fluid is expected to reach (m): the hash grid spans the terrain's
@@ -105,31 +95,26 @@ class SphSolver {
   SphCounters counters();
   void restore_counters(const SphCounters& counters);
   cl::Buffer& counters_buffer() { return counters_buffer_; }
-  // The incompressible solver (nullptr with wcsph).
-  const Dfsph* dfsph() const { return dfsph_.get(); }
-  // Which solver ran, and with dfsph its solves' counts: what a run's report records.
-  JsonObject solver_json() const {
-    return dfsph_ ? dfsph_->json() : JsonObject().add("solver", "wcsph");
-  }
-  // Device memory a particle of capacity takes: the store's fields, and with dfsph its pair lists.
+  const PressureSolver& pressure_solver() const { return *pressure_; }
+  // Which solver ran, and its solves' counts where it has solves: what a run's report records.
+  JsonObject solver_json() const { return pressure_->json(); }
+  // Device memory a particle of capacity takes: the store's fields and the pressure solver's.
   std::size_t bytes_per_particle() const {
-    return ParticleStore::bytes_per_particle() + (dfsph_ ? Dfsph::bytes_per_particle() : 0);
+    return ParticleStore::bytes_per_particle() + pressure_->bytes_per_particle();
   }
-  // Each particle's pressure (Pa): wcsph's Tait equation of its density, dfsph's solves.
-  std::vector<float> pressure();
+  // Each particle's pressure (Pa), as the pressure solver found it.
+  std::vector<float> pressure() { return pressure_->pressure(store_); }
 
  private:
   void drift_and_collide();
   void measure_water_depth();
   void coarsen_water(int levels);
+  SphPipeline pipeline() { return {store_, hash_, terrain_}; }
   void build_hash();  // the two halves below at once
   // The hash build in two halves (SpatialHash::begin_build): work that does not need the live
   // count or the tiles goes between them, while the device reads them for the host.
   void sort_particles();
   void drop_dead_particles();
-  void bind_domain(Kernel& k);
-  void integrate_density();
-  void compute_forces();
   // The step statistics (and, with closing_kick, v += a·dt/2 before them) and the next dt.
   void choose_next_dt(bool closing_kick = false);
 
@@ -138,13 +123,11 @@ class SphSolver {
   DeviceTerrain terrain_;
   ParticleStore store_;
   SpatialHash hash_;
-  // The neighbour passes come in pairs: tiled, and direct for the lone tiles (SpatialHash).
-  Kernel forces_inputs_, forces_, forces_direct_, continuity_, continuity_direct_, drift_,
-      friction_factors_, stats_, project_, depth_scatter_, depth_scatter_runs_, depth_gather_,
-      depth_coarsen_;
+  std::unique_ptr<PressureSolver> pressure_;
+  Kernel drift_, friction_factors_, stats_, project_, depth_scatter_, depth_scatter_runs_,
+      depth_gather_, depth_coarsen_;
   // Water on each terrain vertex, counts of 1 µm of depth, then its coarser levels for the films
   // (cl/water_depth.cl).
-  std::unique_ptr<Dfsph> dfsph_;  // sph.solver = "dfsph"
   cl::Buffer water_;
   cl::Buffer stats_buffer_, counters_buffer_;
   cl_uint stat_blocks_;           // step_stats' rows at most (a CPU: a few, a GPU: many)

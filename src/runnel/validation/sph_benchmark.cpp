@@ -116,7 +116,7 @@ JsonObject benchmark_sph(ComputeContext& compute, long long particles, int steps
       .add("kernel_seconds_total", kernel_total)
       .add("device_idle_seconds", profiler.idle_seconds())
       .add("kernel_seconds", kernels);
-  if (solver.dfsph()) out.add("dfsph", solver.dfsph()->json());
+  out.add("pressure_solver", solver.solver_json());
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include "runnel/compute/kernel.hpp"
 #include "runnel/io/json.hpp"
 #include "runnel/sph/particle_store.hpp"
+#include "runnel/sph/pressure/pressure_solver.hpp"
 #include "runnel/sph/spatial_hash.hpp"
 #include "runnel/sph/sph_settings.hpp"
 #include "runnel/terrain/device_terrain.hpp"
@@ -25,12 +26,43 @@ struct DfsphStats {
   SolveStats density, divergence;
 };
 
-// Host code of cl/dfsph_density.cl and cl/dfsph_solve.cl: the incompressible solver's passes over
-// the particles of a built hash. The step that orders them is SphSolver's (docs/sph.md).
-class Dfsph {
+// The incompressible solver, DFSPH (docs/sph.md): host code of cl/dfsph_density.cl and
+// cl/dfsph_solve.cl, its passes over the particles of a built hash. Its step:
+//   before the drift   the constant-density solve: the pressure impulse dt·a(κ) added to v keeps
+//                      the density at ρ0 when the particles move at v + a·dt/2 + dt·a(κ);
+//   after the drift    x(n+1) becomes the state (ρ is measured after the sort, by summation);
+//   complete           ρ(n+1), the factors and the neighbour lists; a(n+1) (viscosity, gravity);
+//                      v(n+1) = v(n+½) + a(n+1)·dt/2; the divergence-free solve on v(n+1).
+class Dfsph final : public PressureSolver {
  public:
   Dfsph(ComputeContext& compute, cl::Program& program, const SphSettings& settings);
 
+  void measure_rates(SphPipeline& p) override;
+  void rehashed(SphPipeline& p) override;
+  void before_drift(SphPipeline& p, double dt) override;
+  void after_drift(SphPipeline& p, double dt) override;
+  void complete(SphPipeline& p, double dt) override;
+  bool closing_kick_in_stats() const override { return false; }
+  // dt = cfl_flow · min(dx/|v|max, ½ sqrt(dx/|a|max)) with the non-pressure accelerations, and the
+  // explicit viscosity's diffusion limit 0.125 h²/ν, ν = α c0 h / 10.
+  double next_dt(const SphHealth& health) const override;
+  double first_dt() const override { return settings_.dt_max; }
+  bool density_floor_checked() const override { return false; }
+  // Each particle's pressure (Pa) in the last step: ρ0 (κ + κ_v) of its two solves.
+  std::vector<float> pressure(ParticleStore& store) const override;
+  // The stats as JSON: solves, mean iterations, capped solves, last errors.
+  JsonObject json() const override;
+  // Its listed pairs (a neighbour's index and the pair's kernel gradient, one float4 each) and the
+  // terrain's gradient under each particle; the bytes those buffers hold now (0 before the first
+  // density pass).
+  std::size_t bytes_per_particle() const override { return kBytesPerParticle; }
+  std::size_t allocated_bytes() const override;
+  // The solves' kept pressures: their warm start.
+  std::vector<ParticleField> kept_fields() const override { return {kKappa, kKappaV}; }
+
+  const DfsphStats& stats() const { return stats_; }
+
+ private:
   // ρ (summation), the solver's factor and θ at the hashed positions (into the store's spares:
   // valid until the next sort).
   void measure_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain);
@@ -39,32 +71,13 @@ class Dfsph {
                                   DeviceTerrain& terrain);
   // v += a·dt/2: a step's closing half kick (the drift's kernel gives the opening one).
   void half_kick(ParticleStore& store, double dt);
-  // The constant-density solve before the drift over dt: the pressure impulse dt·a(κ) added to v
-  // keeps the density at ρ0 when the particles move at v + a·dt/2 + dt·a(κ).
-  void solve_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
-                     double dt);
-  // The divergence-free solve on v after the drift over dt and measure_density().
-  void solve_divergence(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
-                        double dt);
 
-  const DfsphStats& stats() const { return stats_; }
-  // Device memory a particle of capacity takes beyond the store's: its listed pairs (a neighbour's
-  // index and the pair's kernel gradient, one float4 each) and the terrain's gradient under it.
-  static constexpr std::size_t bytes_per_particle() {
-    return kSlots * sizeof(cl_float4) + 3 * sizeof(cl_float);
-  }
-  // The bytes those buffers hold now (0 before the first density pass).
-  std::size_t allocated_bytes() const;
-  // Each particle's pressure (Pa) in the last step: ρ0 (κ + κ_v) of its two solves.
-  std::vector<float> pressure(ParticleStore& store) const;
-  // The stats as JSON: solves, mean iterations, capped solves, last errors.
-  JsonObject json() const;
-
- private:
   // Work-items a group of dfsph_density_change, which sums its errors in local memory
   // (cl/dfsph_solve.cl's DFSPH_GROUP).
   static constexpr std::size_t kGroup = 64;
   static constexpr std::size_t kSlots = 96;  // DFSPH_SLOTS of cl/dfsph_density.cl
+  static constexpr std::size_t kBytesPerParticle =
+      kSlots * sizeof(cl_float4) + 3 * sizeof(cl_float);
   struct SolveResult {
     int iterations;
     bool capped;

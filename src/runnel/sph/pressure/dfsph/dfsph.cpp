@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-#include "runnel/sph/dfsph.hpp"
+#include "runnel/sph/pressure/dfsph/dfsph.hpp"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <tuple>
@@ -78,14 +79,44 @@ void Dfsph::launch_half_kick(ParticleStore& store, double dt, std::array<cl::Buf
   half_kick_.set("half_dt", static_cast<float>(0.5 * dt)).launch(round_up_work(store.size()));
 }
 
-void Dfsph::solve_density(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
-                          double dt) {
-  solve_and_record(store, hash, terrain, dt, /*divergence=*/false);
+void Dfsph::measure_rates(SphPipeline& p) {
+  measure_density(p.store, p.hash, p.terrain);
+  non_pressure_accelerations(p.store, p.hash, p.terrain);
 }
 
-void Dfsph::solve_divergence(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
-                             double dt) {
-  solve_and_record(store, hash, terrain, dt, /*divergence=*/true);
+void Dfsph::rehashed(SphPipeline& p) {
+  measure_density(p.store, p.hash, p.terrain);  // the factors and the neighbour lists
+}
+
+// The non-pressure forces are leapfrogged around the pressure impulse, so a drop's flight and
+// bounce are the weakly compressible solver's.
+void Dfsph::before_drift(SphPipeline& p, double dt) {
+  solve_and_record(p.store, p.hash, p.terrain, dt, /*divergence=*/false);
+}
+
+void Dfsph::after_drift(SphPipeline& p, double) {
+  p.store.swap_scratch({kX, kY, kZ});  // x(n+1); ρ(n+1) is measured after the sort
+}
+
+void Dfsph::complete(SphPipeline& p, double dt) {
+  measure_density(p.store, p.hash, p.terrain);             // ρ(n+1), the solver's factors
+  non_pressure_accelerations(p.store, p.hash, p.terrain);  // a(n+1): viscosity, gravity
+  half_kick(p.store, dt);                                  // v(n+1) = v(n+½) + a(n+1)·dt/2
+  solve_and_record(p.store, p.hash, p.terrain, dt, /*divergence=*/true);  // divergence-free
+}
+
+double Dfsph::next_dt(const SphHealth& health) const {
+  const SphSettings& s = settings_;
+  double dt = s.dt_max / s.cfl_flow;
+  if (health.v_max > 0) dt = std::min(dt, s.spacing / health.v_max);
+  // Half the acoustic rule's factor on the acceleration: g dt²/dx = (cfl_flow/2)² = 0.04 at the
+  // default. At cfl_flow² = 0.16 a column 16 particles deep compressed faster than the density
+  // solve's Jacobi iterations caught up, and the run blew up in 6 steps.
+  if (health.a_max > 0) dt = std::min(dt, 0.5 * std::sqrt(s.spacing / health.a_max));
+  dt *= s.cfl_flow;
+  const double nu = s.alpha_visc * s.c0 * s.h / 10.0;
+  if (nu > 0) dt = std::min(dt, 0.125 * s.h * s.h / nu);
+  return dt;
 }
 
 void Dfsph::solve_and_record(ParticleStore& store, const SpatialHash& hash, DeviceTerrain& terrain,
