@@ -114,4 +114,19 @@ HeightRange parse_range(const std::string& text, const std::string& flag) {
   return r;
 }
 
+void refuse_unclear_values(CLI::App& app) {
+  const CLI::Validator not_empty(
+      [](std::string& value) { return value.empty() ? std::string("empty value") : std::string(); },
+      "TEXT", "not empty");
+  for (CLI::Option* option : app.get_options()) {
+    if (option->get_expected_max() == 0) {
+      option->disable_flag_override();
+    } else {
+      option->check(not_empty);
+    }
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    refuse_unclear_values(*sub);
+}
+
 }  // namespace runnel::cli

@@ -59,6 +59,7 @@ void add_bench_command(CLI::App& app) {
     if (opt->steps < 1 || opt->steps > 1000000) throw input_error("--steps: must be in 1..1e6");
     if (opt->tile < 0 || opt->tile > 256) throw input_error("--tile: must be in 0..256");
     Parameters params = default_parameters();
+    if (opt->which == "sph") require_override_groups(opt->sets, {"sph"}, "bench sph");
     apply_overrides(params, opt->sets);
     ComputeContext compute(opt->device);
     if (!opt->trace.empty()) {

@@ -85,7 +85,16 @@ void validate(const ValidateFlags& opt, const CLI::App& cmd) {
                       ")");
   if (cmd.count("--settle") && !(opt.settle > 0 && opt.settle <= 1e4))
     throw input_error("--settle: must be more than 0 and at most 10000 s");
+  if (cmd.count("--settle") && opt.which != "hydrostatic" && opt.which != "erosion-convergence" &&
+      opt.which != "overland")
+    throw input_error(
+        "--settle: only hydrostatic and erosion-convergence settle or rain for a time");
   v.settle_time = opt.settle;
+  // The SPH tank cases build their own tank: only the fluid's parameters reach them.
+  if (opt.which == "hydrostatic" || opt.which == "dambreak" || opt.which == "droplet")
+    require_override_groups(opt.sets, {"sph"}, "validate " + opt.which);
+  if (opt.which == "stream-power" && !opt.sets.empty())
+    throw input_error("--set: validate stream-power runs its own analytic cases and reads none");
   apply_overrides(v.params, opt.sets);
   if (cmd.count("--models") && opt.which != "mobile-bed" && opt.which != "overland")
     throw input_error("--models: only mobile-bed and overland run with a choice of models");

@@ -24,6 +24,9 @@ void add_resume_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 void add_export_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+// On every option of `app` and its subcommands: a value given empty (`--terrain ''`) is refused,
+// and a flag takes no value (`--overwrite=2` is refused, not read as true).
+void refuse_unclear_values(CLI::App& app);
 
 // Flags shared by `run` and `resume`: checkpoints and the heightmap series.
 struct OutputFlags {

@@ -49,6 +49,7 @@ int run(int argc, char** argv) {
   runnel::cli::add_params_command(app);
   runnel::cli::add_validate_command(app);
   runnel::cli::add_bench_command(app);
+  runnel::cli::refuse_unclear_values(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

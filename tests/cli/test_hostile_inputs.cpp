@@ -54,6 +54,35 @@ TEST(HostileInputs, BadFlagValuesAreRefusedNotIgnored) {
   EXPECT_EQ(r.err.find("1797"), std::string::npos) << r.err;
 }
 
+// A value the command would ignore is refused: an empty path or name, a flag given a value, an
+// option the case does not take, a parameter the case does not read.
+TEST(HostileInputs, ValuesACommandWouldIgnoreAreRefused) {
+  ScratchDir dir;
+  const std::string out = dir.path("a");
+  for (const char* flag : {"--terrain", "--generate", "--device", "--trace"})
+    expect_refused(run_cli({"run", flag, "", "--steps", "1", "--out", out}), {flag, "empty"},
+                   std::string(flag) + " ''");
+  expect_refused(run_cli({"export", dir.path("none.h5"), "--range", "", "-o", dir.path("x.png")}),
+                 {"--range", "empty"}, "export --range ''");
+  expect_refused(run_cli({"run", "--generate", "plane", "--overwrite=2", "--out", out}),
+                 {"overwrite"}, "--overwrite=2");
+  EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";
+  expect_refused(run_cli({"validate", "dambreak", "--set", "run.steps=5"}),
+                 {"run.steps", "validate dambreak", "sph.*"}, "validate dambreak --set run.*");
+  expect_refused(run_cli({"bench", "sph", "--set", "pipe.rain=1"}), {"pipe.rain", "bench sph"},
+                 "bench sph --set pipe.*");
+  expect_refused(run_cli({"validate", "mobile-bed", "--settle", "5", "--out", dir.path("mb")}),
+                 {"--settle"}, "validate mobile-bed --settle");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("mb"))) << "--out not created";
+  expect_refused(run_cli({"validate", "stream-power", "--set", "sph.cfl=0.1"}), {"--set"},
+                 "validate stream-power --set");
+  // What the cases do read is still taken.
+  EXPECT_EQ(run_cli({"run", "--generate", "plane", "--overwrite=true", "--steps", "1", "--quiet",
+                     "--out", out})
+                .exit_code,
+            0);
+}
+
 TEST(HostileInputs, NonFiniteAndAbsurdNumbersInTerrainFiles) {
   ScratchDir dir;
   const std::pair<const char*, std::string> files[] = {

@@ -11,6 +11,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/input_file.hpp"
 #include "runnel/core/layers.hpp"
+#include "runnel/core/text.hpp"
 
 namespace runnel {
 namespace {
@@ -118,6 +119,19 @@ void apply_overrides(Parameters& params, const std::vector<std::string>& assignm
     if (eq == std::string::npos || eq == 0)
       throw input_error("--set " + a + ": expected key=value");
     params.set_text(a.substr(0, eq), a.substr(eq + 1));
+  }
+}
+
+void require_override_groups(const std::vector<std::string>& assignments,
+                             const std::vector<std::string>& groups, const std::string& what) {
+  for (const std::string& a : assignments) {
+    const std::string key = a.substr(0, a.find('='));
+    const std::string group = key.substr(0, key.find('.'));
+    if (std::find(groups.begin(), groups.end(), group) != groups.end()) continue;
+    std::string read;
+    for (const std::string& g : groups) read += (read.empty() ? "" : ", ") + g + ".*";
+    throw input_error("--set " + quoted(key) + ": " + what + " does not read it (only " + read +
+                      ")");
   }
 }
 

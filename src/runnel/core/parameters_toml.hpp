@@ -14,6 +14,10 @@ void read_parameters_toml(Parameters& params, const std::string& text, const std
 
 // Applies `--set key=value` overrides in order.
 void apply_overrides(Parameters& params, const std::vector<std::string>& assignments);
+// Refuses an assignment whose key is outside `groups` (e.g. {"sph"}): `what` (a command) reads
+// nothing else, so the value would be ignored.
+void require_override_groups(const std::vector<std::string>& assignments,
+                             const std::vector<std::string>& groups, const std::string& what);
 
 // The parameter set as TOML text that read_parameters_toml reads back to the same values
 // (checkpoints store it).
