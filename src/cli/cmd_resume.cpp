@@ -4,18 +4,40 @@
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/parameters_toml.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/models/checkpoint.hpp"
+#include "runnel/models/parameter_table.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
 
 namespace runnel::cli {
+
+namespace {
+
+// The checkpoint's parameters with --set applied; the terrain (stored in the checkpoint) and the
+// model (whose state it holds) cannot change.
+std::string with_overrides(const std::string& stored, const std::vector<std::string>& sets) {
+  for (const std::string& a : sets) {
+    const std::string key = a.substr(0, a.find('='));
+    if (key.rfind("terrain.", 0) == 0 || key == "run.model")
+      throw input_error("--set " + runnel::quoted(key) +
+                        ": a resumed run keeps the checkpoint's terrain and model");
+  }
+  Parameters params = default_parameters();
+  read_parameters_toml(params, stored, "checkpoint parameters");
+  apply_overrides(params, sets);
+  return parameters_toml(params);
+}
+
+}  // namespace
 
 void add_resume_command(CLI::App& app) {
   struct Options {
     std::string file, out = "runnel-out", device;
     long long steps = 0;
     bool quiet = false;
+    std::vector<std::string> sets;
     OutputFlags output;
   };
   auto opt = std::make_shared<Options>();
@@ -31,10 +53,16 @@ void add_resume_command(CLI::App& app) {
                   "OpenCL device (see 'runnel devices'); the same device as the "
                   "original run for a bitwise-identical continuation");
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
+  cmd->add_option(
+      "--set", opt->sets,
+      "parameter key=value (repeatable) to go on with instead of the checkpoint's, e.g. "
+      "a smaller sph.dt_max after a run stopped as unstable (failed.h5); the terrain and "
+      "the model stay. With --set the continuation is no longer the uninterrupted run");
   add_output_flags(*cmd, opt->output);
   cmd->callback([opt] {
     check_run_outputs({{"checkpoint", opt->file}}, opt->out, "");
-    const CheckpointData data = read_checkpoint(opt->file);
+    CheckpointData data = read_checkpoint(opt->file);
+    if (!opt->sets.empty()) data.parameters_toml = with_overrides(data.parameters_toml, opt->sets);
     ComputeContext compute(opt->device);
     const std::unique_ptr<Model> model = make_model_from_checkpoint(compute, data, opt->file);
     RunOptions options = run_options_from(model->parameters(), model->info().clock);

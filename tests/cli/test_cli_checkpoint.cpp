@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "runnel/io/hdf5_file.hpp"
+#include "runnel/models/checkpoint.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 #include "test_support.hpp"
 
@@ -52,6 +53,51 @@ TEST(CliCheckpoint, RollingCheckpointsSeriesAndExactResume) {
             test::read_text(dir.path("resumed/final.npy")));
   const std::string metrics = test::read_text(dir.path("resumed/metrics.json"));
   EXPECT_NE(metrics.find("\"resumed_from_step\": 100"), std::string::npos);
+}
+
+// A run that stops as unstable keeps its work: its last good state (here the rolling checkpoint of
+// step 250, before the failing step) as failed.h5, its gauges' readings, and a metrics.json that
+// says where and why it stopped; resumed with a changed parameter, it goes on from there.
+TEST(CliCheckpoint, ARunStoppedAsUnstableKeepsItsLastGoodStateAndResumesWithOtherParameters) {
+  ScratchDir dir;
+  test::write_text(dir.path("s.toml"),
+                   "[terrain]\ngenerator = \"fbm\"\n[run]\nprobe_every = 0.5\n"
+                   "[[probes]]\nname = \"g\"\nx = 60\ny = 60\n");
+  // dfsph with a sane range it leaves after a few hundred steps of the storm.
+  const auto r = run_cli({"run", dir.path("s.toml"), "--sim-time", "20", "--set",
+                          "sph.solver=dfsph", "--set", "sph.density_max=1.001",
+                          "--checkpoint-every", "50", "--quiet", "--out", dir.path("o")});
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("unstable"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(dir.path("o/failed.h5")), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("o/final.h5")));
+  const std::string metrics = test::read_text(dir.path("o/metrics.json"));
+  EXPECT_NE(metrics.find("\"stopped\""), std::string::npos) << metrics;
+  EXPECT_NE(metrics.find("sph.density_min/max"), std::string::npos) << metrics;
+  const CheckpointData good = read_checkpoint(dir.path("o/failed.h5"));
+  ASSERT_GT(good.steps, 0u);
+  EXPECT_EQ(good.steps % 50, 0u);
+  EXPECT_NE(metrics.find("\"last_good_step\": " + std::to_string(good.steps)), std::string::npos)
+      << metrics;
+  // The gauge's readings up to the failure, one row per half second from 0.
+  const std::string probes = test::read_text(dir.path("o/probes.csv"));
+  EXPECT_GE(std::count(probes.begin(), probes.end(), '\n'), 1 + static_cast<long>(good.time / 0.5))
+      << probes;
+
+  // The same state goes on with a sane range: 20 more steps from the last good one.
+  const auto resumed = run_cli({"resume", dir.path("o/failed.h5"), "--steps", "20", "--set",
+                                "sph.density_max=1.5", "--quiet", "--out", dir.path("resumed")});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const CheckpointData after = read_checkpoint(dir.path("resumed/final.h5"));
+  EXPECT_EQ(after.steps, good.steps + 20);
+  EXPECT_NE(after.parameters_toml.find("density_max = 1.5"), std::string::npos);
+  // The terrain and the model are the checkpoint's: changing them is refused.
+  EXPECT_EQ(run_cli({"resume", dir.path("o/failed.h5"), "--steps", "1", "--set", "terrain.cell=3",
+                     "--out", dir.path("x")})
+                .exit_code,
+            2);
+  EXPECT_FALSE(std::filesystem::exists(dir.path("x")));
 }
 
 TEST(CliCheckpoint, AResumedRunExchangesOnTheUninterruptedRunsClock) {

@@ -50,6 +50,10 @@ void Progress::update(double fraction, const std::string& status, bool report_li
   }
 }
 
+void Progress::abandon() {
+  if (mode_ == Mode::kBar) std::fprintf(stderr, "\r%-100s\r", "");
+}
+
 void Progress::finish(const std::string& status) {
   if (mode_ == Mode::kQuiet) return;
   const double elapsed =

@@ -16,6 +16,8 @@ class Progress {
 
   // fraction in [0, 1]; `status` is the run's own summary (steps, particles, time, ...).
   void update(double fraction, const std::string& status, bool report_line);
+  // The run stopped with an error: the bar's line is cleared, so the error reads alone.
+  void abandon();
   void finish(const std::string& status);
 
  private:

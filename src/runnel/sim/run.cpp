@@ -117,13 +117,12 @@ class RollingCheckpoints {
       remove_stale_temporaries(dir_.string(), "step_");  // left by a writer that was killed
   }
 
-  void write(Model& model, const Hydrograph& hydrograph) {
+  void write(const CheckpointData& data) {
     namespace fs = std::filesystem;
     fs::create_directories(dir_);
     char name[64];
-    std::snprintf(name, sizeof name, "step_%08llu.h5",
-                  static_cast<unsigned long long>(model.steps()));
-    write_checkpoint((dir_ / name).string(), checkpoint_of_run(model, hydrograph));
+    std::snprintf(name, sizeof name, "step_%08llu.h5", static_cast<unsigned long long>(data.steps));
+    write_checkpoint((dir_ / name).string(), data);
     written_.push_back(dir_ / name);
     while (written_.size() > static_cast<std::size_t>(keep_)) {
       fs::remove(written_.front());
@@ -158,6 +157,22 @@ void announce(const ComputeContext& compute, Model& model, const HeightSteps& st
   }
 }
 
+// The last state the run knows to be good, kept on the host: a run that stops on a numerical
+// failure writes it as failed.h5, to be resumed (with other parameters) rather than started again.
+// Taken at the start, with every rolling checkpoint, and otherwise after the first step that ends
+// kGoodStateEvery seconds of wall time after the last one: a failure loses at most that much work,
+// for one copy of the state (a download) every so often.
+struct GoodState {
+  static constexpr double kGoodStateEvery = 30.0;  // s of wall time
+  CheckpointData data;
+  double taken_at = 0;  // s of wall time into the loop
+  bool due(double elapsed) const { return elapsed - taken_at >= kGoodStateEvery; }
+  void keep(CheckpointData d, double elapsed) {
+    data = std::move(d);
+    taken_at = elapsed;
+  }
+};
+
 // What the step loop measured.
 struct Stepped {
   std::vector<JsonObject> reports;  // the mass balance every options.report_every steps
@@ -168,10 +183,12 @@ struct Stepped {
 // The steps, with progress, mass-balance reports, rolling checkpoints and the series.
 Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions& options,
                         RollingCheckpoints& checkpoints, SeriesWriter& series,
-                        ProbeRecorder& probes, Hydrograph& hydrograph, Progress& progress) {
+                        ProbeRecorder& probes, Hydrograph& hydrograph, Progress& progress,
+                        GoodState& good) {
   Stepped r;
   if (probes.due(model.time())) read_gauges(model, probes);
   const auto start = std::chrono::steady_clock::now();
+  good.keep(checkpoint_of_run(model, hydrograph), 0.0);
   const std::uint64_t first_step = model.steps();
   const double first_time = model.time();
   // A run of a length in time ends on it: its last step is shortened to land there.
@@ -207,7 +224,11 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
     // The step's row before its checkpoint, which carries the recorder's place past it.
     if (hydrograph.due(model.time())) hydrograph.record(model.time(), *model.water_budget());
     if (options.checkpoint_every > 0 && model.steps() % options.checkpoint_every == 0) {
-      checkpoints.write(model, hydrograph);
+      CheckpointData data = checkpoint_of_run(model, hydrograph);
+      checkpoints.write(data);
+      good.keep(std::move(data), elapsed);
+    } else if (good.due(elapsed)) {
+      good.keep(checkpoint_of_run(model, hydrograph), elapsed);
     }
     series.after_step(model);
     if (probes.due(model.time())) read_gauges(model, probes);
@@ -311,6 +332,31 @@ JsonObject run_metrics(const ComputeContext& compute, Model& model, const RunSum
       .add("terrain_metrics", metrics::terrain_metrics_json(s.terrain_values, final_terrain));
 }
 
+// A run that stopped on a numerical failure: its last good state as failed.h5 (resumable with
+// other parameters: `runnel resume failed.h5 --set ...`) and a metrics.json that says where and
+// why it stopped. What the steps wrote so far (probes.csv, outflow.csv) the caller keeps.
+void keep_failed_run(const ComputeContext& compute, Model& model, const std::filesystem::path& out,
+                     const CheckpointData& good, const std::string& reason) {
+  write_checkpoint((out / "failed.h5").string(), good);
+  const JsonObject stopped = JsonObject()
+                                 .add("reason", reason)
+                                 .add("step", static_cast<long long>(model.steps()))
+                                 .add("sim_time", model.time())
+                                 .add("last_good_checkpoint", "failed.h5")
+                                 .add("last_good_step", static_cast<long long>(good.steps))
+                                 .add("last_good_sim_time", good.time);
+  const JsonObject metrics =
+      JsonObject()
+          .add("runnel_version", kVersion)
+          .add("source_revision", kRevision)
+          .add("device", compute.info().name)
+          .add("model", model.info().name)
+          .add("seed", static_cast<long long>(model.parameters().integer("run.seed")))
+          .add("stopped", stopped)
+          .add("parameters", parameters_json(model.parameters()));
+  write_text_atomically((out / "metrics.json").string(), metrics.str() + "\n");
+}
+
 }  // namespace
 
 RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& options) {
@@ -346,10 +392,33 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
                         model.time(), budget.value_or(WaterBudget{}));
   hydrograph.resume_from(options.resumed_counters);
   series.start(model);
-  const Stepped stepped =
-      step_until_done(compute, model, options, checkpoints, series, probes, hydrograph, progress);
-  if (probes.active()) write_text_atomically((out / "probes.csv").string(), probes.csv());
-  if (hydrograph.active()) write_text_atomically((out / "outflow.csv").string(), hydrograph.csv());
+  GoodState good;
+  auto write_readings = [&] {
+    if (probes.active()) write_text_atomically((out / "probes.csv").string(), probes.csv());
+    if (hydrograph.active())
+      write_text_atomically((out / "outflow.csv").string(), hydrograph.csv());
+  };
+  Stepped stepped;
+  try {
+    stepped = step_until_done(compute, model, options, checkpoints, series, probes, hydrograph,
+                              progress, good);
+  } catch (const Error& e) {
+    if (e.code() != ExitCode::kRuntime) throw;
+    progress.abandon();
+    std::string kept;
+    try {
+      write_readings();
+      keep_failed_run(compute, model, out, good.data, e.what());
+      kept = "; the last good state (step " + std::to_string(good.data.steps) +
+             ", t = " + format_number(good.data.time) + ") is in " + (out / "failed.h5").string() +
+             ", and metrics.json says where the run stopped";
+    } catch (const std::exception& k) {
+      kept = std::string("; its last good state could not be kept: ") + k.what();
+    }
+    throw runtime_error(std::string(e.what()) + kept);
+  }
+  good = GoodState{};  // before the final checkpoint: one copy of the state at a time
+  write_readings();
   const JsonObject kernels = kernel_report(compute);
 
   write_checkpoint((out / "final.h5").string(), checkpoint_of_run(model, hydrograph));
