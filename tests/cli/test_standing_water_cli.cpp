@@ -3,8 +3,12 @@
 // gauge refused with its key named, exit 2, before anything runs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <limits>
 #include <sstream>
 
+#include "runnel/terrain/terrain_io.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -89,6 +93,90 @@ TEST(StandingWaterCli, BadBodiesAndGaugesAreRefusedWithTheirKeys) {
       {"run", dir.path("s.toml"), "--set", "water.bodies=1", "--out", dir.path("o"), "--quiet"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("[[water.bodies]]"), std::string::npos) << r.err;
+}
+
+// A water.depth raster is refused in one line, nothing written, when a value is no depth (NaN is
+// named as a depth), when its shape differs from the terrain's (resampling would stretch it), or
+// when it is georeferenced in the terrain's CRS but lies elsewhere; one of the terrain's shape at
+// another resolution is resampled with a warning.
+TEST(StandingWaterCli, AWaterDepthRasterOfAnotherShapePlaceOrValueIsRefusedInOneLine) {
+  test::ScratchDir dir;
+  Heightmap terrain(33, 33, 10.0, 5.0f);
+  write_terrain(dir.path("t.asc"), terrain);
+  auto depth = [&](const std::string& name, int nx, int ny, float value) {
+    Heightmap d(nx, ny, 10.0, 0.1f);
+    d.at(2, 2) = value;
+    write_terrain(dir.path(name), d);
+  };
+  depth("ok.npy", 17, 17, 0.1f);
+  depth("depth.asc", 33, 33, 0.1f);
+  depth("wide.npy", 33, 17, 0.1f);
+  depth("negative.npy", 17, 17, -1.0f);
+  {  // NaN: written by hand, as no runnel writer writes it
+    Heightmap d(33, 33, 10.0, 0.1f);
+    write_terrain(dir.path("nan.npy"), d);
+    std::string bytes = test::read_text(dir.path("nan.npy"));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    bytes.replace(bytes.size() - sizeof(float), sizeof(float),
+                  std::string(reinterpret_cast<const char*>(&nan), sizeof(float)));
+    test::write_text(dir.path("nan.npy"), bytes);
+  }
+  auto run = [&](const std::string& terrain_file, const std::string& depth_file) {
+    test::write_text(dir.path("s.toml"), "[terrain]\nfile = \"" + terrain_file +
+                                             "\"\n[water]\ndepth = \"" + depth_file + "\"\n");
+    std::filesystem::remove_all(dir.path("o"));
+    return test::run_cli({"run", dir.path("s.toml"), "--model", "pipe", "--steps", "1", "--quiet",
+                          "--out", dir.path("o")});
+  };
+  const std::pair<std::string, std::string> refused[] = {
+      {"nan.npy", "water.depth nan"},
+      {"wide.npy", "another shape"},
+      {"negative.npy", "water.depth holds -1"},
+  };
+  for (const auto& [file, named] : refused) {
+    const auto r = run(dir.path("t.asc"), dir.path(file));
+    EXPECT_EQ(r.exit_code, 2) << file << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << file << r.err;
+    EXPECT_NE(r.err.find(named), std::string::npos) << file << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("o"))) << file;
+  }
+  const auto ok = run(dir.path("t.asc"), dir.path("ok.npy"));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.err.find("resampled"), std::string::npos) << ok.err;
+
+  if (test::run_program("gdal_translate", {"--version"}).exit_code != 0)
+    GTEST_SKIP() << "gdal_translate not installed (scripts/setup.sh): the georeferenced case";
+  for (const auto& [name, west] :
+       {std::pair{"here.tif", "500000"}, std::pair{"far.tif", "505000"}}) {
+    const std::string east = std::to_string(std::stoi(west) + 330);
+    const auto g = test::run_program(
+        "gdal_translate",
+        {"-q", "-a_srs", "EPSG:32633", "-a_ullr", west, "4100330", east, "4100000",
+         dir.path(std::string(name) == "here.tif" ? "t.asc" : "depth.asc"), dir.path(name)});
+    ASSERT_EQ(g.exit_code, 0) << g.err;
+  }
+  const auto far = run(dir.path("here.tif"), dir.path("far.tif"));
+  EXPECT_EQ(far.exit_code, 2) << far.err;
+  EXPECT_NE(far.err.find("another place"), std::string::npos) << far.err;
+  EXPECT_NE(far.err.find("505000"), std::string::npos) << far.err;
+}
+
+// A scenario refused for a bad gauge leaves an existing output folder as it was, --overwrite or
+// not.
+TEST(StandingWaterCli, ARefusedScenarioLeavesTheFolderItWouldOverwrite) {
+  test::ScratchDir dir;
+  test::write_text(dir.path("s.toml"), kBasin);
+  ASSERT_EQ(test::run_cli({"run", dir.path("s.toml"), "--out", dir.path("o"), "--quiet"}).exit_code,
+            0);
+  const std::string before = test::read_text(dir.path("o/metrics.json"));
+  test::write_text(dir.path("bad.toml"),
+                   std::string(kBasin) + "[[probes]]\nname = \"g\"\nx = 1e9\ny = 4\n");
+  const auto r = test::run_cli(
+      {"run", dir.path("bad.toml"), "--overwrite", "--out", dir.path("o"), "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("(1e+09, 4) lies off the terrain"), std::string::npos) << r.err;
+  EXPECT_EQ(test::read_text(dir.path("o/metrics.json")), before);
+  EXPECT_TRUE(std::filesystem::exists(dir.path("o/final.h5")));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/ground/ground.hpp"
+#include "runnel/core/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,11 +36,9 @@ std::vector<T> host_copy(ComputeContext& compute, cl::Buffer& buffer, std::size_
 std::vector<float> erodibility_mask(const GroundSettings& g, int nx, int ny) {
   std::vector<float> mask(static_cast<std::size_t>(nx) * ny, 1.0f);
   if (!g.hardness_mask.empty()) {
-    mask = read_vertex_raster(g.hardness_mask, nx, ny, "ground.hardness_mask");
-    for (float v : mask)
-      if (!(v >= 0) || !std::isfinite(v))
-        throw input_error(g.hardness_mask + ": ground.hardness_mask holds " + std::to_string(v) +
-                          "; a hardness factor must be finite and ≥ 0");
+    mask = read_vertex_raster(g.hardness_mask, nx, ny, "ground.hardness_mask", [](float v) {
+      return v >= 0 ? "" : "a hardness factor must be finite and ≥ 0";
+    });
   }
   if (!g.frozen_mask.empty()) {
     const auto frozen = read_vertex_raster(g.frozen_mask, nx, ny, "ground.frozen_mask");
@@ -217,13 +216,11 @@ std::unique_ptr<Ground> make_ground(ComputeContext& compute, const Parameters& p
 std::vector<float> rain_weights(const Parameters& params, int nx, int ny) {
   const std::string& path = params.text("ground.rain_mask");
   if (path.empty()) return std::vector<float>(static_cast<std::size_t>(nx) * ny, 1.0f);
-  auto w = read_vertex_raster(path, nx, ny, "ground.rain_mask");
-  for (float v : w)
-    if (!(v >= 0.0f && v <= 1.0f))
-      throw input_error(
-          path + ": ground.rain_mask holds " + std::to_string(v) +
-          "; the rain mask is the fraction of the rain falling at each vertex, 0 to 1");
-  return w;
+  return read_vertex_raster(path, nx, ny, "ground.rain_mask", [](float v) {
+    return v >= 0.0f && v <= 1.0f
+               ? ""
+               : "the rain mask is the fraction of the rain falling at each vertex, 0 to 1";
+  });
 }
 
 cl::Buffer rain_weight_buffer(ComputeContext& compute, const Parameters& params,

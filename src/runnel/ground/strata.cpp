@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/ground/strata.hpp"
+#include "runnel/core/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -57,11 +58,9 @@ Strata build_strata(const Parameters& params, const Heightmap& initial,
     std::vector<float> raster;
     if (shape == LayerShape::kRaster) {
       const std::string file = layer_text(layer, "thickness_file");
-      raster = read_vertex_raster(file, s.nx, s.ny, "layer " + name + " thickness_file");
-      for (float t : raster)
-        if (!(t >= 0))
-          throw input_error(file + ": layer " + name + " thickness " + std::to_string(t) +
-                            " m; a thickness must be finite and ≥ 0");
+      raster =
+          read_vertex_raster(file, s.nx, s.ny, "layer " + name + " thickness_file",
+                             [](float t) { return t >= 0 ? "" : "a thickness must be ≥ 0 m"; });
     }
     const double thickness = layer_real(layer, "thickness");
     const double amplitude = layer_real(layer, "noise_amplitude");

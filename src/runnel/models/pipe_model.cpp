@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/pipe_model.hpp"
+#include "runnel/core/text.hpp"
 
 #include "runnel/ground/bedload.hpp"
 #include "runnel/ground/ground_settings.hpp"
@@ -304,7 +305,7 @@ void PipeModel::choose_next_dt() {
     v_max = std::max(v_max, static_cast<double>(stats[2 * b + 1]));
   }
   if (!std::isfinite(d_max) || !std::isfinite(v_max)) {
-    throw runtime_error("pipe model at t = " + std::to_string(time() + dt_) +
+    throw runtime_error("pipe model at t = " + format_number(time() + dt_) +
                         " s: water depth or velocity is not finite");
   }
   dt_ = std::min(settings_.dt_max, settings_.cfl * state_.terrain().cell() /

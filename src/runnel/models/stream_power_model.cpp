@@ -74,11 +74,9 @@ StreamPowerModel::StreamPowerModel(ComputeContext& compute, const Parameters& pa
   const double q = state_.terrain().quantum();
   std::vector<float> rate(static_cast<std::size_t>(nx) * ny, static_cast<float>(settings_.uplift));
   if (!settings_.uplift_file.empty()) {
-    rate = read_vertex_raster(settings_.uplift_file, nx, ny, "stream_power.uplift_file");
-    for (float u : rate)
-      if (!std::isfinite(u) || u < 0)
-        throw input_error(settings_.uplift_file + ": stream_power.uplift_file holds " +
-                          std::to_string(u) + "; an uplift rate must be finite and ≥ 0 mm/yr");
+    rate = read_vertex_raster(
+        settings_.uplift_file, nx, ny, "stream_power.uplift_file",
+        [](float u) { return u >= 0 ? "" : "an uplift rate must be finite and ≥ 0 mm/yr"; });
   }
   uplift_per_step_.assign(rate.size(), 0);
   uplift_rate_.assign(rate.size(), 0.0f);

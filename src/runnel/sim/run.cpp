@@ -369,6 +369,8 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
       model.parameters().real("run.outflow_every") > 0)
     throw input_error("run.outflow_edges: the " + model.info().name +
                       " model counts its outflow over all edges together");
+  // Every check of the scenario before the folder is touched (--overwrite empties it).
+  std::vector<Probe> gauges = probes_of(model.parameters(), model.initial_terrain());
   const OutputFolder folder(
       options.out_dir, run_identity(parameters_toml(model.parameters()), model.initial_terrain()),
       options.overwrite);
@@ -385,8 +387,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   // The series grows during the run as series.h5.partial and becomes series.h5 (with its XDMF
   // index) when the run ends: a killed or failed run leaves no partial file under the final name.
   SeriesWriter series(out, options.series_every, options.particles_every, model.initial_terrain());
-  ProbeRecorder probes(probes_of(model.parameters(), model.initial_terrain()),
-                       model.parameters().real("run.probe_every"));
+  ProbeRecorder probes(std::move(gauges), model.parameters().real("run.probe_every"));
   const double outflow_every = budget ? model.parameters().real("run.outflow_every") : 0.0;
   Hydrograph hydrograph(outflow_every, model.parameters().boolean("run.outflow_edges"),
                         model.time(), budget.value_or(WaterBudget{}));

@@ -195,8 +195,7 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
     const long long col = a.fortran ? k / ny : k % nx;
     terrain.h[static_cast<std::size_t>(row * nx + col)] = static_cast<float>(v);
   }
-  check_finite_heights(path, terrain);
-  return terrain;
+  return terrain;  // read_terrain checks the values, naming what they are
 }
 
 void write_npy(const std::string& path, const Heightmap& terrain) {

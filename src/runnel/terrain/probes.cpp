@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/terrain/probes.hpp"
+#include "runnel/core/text.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -63,10 +64,10 @@ std::vector<Probe> probes_of(const Parameters& params, const Heightmap& terrain)
     p.x = map.world_x(mx);
     p.z = map.world_z(my);
     if (p.x < 0 || p.x > width || p.z < 0 || p.z > depth)
-      throw input_error(where + ": (" + std::to_string(mx) + ", " + std::to_string(my) +
-                        ") lies off the terrain (map x " + std::to_string(map.x(0)) + " to " +
-                        std::to_string(map.x(width)) + ", y " + std::to_string(map.y(depth)) +
-                        " to " + std::to_string(map.y(0)) + ")");
+      throw input_error(where + ": (" + format_number(mx) + ", " + format_number(my) +
+                        ") lies off the terrain (map x " + format_number(map.x(0)) + " to " +
+                        format_number(map.x(width)) + ", y " + format_number(map.y(depth)) +
+                        " to " + format_number(map.y(0)) + ")");
     probes.push_back(p);
   }
   return probes;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/terrain/standing_water.hpp"
+#include "runnel/core/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -50,11 +51,11 @@ void fill_body(const EntryValues& body, std::size_t index, const Heightmap& terr
       cell = std::max(cell, static_cast<float>(d));
     }
   if (inside == 0)
-    throw input_error(where + ": the rectangle [" + std::to_string(x0) + ", " + std::to_string(x1) +
-                      "] x [" + std::to_string(y0) + ", " + std::to_string(y1) +
+    throw input_error(where + ": the rectangle [" + format_number(x0) + ", " + format_number(x1) +
+                      "] x [" + format_number(y0) + ", " + format_number(y1) +
                       "] holds no vertex of the terrain (map metres)");
   if (wet == 0)
-    throw input_error(where + ".level: " + std::to_string(level) +
+    throw input_error(where + ".level: " + format_number(level) +
                       " m is below every vertex inside the rectangle");
 }
 
@@ -77,11 +78,10 @@ std::vector<float> initial_water_depth(const Parameters& params, const Heightmap
   std::vector<float> depth(terrain.size(), 0.0f);
   const std::string& path = params.text("water.depth");
   if (!path.empty()) {
-    depth = read_vertex_raster(path, terrain.nx, terrain.ny, "water.depth");
-    for (float d : depth)
-      if (!(d >= 0.0f) || !std::isfinite(d))
-        throw input_error(path + ": water.depth holds " + std::to_string(d) +
-                          "; a depth is a finite number of metres, 0 or more");
+    depth = read_vertex_raster(
+        path, terrain.nx, terrain.ny, "water.depth",
+        [](float d) { return d >= 0.0f ? "" : "a depth is a finite number of metres, 0 or more"; },
+        &terrain);
   }
   const auto& bodies = params.entries("water.bodies");
   for (std::size_t b = 0; b < bodies.size(); ++b) fill_body(bodies[b], b, terrain, depth);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -47,7 +48,7 @@ Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
       break;
   }
   if (options.cell) terrain.cell = *options.cell;
-  check_terrain_values(path, terrain);
+  check_terrain_values(path, terrain, options.quantity, options.unit);
   return terrain;
 }
 
@@ -111,15 +112,16 @@ void check_origin(const std::string& path, double origin_x, double origin_z) {
     throw input_error(path + ": the grid's origin is not a finite coordinate within ±1e12 m");
 }
 
-void check_terrain_values(const std::string& path, const Heightmap& terrain) {
+void check_terrain_values(const std::string& path, const Heightmap& terrain,
+                          const std::string& quantity, const std::string& unit) {
   check_cell_size(path, terrain.cell);
   check_origin(path, terrain.origin_x, terrain.origin_z);
   for (int j = 0; j < terrain.ny; ++j) {
     for (int i = 0; i < terrain.nx; ++i) {
       if (!(std::fabs(terrain.at(i, j)) <= kMaxAbsHeight)) {
-        throw input_error(path + ": height " + format_number(terrain.at(i, j)) + " m at column " +
-                          std::to_string(i) + ", row " + std::to_string(j) +
-                          " is not a finite number within ±" + format_number(kMaxAbsHeight) + " m");
+        throw input_error(path + ": " + quantity + " " + format_number(terrain.at(i, j)) + unit +
+                          " at column " + std::to_string(i) + ", row " + std::to_string(j) +
+                          " is not a finite number within ±" + format_number(kMaxAbsHeight) + unit);
       }
     }
   }
@@ -199,16 +201,58 @@ long long fill_holes(Heightmap& terrain) {
   return filled;
 }
 
+namespace {
+
+// A georeferenced raster in the terrain's CRS must cover the terrain's extent, within a cell.
+void check_raster_place(const std::string& path, const std::string& what, const Heightmap& r,
+                        const Heightmap& terrain) {
+  if (r.georef.crs_wkt.empty() || r.georef.crs_wkt != terrain.georef.crs_wkt) return;
+  const double slack = std::max(r.cell, terrain.cell);
+  const double r_east = r.origin_x + r.nx * r.cell, r_north = r.origin_z + r.ny * r.cell;
+  const double t_east = terrain.origin_x + terrain.nx * terrain.cell;
+  const double t_north = terrain.origin_z + terrain.ny * terrain.cell;
+  if (std::fabs(r.origin_x - terrain.origin_x) <= slack && std::fabs(r_east - t_east) <= slack &&
+      std::fabs(r.origin_z - terrain.origin_z) <= slack && std::fabs(r_north - t_north) <= slack)
+    return;
+  auto extent = [](double w, double s, double e, double n) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "x %.10g to %.10g, y %.10g to %.10g", w, e, s, n);
+    return std::string(buf);
+  };
+  throw input_error(path + ": " + what + " covers " +
+                    extent(r.origin_x, r.origin_z, r_east, r_north) + " but the terrain " +
+                    extent(terrain.origin_x, terrain.origin_z, t_east, t_north) +
+                    " (same CRS): it belongs to another place");
+}
+
+}  // namespace
+
 std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
-                                      const std::string& what) {
-  const Heightmap r = read_terrain(path);
+                                      const std::string& what, const VertexValueCheck& check,
+                                      const Heightmap* terrain) {
+  ReadOptions options;
+  options.quantity = what;
+  options.unit = "";
+  const Heightmap r = read_terrain(path, options);
+  if (check)
+    for (float v : r.h)
+      if (const std::string why = check(v); !why.empty())
+        throw input_error(path + ": " + what + " holds " + format_number(v) + "; " + why);
+  if (terrain) check_raster_place(path, what, r, *terrain);
   if (r.nx == nx && r.ny == ny) return r.h;
+  // Corner vertices map onto corner vertices: the same extent, so the same shape.
+  const double aspect = double(std::max(r.nx - 1, 1)) / std::max(r.ny - 1, 1);
+  const double wanted = double(std::max(nx - 1, 1)) / std::max(ny - 1, 1);
+  if (std::fabs(aspect / wanted - 1.0) > 0.01)
+    throw input_error(path + ": " + what + " has " + std::to_string(r.nx) + " x " +
+                      std::to_string(r.ny) + " vertices, the terrain " + std::to_string(nx) +
+                      " x " + std::to_string(ny) +
+                      ": another shape, which resampling would stretch");
   std::cerr << "warning: " << what << " " << terminal_safe(path) << ": " << r.nx << " x " << r.ny
             << " vertices resampled bilinearly to the terrain's " << nx << " x " << ny << "\n";
   std::vector<float> out(static_cast<std::size_t>(nx) * ny);
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
-      // The rasters cover the same extent: corner vertices map onto corner vertices.
       const double x = nx > 1 ? i * double(r.nx - 1) / (nx - 1) : 0;
       const double z = ny > 1 ? j * double(r.ny - 1) / (ny - 1) : 0;
       const int i0 = std::min(static_cast<int>(x), std::max(r.nx - 2, 0));

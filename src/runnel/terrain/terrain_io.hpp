@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,8 @@ struct ReadOptions {
   std::optional<HeightRange> png_range;  // overrides the range stored in a runnel PNG
   std::optional<double> cell;            // overrides the cell size, a file's own included
   double cell_if_none = 1.0;  // the cell size of a file that carries none (NPY, a foreign PNG)
+  // What the values are, for the messages: a terrain's heights, or a vertex raster's quantity.
+  std::string quantity = "height", unit = " m";
 };
 
 struct WriteOptions {
@@ -40,7 +43,8 @@ enum class TerrainFormat { kAsc, kPng, kNpy, kGeoTiff, kGdal };
 inline constexpr double kMaxAbsHeight = 1e7;              // m
 inline constexpr double kMinCell = 1e-6, kMaxCell = 1e6;  // m
 inline constexpr double kMaxAbsOrigin = 1e12;             // m
-void check_terrain_values(const std::string& path, const Heightmap& terrain);
+void check_terrain_values(const std::string& path, const Heightmap& terrain,
+                          const std::string& quantity = "height", const std::string& unit = " m");
 // Its parts for a single value (a setter): the cell size, the origin.
 void check_cell_size(const std::string& path, double cell);
 void check_origin(const std::string& path, double origin_x, double origin_z);
@@ -52,11 +56,18 @@ TerrainFormat terrain_format_from_path(const std::string& path);
 
 // Readers validate everything and throw runnel::Error (exit code 2) naming the file and the reason.
 Heightmap read_terrain(const std::string& path, const ReadOptions& options = {});
-// A raster on a terrain's vertices (masks, layer thicknesses, graph inputs): read in any terrain
-// format; one of another size is resampled bilinearly (corner vertices onto corner vertices), with
-// a warning on stderr naming `what`.
+// Why a vertex raster's value is refused ("" when it is fine), e.g. "a depth is 0 or more".
+using VertexValueCheck = std::function<std::string(float)>;
+// A raster on a terrain's vertices (masks, layer thicknesses, depths, graph inputs): read in any
+// terrain format, every value checked by `check` (an input error naming `what`, the value and the
+// reason). One of another size is resampled bilinearly (corner vertices onto corner vertices), with
+// a warning on stderr naming `what`, printed once every check has passed; one of another shape
+// (its aspect more than 1 % from the terrain's: resampling would stretch it) is refused. Given
+// `terrain`, a raster georeferenced in the same CRS must cover the terrain's extent (within a
+// cell), or it is refused with both extents.
 std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
-                                      const std::string& what);
+                                      const std::string& what, const VertexValueCheck& check = {},
+                                      const Heightmap* terrain = nullptr);
 
 // Writers write atomically (temporary file, then rename).
 void write_terrain(const std::string& path, const Heightmap& terrain,
