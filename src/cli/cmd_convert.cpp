@@ -36,6 +36,7 @@ void add_convert_command(CLI::App& app) {
   cmd->callback([opt, cmd] {
     terrain_format_from_path(opt->output);  // fail on a bad output name before reading anything
     check_output_paths({{"input terrain", opt->input}}, {{"output terrain", opt->output}});
+    require_output_folders({{"output terrain", opt->output}});
     const bool png = terrain_format_from_path(opt->input) == TerrainFormat::kPng ||
                      terrain_format_from_path(opt->output) == TerrainFormat::kPng;
     if (!opt->range.empty() && !png)

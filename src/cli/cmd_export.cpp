@@ -131,6 +131,7 @@ void add_export_command(CLI::App& app) {
       throw input_error("--range: only a png export has a height range (--format " + opt->format +
                         ")");
     check_output_paths({{"checkpoint", opt->file}}, {{"-o", opt->output}});
+    require_output_folders({{"-o", opt->output}});
     if (opt->format == "netcdf") {
       if (std::filesystem::path(opt->output).extension() != ".nc")
         throw input_error("-o " + opt->output + ": a NetCDF file is named .nc");

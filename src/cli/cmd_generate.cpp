@@ -114,6 +114,7 @@ void generate(const GenerateOptions& opt, const CLI::App& cmd) {
   std::vector<NamedPath> inputs = scenario_inputs(params, opt.scenario);
   inputs.push_back({"--graph", opt.graph});
   check_output_paths(inputs, {{"-o", opt.output}, {"--picture", opt.picture}});
+  require_output_folders({{"-o", opt.output}, {"--picture", opt.picture}});
   if (!params.layers().empty()) {
     // The strata on the terrain as the run sees it: heights rounded to the quantum.
     const double q = params.real("erosion.height_quantum");

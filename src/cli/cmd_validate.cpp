@@ -214,7 +214,18 @@ void add_validate_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--device", opt->device, "OpenCL device (see 'runnel devices')");
-  cmd->callback([opt, cmd] { validate(*opt, *cmd); });
+  cmd->callback([opt, cmd] {
+    // A case refused once under way (a spacing its hash cannot hold) leaves no --out behind that
+    // it created.
+    std::error_code ec;
+    const bool out_is_new = !opt->out.empty() && !std::filesystem::exists(opt->out, ec);
+    try {
+      validate(*opt, *cmd);
+    } catch (const Error& e) {
+      if (out_is_new && e.code() == ExitCode::kUsage) std::filesystem::remove_all(opt->out, ec);
+      throw;
+    }
+  });
 }
 
 }  // namespace runnel::cli

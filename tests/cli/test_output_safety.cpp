@@ -127,3 +127,32 @@ TEST(OutputSafety, AnOutputPathThatCannotBeWrittenIsExitTwoForEveryWriter) {
 
 }  // namespace
 }  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// A command refused for one of its outputs, or once its case is under way, writes none of them
+// and leaves no folder it created.
+TEST(OutputSafety, ARefusedCommandWritesNothing) {
+  test::ScratchDir dir;
+  const auto g = test::run_cli({"generate", "fbm", "--size", "9", "--cell", "1", "-o",
+                                dir.path("t.asc"), "--picture", dir.path("nodir/p.png")});
+  EXPECT_EQ(g.exit_code, 2) << g.err;
+  EXPECT_NE(g.err.find("nodir"), std::string::npos) << g.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("t.asc"))) << "the terrain was written first";
+  const auto v =
+      test::run_cli({"validate", "hydrostatic", "--resolution", "2000", "--out", dir.path("v")});
+  EXPECT_EQ(v.exit_code, 2) << v.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("v"))) << "--out was left behind";
+  // An --out that was there before stays.
+  std::filesystem::create_directories(dir.path("mine"));
+  test::write_text(dir.path("mine/notes.txt"), "kept");
+  EXPECT_EQ(
+      test::run_cli({"validate", "hydrostatic", "--resolution", "2000", "--out", dir.path("mine")})
+          .exit_code,
+      2);
+  EXPECT_EQ(test::read_text(dir.path("mine/notes.txt")), "kept");
+}
+
+}  // namespace
+}  // namespace runnel

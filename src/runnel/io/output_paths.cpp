@@ -56,4 +56,17 @@ void check_output_paths(const std::vector<NamedPath>& inputs,
   }
 }
 
+void require_output_folders(const std::vector<NamedPath>& outputs) {
+  namespace fs = std::filesystem;
+  for (const NamedPath& out : outputs) {
+    if (out.path.empty()) continue;
+    const fs::path target(out.path);
+    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+      throw input_error(out.what + " " + out.path + ": the folder '" + dir.string() +
+                        "' does not exist");
+  }
+}
+
 }  // namespace runnel

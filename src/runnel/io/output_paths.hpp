@@ -18,6 +18,10 @@ struct NamedPath {
 void check_output_paths(const std::vector<NamedPath>& inputs,
                         const std::vector<NamedPath>& outputs);
 
+// Each output file's folder exists (it is not created): checked before anything is written, so a
+// command with several outputs never writes one and then refuses the next.
+void require_output_folders(const std::vector<NamedPath>& outputs);
+
 // The same refusal for one target, where it is about to be replaced (the writers' last guard).
 void refuse_special_output(const std::string& path);
 
