@@ -390,3 +390,28 @@ TEST(ResourceLimits, EveryMessageIsOneLineWithoutTerminalControls) {
 
 }  // namespace
 }  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// Under an address-space limit (`ulimit -v`, as batch systems set it) a model too large for what
+// the limit leaves is refused with the sizes, before PoCL aborts inside an allocation. (Not under
+// AddressSanitizer, which needs the whole address space for its shadow memory.)
+TEST(ResourceLimits, AnAddressSpaceLimitIsHonouredBeforeAllocating) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer cannot run under ulimit -v";
+#else
+  test::ScratchDir dir;
+  const auto r =
+      test::run_cli({"run", "--generate", "plane", "--set", "terrain.size=4097", "--model",
+                     "thermal", "--steps", "1", "--quiet", "--out", dir.path("o")},
+                    "ulimit -v 1048576;");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("ulimit -v"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("needs about"), std::string::npos) << r.err;
+#endif
+}
+
+}  // namespace
+}  // namespace runnel

@@ -31,4 +31,14 @@ void require_memory(const ComputeContext& compute, const MemoryNeed& need, const
 // The host's available memory (MemAvailable of /proc/meminfo), bytes; 0 when unknown.
 double host_available_bytes();
 
+// The memory this process may still take, and what limits it: the least of the host's available
+// memory, what the address-space limit (RLIMIT_AS, `ulimit -v`, as batch systems set it) leaves
+// beyond the address space already mapped, and what the process's cgroup leaves (memory.max less
+// memory.current, cgroup v2). bytes 0: nothing known.
+struct MemoryRoom {
+  double bytes = 0;
+  std::string limited_by;  // "this machine", "the address-space limit (ulimit -v)", ...
+};
+MemoryRoom memory_room();
+
 }  // namespace runnel
