@@ -14,8 +14,15 @@
 
 namespace {
 
+// The message on one line, bounded: whatever text of a file or a flag it echoes, a line of at most
+// kMostMessageBytes (a megabyte-long name in a scenario gives a line, not a megabyte).
+constexpr std::size_t kMostMessageBytes = 2000;
 int fail(const std::string& message, runnel::ExitCode code) {
-  std::cerr << "runnel: " << runnel::terminal_safe(message) << "\n";
+  std::string line = runnel::terminal_safe(message);
+  if (line.size() > kMostMessageBytes)
+    line = line.substr(0, kMostMessageBytes) + "... (" +
+           std::to_string(line.size() - kMostMessageBytes) + " more bytes)";
+  std::cerr << "runnel: " << line << "\n";
   return static_cast<int>(code);
 }
 

@@ -83,6 +83,23 @@ TEST(HostileInputs, ValuesACommandWouldIgnoreAreRefused) {
             0);
 }
 
+// Echoed text is cut: a name a megabyte long gives a line of at most a few kilobytes.
+TEST(HostileInputs, EchoedTextIsBounded) {
+  ScratchDir dir;
+  const std::string name(1 << 20, 'g');
+  test::write_text(dir.path("s.toml"), "[terrain]\ngenerator = \"plane\"\n[[probes]]\nname = \"" +
+                                           name + "\"\nx = 1\ny = 1\n[[probes]]\nname = \"" + name +
+                                           "\"\nx = 2\ny = 2\n");
+  const auto probes = run_cli({"run", dir.path("s.toml"), "--steps", "1", "--out", dir.path("o")});
+  expect_refused(probes, {"probes[2].name", "already defined"}, "a 1 MB probe name");
+  EXPECT_LT(probes.err.size(), 2500u);
+  // (An argument may hold 128 KiB at most.)
+  const auto path = run_cli(
+      {"run", "--terrain", dir.path(std::string(100000, 'p') + ".asc"), "--out", dir.path("o")});
+  expect_refused(path, {"more bytes"}, "a 100 kB terrain path");
+  EXPECT_LT(path.err.size(), 2500u);
+}
+
 TEST(HostileInputs, NonFiniteAndAbsurdNumbersInTerrainFiles) {
   ScratchDir dir;
   const std::pair<const char*, std::string> files[] = {

@@ -56,10 +56,10 @@ std::vector<Probe> probes_of(const Parameters& params, const Heightmap& terrain)
     Probe p;
     p.name = std::get<std::string>(entries[k].at("name"));
     if (!plain_word(p.name))
-      throw input_error(where + ".name: '" + p.name +
-                        "' must be a non-empty word of letters, digits, _ and -");
+      throw input_error(where + ".name: " + quoted(p.name) +
+                        " must be a non-empty word of letters, digits, _ and -");
     if (!names.insert(p.name).second)
-      throw input_error(where + ".name: a probe named '" + p.name + "' is already defined");
+      throw input_error(where + ".name: a probe named " + quoted(p.name) + " is already defined");
     const double mx = entry_real(entries[k], "x"), my = entry_real(entries[k], "y");
     p.x = map.world_x(mx);
     p.z = map.world_z(my);
