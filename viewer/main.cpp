@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // runnel-viewer: watch the terrain erode and paint rain with the mouse.
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -25,6 +26,25 @@ constexpr const char* kAbout =
     "resets, Home frames the whole terrain again, S saves a checkpoint, P takes a screenshot, V "
     "records, H helps, Esc quits.";
 
+// A finite number from `min` to `max` (CLI::Range lets NaN through, and prints its bounds with
+// all of DBL_MAX's digits).
+CLI::Validator number_in(double min, double max) {
+  const std::string rule =
+      "must be a number from " + runnel::format_number(min) + " to " + runnel::format_number(max);
+  return CLI::Validator(
+      [min, max, rule](std::string& text) -> std::string {
+        double v = 0;
+        const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || p != text.data() + text.size() || !(v >= min && v <= max))
+          return rule + " (got " + text + ")";
+        return "";
+      },
+      "");
+}
+
+// At most a billion frames (six months at 60 frames a second): a count that ends.
+constexpr double kMostFrames = 1e9;
+
 // Every flag, with its help and its check.
 void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::string& size,
                      bool& no_rain, std::string& overlay) {
@@ -33,7 +53,7 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
                  "(with --replay: the log's)");
   app.add_option("--model", o.model, "start with this model instead of the scenario's run.model");
   app.add_option("--frames", o.frames, "run this many frames, then exit")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0, kMostFrames));
   app.add_option("--screenshot", o.screenshot, "save the scene at exit as PNG");
   app.add_flag(
       "--screenshot-panel", o.screenshot_panel,
@@ -41,10 +61,10 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
       "window's size");
   app.add_option("--screenshot-scale", o.screenshot_scale,
                  "screenshots (P, --screenshot) at N times the window size, for print")
-      ->check(CLI::Range(1, 8))
+      ->check(number_in(1, 8))
       ->capture_default_str();
   app.add_option("--stats-every", o.stats_every, "print a JSON line of statistics every K frames")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0, kMostFrames));
   app.add_flag("--bench", o.bench,
                "benchmark the painting loop: run --frames frames (default 60), simulating and "
                "drawing, and print one JSON line: frames per second, simulated seconds per wall "
@@ -57,7 +77,7 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
                  "the share of each frame's time the simulation gets, the rest drawing (each frame "
                  "simulates 25 ms to 250 ms): lower it for more frames per second on a slow GL, "
                  "raise it for more simulated time")
-      ->check(CLI::Range(0.1, 0.95))
+      ->check(number_in(0.1, 0.95))
       ->capture_default_str();
   app.add_flag("--headless", o.headless,
                "draw with no display or window, through EGL (a GPU server, a CI machine): for "
@@ -82,9 +102,9 @@ void declare_options(CLI::App& app, runnel::viewer::ViewerOptions& o, std::strin
   app.add_option("--record-interval", o.record_interval,
                  "model time between recorded frames (s, yr or iterations); default 0.1 s or 1 "
                  "iteration")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0, 1e9));
   app.add_option("--record-fps", o.record_fps, "frame rate of the recorded video")
-      ->check(CLI::Range(1.0, 240.0))
+      ->check(number_in(1.0, 240.0))
       ->capture_default_str();
   app.add_option("--device", o.device, "OpenCL device (see 'runnel devices')");
 }

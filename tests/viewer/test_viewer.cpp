@@ -119,12 +119,18 @@ TEST(Viewer, BadFlagsAreRefusedBeforeAWindowOpens) {
       {{"--screenshot-scale", "20"}, "--screenshot-scale"},
       {{"--headless"}, "--headless: give --frames N or --replay LOG"},
       {{"--sim-share", "1"}, "--sim-share"},
+      {{"--sim-share", "nan"}, "--sim-share: must be a number from 0.1 to 0.95 (got nan)"},
+      {{"--record-fps", "nan"}, "--record-fps"},
+      {{"--record-interval", "nan"}, "--record-interval"},
+      {{"--frames", "1e20"}, "--frames"},
+      {{"--frames", "2000000000"}, "--frames: must be a number from 0 to 1e+09"},
   };
   for (const auto& [args, expected] : cases) {
     const auto r = test::run_program(RUNNEL_VIEWER_BINARY, args, "DISPLAY=");
     EXPECT_EQ(r.exit_code, 2) << args.front() << ": " << r.err;
     EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_LT(r.err.size(), 200u) << "no bound printed with DBL_MAX's digits: " << r.err;
   }
 }
 
