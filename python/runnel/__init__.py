@@ -12,6 +12,8 @@ The C++ core does the work (runnel._runnel); this package is a thin layer. Error
 one-line messages: InputError (a ValueError) for bad input, RunnelRuntimeError (a RuntimeError) for
 a failure while running. docs/python.md has the whole API; runnel.bmi has the CSDMS BMI 2.0 class.
 """
+import numbers
+
 from ._runnel import (  # noqa: F401  (the public API)
     InputError,
     Model,
@@ -113,6 +115,9 @@ def compare(terrain, models, steps, params=None):
         {name: metrics}: the shared terrain metrics of docs/metrics.md, the mass balance, steps and
         model time.
     """
+    # A whole number of steps that ends: bool is an int, a float 1e3 is not a count.
+    if isinstance(steps, bool) or not isinstance(steps, numbers.Integral) or not 0 <= steps <= 10**12:
+        raise InputError(f"compare: steps must be a whole number from 0 to 1e12 (got {steps!r})")
     results = {}
     for name in models:
         model = Model(name, terrain, params or {})

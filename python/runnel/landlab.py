@@ -21,7 +21,8 @@ corner, half a cell south-west of that node. The functions here convert both way
 """
 import numpy as np
 
-from . import Model, Terrain
+from . import InputError, Model, Terrain
+from ._runnel import _terrain_with_holes
 
 _ELEVATION = "topographic__elevation"
 
@@ -41,11 +42,25 @@ def terrain_from_landlab(grid, field=_ELEVATION):
     Terrain
         Row 0 the grid's northern row; origin_x, origin_z the raster's lower-left corner.
     """
+    from landlab import RasterModelGrid
+
+    if not isinstance(grid, RasterModelGrid):
+        raise InputError(
+            f"grid: a {type(grid).__name__}; runnel's terrains are rasters (a RasterModelGrid)"
+        )
     dy, dx = (float(s) for s in grid.spacing)
     if dx != dy:
-        raise ValueError(f"grid: cells of {dx} x {dy} m; runnel's terrains have square cells")
+        raise InputError(f"grid: cells of {dx} x {dy} m; runnel's terrains have square cells")
     heights = np.flipud(np.asarray(grid.at_node[field], dtype=np.float64).reshape(grid.shape))
-    terrain = Terrain(heights.astype(np.float32), dx)
+    # Closed nodes (Landlab's NODATA, e.g. set_nodata_nodes_to_closed) are holes, filled from their
+    # neighbours and written back as NODATA, as runnel reads a raster's NODATA cells.
+    closed = np.flipud(
+        (np.asarray(grid.status_at_node) == grid.BC_NODE_IS_CLOSED).reshape(grid.shape)
+    )
+    if closed.any():
+        terrain = _terrain_with_holes(heights.astype(np.float32), dx, closed, -9999.0)
+    else:
+        terrain = Terrain(heights.astype(np.float32), dx)
     x0, y0 = (float(v) for v in grid.xy_of_lower_left)
     terrain.origin_x = x0 - 0.5 * dx
     terrain.origin_z = y0 - 0.5 * dx

@@ -5,6 +5,8 @@
 // running, a RuntimeError), with the CLI's message.
 #include <pybind11/stl.h>
 
+#include <cmath>
+
 #include <map>
 #include <sstream>
 
@@ -42,12 +44,45 @@ void set_parameters(Parameters& p, const py::dict& values, const std::string& or
 
 namespace {
 
-Heightmap terrain_from(const py::array_t<float, py::array::c_style | py::array::forcecast>& heights,
-                       double cell) {
+// Heights as float32 from an array of real numbers: a complex, boolean, text or object array is
+// refused rather than cast (NumPy would drop a complex number's imaginary part).
+py::array_t<float, py::array::c_style | py::array::forcecast> real_heights(const py::array& heights) {
+  const char kind = heights.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    throw input_error("heights: an array of real numbers is needed (got dtype " +
+                      std::string(py::str(heights.dtype())) + ")");
+  return py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(heights);
+}
+
+Heightmap terrain_from(const py::array& array, double cell) {
+  const auto heights = real_heights(array);
   if (heights.ndim() != 2) throw input_error("heights: a 2-D array (rows, columns) is needed");
   check_terrain_size("heights", heights.shape(1), heights.shape(0));
   Heightmap t(static_cast<int>(heights.shape(1)), static_cast<int>(heights.shape(0)), cell);
   std::copy(heights.data(), heights.data() + heights.size(), t.h.begin());
+  check_terrain_values("heights", t);
+  return t;
+}
+
+// A terrain whose `holes` (true: NODATA) are filled from their neighbours and kept as holes, written
+// back as `nodata` (terrain_from_landlab's closed nodes).
+Heightmap terrain_with_holes(const py::array& array, double cell,
+                             const py::array_t<bool, py::array::c_style | py::array::forcecast>& holes,
+                             double nodata) {
+  const auto heights = real_heights(array);
+  if (heights.ndim() != 2 || holes.ndim() != 2 || holes.shape(0) != heights.shape(0) ||
+      holes.shape(1) != heights.shape(1))
+    throw input_error("holes: a 2-D array of the heights' shape is needed");
+  check_terrain_size("heights", heights.shape(1), heights.shape(0));
+  Heightmap t(static_cast<int>(heights.shape(1)), static_cast<int>(heights.shape(0)), cell);
+  long long count = 0;
+  for (py::ssize_t k = 0; k < heights.size(); ++k) {
+    const bool hole = holes.data()[k];
+    t.h[static_cast<std::size_t>(k)] = hole ? NAN : heights.data()[k];
+    count += hole;
+  }
+  t.georef.nodata = nodata;
+  apply_nodata_policy("heights", t, count, NodataPolicy::kFill);
   check_terrain_values("heights", t);
   return t;
 }
@@ -132,6 +167,9 @@ void bind_terrain(py::module_& m) {
         return s.str();
       });
 
+  m.def("_terrain_with_holes", &terrain_with_holes, py::arg("heights"), py::arg("cell"),
+        py::arg("holes"), py::arg("nodata"),
+        "A Terrain whose holes (True: NODATA) are filled from their neighbours and kept as holes.");
   m.def(
       "read_terrain",
       [](const std::string& path, const std::string& nodata, std::optional<double> cell) {
@@ -159,7 +197,11 @@ Returns
 Terrain
 )doc");
   m.def(
-      "write_terrain", [](const std::string& path, const Heightmap& t) { write_terrain(path, t); },
+      "write_terrain",
+      [](const std::string& path, const Heightmap& t) {
+        check_terrain_values("terrain", t);  // heights edited through the view: as readers take them
+        write_terrain(path, t);
+      },
       py::arg("path"), py::arg("terrain"),
       R"doc(Writes a terrain, the format from the extension (.asc, .png, .npy or .tif).
 

@@ -113,6 +113,10 @@ void set_model_field(PyModel& self, const std::string& name, const FloatArray& v
       throw input_error("field " + name + ": " + std::to_string(values.size()) + " values for " +
                         std::to_string(f.f32.size()));
     }
+    for (py::ssize_t k = 0; k < values.size(); ++k)
+      if (const std::string why = field_value_problem(name, values.data()[k]); !why.empty())
+        throw input_error("field " + name + ": value " + format_number(values.data()[k]) +
+                          " at index " + std::to_string(k) + " is " + why);
     std::copy(values.data(), values.data() + values.size(), f.f32.begin());
     m.restore(d);
     return;
@@ -180,6 +184,10 @@ void bind_model(py::module_& m) {
              Parameters p = default_parameters();
              p.set("run.model", name, "model");
              set_parameters(p, params, "params");
+             // The model is the one named: params cannot name another.
+             if (p.text("run.model") != name)
+               throw input_error("params['run.model'] = " + runnel::quoted(p.text("run.model")) +
+                                 ": the model is " + runnel::quoted(name) + ", Model's first argument");
              auto compute = context_for(device);
              return PyModel{compute, make_model(*compute, p, terrain)};
            }),

@@ -67,3 +67,38 @@ def test_a_million_steps_from_python_hold_memory_flat(name):
     grown = _resident_mb() - before
     assert model.steps == 1_020_000
     assert grown < 100, f"{name}: resident memory grew {grown:.0f} MB over a million steps"
+
+
+@pytest.mark.parametrize("steps", [-1, 2**63, 1.5, True])
+def test_compare_takes_a_whole_number_of_steps_that_ends(flat, steps):
+    with pytest.raises(runnel.InputError, match="steps"):
+        runnel.compare(flat, ["thermal"], steps)
+
+
+@pytest.mark.parametrize("dtype", [complex, bool, object])
+def test_a_terrain_is_made_of_real_numbers(dtype):
+    with pytest.raises(runnel.InputError, match="real numbers"):
+        runnel.Terrain(np.ones((5, 5), dtype=dtype), cell=1.0)
+
+
+def test_heights_edited_beyond_what_readers_take_are_not_written(flat, tmp_path):
+    t = runnel.Terrain(np.zeros((5, 5), dtype=np.float32), cell=1.0)
+    t.heights[:] = 1e13
+    with pytest.raises(runnel.InputError, match="1e\\+13"):
+        runnel.write_terrain(str(tmp_path / "t.asc"), t)
+    assert not (tmp_path / "t.asc").exists()
+
+
+@pytest.mark.parametrize("value", [float("nan"), float("inf"), -1.0])
+def test_a_water_depth_is_a_finite_number_not_below_zero(flat, value):
+    model = runnel.Model("pipe", flat)
+    depth = np.zeros(81, dtype=np.float32)
+    depth[5] = value
+    with pytest.raises(runnel.InputError, match="surface_water__depth"):
+        model.set_field("surface_water__depth", depth)
+    assert np.all(model.field("surface_water__depth") == 0)
+
+
+def test_a_model_is_the_one_named_whatever_params_say(flat):
+    with pytest.raises(runnel.InputError, match="run.model"):
+        runnel.Model("thermal", flat, {"run.model": "pipe"})

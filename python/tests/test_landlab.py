@@ -140,3 +140,22 @@ def test_bmi_couples_with_landlab_creep_and_uplift_exactly(scenario, model):
     assert np.array_equal(bmi.get_value("topographic__elevation", np.empty(grid.number_of_nodes)),
                           quanta(z) * QUANTUM)
     bmi.finalize()
+
+
+def test_landlab_nodata_nodes_are_holes_not_pits():
+    """Closed nodes (Landlab's NODATA) are filled from their neighbours and kept as holes."""
+    grid, z = sloping_grid()
+    z[grid.nodes[4, 3]] = -9999.0
+    grid.status_at_node[grid.nodes[4, 3]] = grid.BC_NODE_IS_CLOSED
+    terrain = runnel.Terrain.from_landlab(grid)
+    assert terrain.nodata == -9999.0
+    h = terrain.heights[9 - 1 - 4, 3]
+    neighbours = z.reshape(9, 7)[3:6, 2:5]
+    assert neighbours[neighbours > -9999].min() <= h <= neighbours.max(), "filled, not a pit"
+
+
+def test_a_grid_that_is_not_a_raster_is_refused_by_name():
+    from landlab import HexModelGrid
+
+    with pytest.raises(runnel.InputError, match="HexModelGrid"):
+        runnel.Terrain.from_landlab(HexModelGrid((5, 5)))

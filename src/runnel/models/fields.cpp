@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/models/fields.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace runnel {
@@ -37,6 +38,15 @@ const FieldDescription& field_description(const std::string& name) {
   for (const auto& f : field_dictionary())
     if (f.name == name) return f;
   throw std::out_of_range("no field named " + name + " in the field dictionary");
+}
+
+std::string field_value_problem(const std::string& name, float value) {
+  if (!std::isfinite(value)) return "not a finite number";
+  const bool not_negative = name == kSurfaceWaterDepth || name == kSurfaceWaterOutflux ||
+                            name == "ground__erodibility_mask" || name == "ground__rain_mask";
+  if (not_negative && value < 0) return "below 0";
+  if (name == "ground__rain_mask" && value > 1) return "above 1 (a fraction of the rain)";
+  return "";
 }
 
 const char* to_string(FieldLocation location) {

@@ -32,6 +32,10 @@ const std::vector<FieldDescription>& field_dictionary();
 // The dictionary entry of `name`; throws std::out_of_range for a name not in it.
 const FieldDescription& field_description(const std::string& name);
 
+// Why `value` cannot be stored in field `name` ("" when it can): every value finite; depths,
+// fluxes and masks not negative; a rain mask at most 1.
+std::string field_value_problem(const std::string& name, float value);
+
 const char* to_string(FieldLocation location);
 const char* to_string(FieldType type);
 const char* to_string(FieldIntent intent);
