@@ -316,6 +316,8 @@ TEST(CliSweep, BadSweepFilesAreRefusedBeforeAnythingRuns) {
       {"[sweep]\nspeed = 3\n[axes]\nseed = [1]\n", "unknown key"},
       {"[axes]\n\"pipe.rain\" = [-1]\n", "pipe.rain"},
       {"[sweep]\n", "[axes]"},
+      {"[axes]\nseed = 5\n", "an axis is a list of values ([5])"},
+      {"[axes]\nmodel = [\"pipe\"]\n\"run.model\" = [\"olsen\"]\n", "both vary run.model"},
   };
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const std::string file = dir.path("bad" + std::to_string(k) + ".toml");

@@ -76,6 +76,9 @@ TEST(HostileInputs, ValuesACommandWouldIgnoreAreRefused) {
   EXPECT_FALSE(std::filesystem::exists(dir.path("mb"))) << "--out not created";
   expect_refused(run_cli({"validate", "stream-power", "--set", "sph.cfl=0.1"}), {"--set"},
                  "validate stream-power --set");
+  expect_refused(
+      run_cli({"run", "--generate", "fbm", "--set", "terrain.set.octaves=2.5", "--out", out}),
+      {"octaves", "whole number"}, "a fractional octave count");
   // What the cases do read is still taken.
   EXPECT_EQ(run_cli({"run", "--generate", "plane", "--overwrite=true", "--steps", "1", "--quiet",
                      "--out", out})

@@ -87,7 +87,9 @@ SweepAxis read_axis(const std::string& key, const toml::node& node, const std::s
       axis.values.push_back(integers ? std::to_string(std::llround(v)) : number_text(v));
     }
   } else {
-    axis.values.push_back(value_text(node, where));
+    throw input_error(where + ": an axis is a list of values ([" + value_text(node, where) +
+                      "]) or a range { from, to, count }; a value every member shares belongs in "
+                      "the base scenario");
   }
   if (axis.values.empty()) throw input_error(where + ": the axis has no values");
   if (axis.key == "terrain.file") {
@@ -208,6 +210,12 @@ SweepSpec read_sweep(const std::string& path) {
   for (auto&& [k, node] : *axes) {
     spec.axes.push_back(
         read_axis(std::string(k.str()), node, path + ": axes." + std::string(k.str()), dir));
+    for (std::size_t a = 0; a + 1 < spec.axes.size(); ++a)
+      if (spec.axes[a].key == spec.axes.back().key)
+        throw input_error(path + ": axes." + std::string(k.str()) + " and another axis both vary " +
+                          spec.axes.back().key +
+                          " (model, seed and terrain are short for run.model, "
+                          "run.seed and terrain.file): give one");
   }
   if (spec.zip) {
     for (const SweepAxis& a : spec.axes) {

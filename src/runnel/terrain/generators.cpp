@@ -10,6 +10,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/rng.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/terrain/generator_util.hpp"
 #include "runnel/terrain/noise.hpp"
 
@@ -249,7 +250,7 @@ const std::vector<GeneratorSpec>& generators() {
       0.0,     2.0};
   const GeneratorParam kLacunarity{"lacunarity", 2.0, "1", "frequency ratio between octaves",
                                    1.01,         8.0};
-  const GeneratorParam kOctaves{"octaves", 8, "1", "number of noise octaves", 1, 24};
+  const GeneratorParam kOctaves{"octaves", 8, "1", "number of noise octaves", 1, 24, true};
   const GeneratorParam kFrequency{
       "frequency", 2.0, "cycles per extent", "frequency of the first octave", 0.01, 1000.0};
   static const std::vector<GeneratorSpec> specs = {
@@ -260,8 +261,8 @@ const std::vector<GeneratorSpec>& generators() {
       {"fault",
        "fault formation: random cut lines raise one side",
        {kRelief,
-        {"cuts", 200, "1", "number of fault lines", 1, 100000},
-        {"smoothing", 2, "1", "3x3 smoothing passes after faulting", 0, 1000}},
+        {"cuts", 200, "1", "number of fault lines", 1, 100000, true},
+        {"smoothing", 2, "1", "3x3 smoothing passes after faulting", 0, 1000, true}},
        fault},
       {"fbm",
        "fractional Brownian motion from gradient noise",
@@ -464,6 +465,8 @@ Heightmap generate_terrain(const std::string& name, int nx, int ny, double cell,
           << ", " << it->max_value << "] " << it->unit;
       throw input_error(msg.str());
     }
+    if (it->whole && value != std::floor(value))
+      throw input_error("--set " + key + "=" + format_number(value) + ": a count, a whole number");
     request.values[key] = value;
   }
   return spec.make(request);

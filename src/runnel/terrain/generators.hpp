@@ -18,6 +18,7 @@ struct GeneratorParam {
   std::string help;
   double min_value;
   double max_value;
+  bool whole = false;  // a count: a fractional value is refused, not truncated
 };
 
 class ComputeContext;
