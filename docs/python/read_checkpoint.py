@@ -38,7 +38,8 @@ def main(path):
         if "fields" in f:  # grid models: water depth, suspended sediment, ...
             for name, field in f["fields"].items():
                 print(f"field {name}: shape {field.shape}, sum {field[()].sum():.6g}")
-        params = text(f.attrs["parameters_toml"])
+        # An attribute, or a dataset of that name when the set exceeds an attribute's 64 KiB.
+        params = text(f.attrs["parameters_toml"] if "parameters_toml" in f.attrs else f["parameters_toml"][()])
         print(f"parameters: {len(params.splitlines())} lines of TOML")
 
 

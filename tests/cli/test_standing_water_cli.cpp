@@ -161,6 +161,24 @@ TEST(StandingWaterCli, AWaterDepthRasterOfAnotherShapePlaceOrValueIsRefusedInOne
   EXPECT_NE(far.err.find("505000"), std::string::npos) << far.err;
 }
 
+// A parameter set beyond an HDF5 attribute's 64 KiB (here 3,000 gauges) is kept in final.h5 and
+// resumed from it, rather than the run failing at its end.
+TEST(StandingWaterCli, AParameterSetOfThousandsOfGaugesIsKeptInTheCheckpoint) {
+  test::ScratchDir dir;
+  std::string scenario = kBasin;
+  for (int k = 0; k < 3000; ++k)
+    scenario += "[[probes]]\nname = \"gauge_" + std::to_string(k) +
+                "\"\nx = " + std::to_string(1 + k % 7) + "\ny = " + std::to_string(1 + k / 7 % 7) +
+                "\n";
+  test::write_text(dir.path("s.toml"), scenario);
+  auto r = test::run_cli({"run", dir.path("s.toml"), "--out", dir.path("o"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run_cli(
+      {"resume", dir.path("o/final.h5"), "--steps", "2", "--out", dir.path("r"), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(test::read_text(dir.path("r/probes.csv")).find("gauge_2999"), std::string::npos);
+}
+
 // A scenario refused for a bad gauge leaves an existing output folder as it was, --overwrite or
 // not.
 TEST(StandingWaterCli, ARefusedScenarioLeavesTheFolderItWouldOverwrite) {

@@ -238,6 +238,39 @@ void H5File::attribute(const std::string& object, const std::string& name,
   }
 }
 
+void H5File::write_text(const std::string& name, const std::string& text) {
+  H5Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), std::max<std::size_t>(1, text.size()));
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  H5Handle d(H5Dcreate2(file_.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT,
+                        H5P_DEFAULT, H5P_DEFAULT),
+             H5Dclose);
+  const std::string padded = text.empty() ? std::string(1, '\0') : text;
+  if (!d.valid() || H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, padded.data()) < 0)
+    throw runtime_error(path_ + ": cannot write " + name);
+}
+
+std::string H5File::read_text(const std::string& name) const {
+  H5Handle d(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) throw input_error(path_ + ": cannot open " + name);
+  H5Handle type(H5Dget_type(d.get()), H5Tclose);
+  H5Handle space(H5Dget_space(d.get()), H5Sclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0 ||
+      H5Sget_simple_extent_type(space.get()) != H5S_SCALAR)
+    throw input_error(path_ + ": " + name + " is not a fixed-length string");
+  const std::size_t size = H5Tget_size(type.get());
+  if (size > (std::size_t{256} << 20))
+    throw input_error(path_ + ": " + name + " claims " + std::to_string(size) +
+                      " bytes, more than any runnel text");
+  std::string out(size, '\0');
+  if (H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw input_error(path_ + ": unreadable " + name);
+  while (!out.empty() && out.back() == '\0') out.pop_back();
+  return out;
+}
+
 bool H5File::has_attribute(const std::string& object, const std::string& name) const {
   return H5Aexists_by_name(file_.get(), object.c_str(), name.c_str(), H5P_DEFAULT) > 0;
 }

@@ -53,6 +53,9 @@ class H5File {
   void attribute(const std::string& object, const std::string& name, double value);
   void attribute(const std::string& object, const std::string& name, std::int64_t value);
   void attribute(const std::string& object, const std::string& name, const std::string& value);
+  // A text as a scalar fixed-length string dataset: no size limit (an attribute's is 64 KiB).
+  void write_text(const std::string& name, const std::string& text);
+  std::string read_text(const std::string& name) const;
 
   // Reading; `expected` (if not empty) must equal the dataset's dimensions.
   std::vector<hsize_t> dims(const std::string& name) const;

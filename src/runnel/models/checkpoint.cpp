@@ -15,6 +15,10 @@
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
+
+// The longest text kept as an attribute (HDF5's limit is 64 KiB with the object's other
+// attributes).
+constexpr std::size_t kLargestTextAttribute = 60000;
 namespace {
 
 // Float particle fields stored under /particles, in ParticleField order.
@@ -271,7 +275,12 @@ void write_checkpoint(const std::string& path, const CheckpointData& d) {
     f.attribute("/", "runnel_version", d.runnel_version);
     f.attribute("/", "source_revision", d.source_revision);
     f.attribute("/", "model", d.model);
-    f.attribute("/", "parameters_toml", d.parameters_toml);
+    // An attribute holds 64 KiB: a larger parameter set (thousands of gauges or bodies) goes in
+    // a dataset of that name instead.
+    if (d.parameters_toml.size() <= kLargestTextAttribute)
+      f.attribute("/", "parameters_toml", d.parameters_toml);
+    else
+      f.write_text("/parameters_toml", d.parameters_toml);
     f.attribute("/", "run_id", run_identity(d.parameters_toml));
     f.attribute("/", "digest", digest_of(d));
     write_terrain_group(f, d);
@@ -424,7 +433,9 @@ CheckpointData read_checkpoint_contents(const std::string& path) {
   d.model = f.read_string_attribute("/", "model");
   d.runnel_version = f.read_string_attribute("/", "runnel_version");
   d.source_revision = f.read_string_attribute("/", "source_revision");
-  d.parameters_toml = f.read_string_attribute("/", "parameters_toml");
+  d.parameters_toml = f.has_attribute("/", "parameters_toml")
+                          ? f.read_string_attribute("/", "parameters_toml")
+                          : f.read_text("/parameters_toml");
 
   const std::vector<hsize_t> grid = read_terrain_group(f, path, d);
   read_particles_group(f, path, d);
