@@ -179,6 +179,22 @@ TEST(StandingWaterCli, AParameterSetOfThousandsOfGaugesIsKeptInTheCheckpoint) {
   EXPECT_NE(test::read_text(dir.path("r/probes.csv")).find("gauge_2999"), std::string::npos);
 }
 
+// runnel compare checks every model before the first runs: standing water one of them cannot hold
+// is refused at once, with nothing written.
+TEST(StandingWaterCli, CompareRefusesAModelThatHoldsNoWaterBeforeAnyRuns) {
+  test::ScratchDir dir;
+  test::write_text(
+      dir.path("s.toml"),
+      std::string(kBasin) + "[[water.bodies]]\nx0 = 0\nx1 = 3\ny0 = 0\ny1 = 8\nlevel = 0.6\n");
+  // Not quiet: a model that ran would have said so.
+  const auto r = test::run_cli(
+      {"compare", dir.path("s.toml"), "--models", "pipe,droplet", "--out", dir.path("c")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("the droplet model holds no standing water"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("compare: model"), std::string::npos) << "a model ran first: " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("c")));
+}
+
 // A scenario refused for a bad gauge leaves an existing output folder as it was, --overwrite or
 // not.
 TEST(StandingWaterCli, ARefusedScenarioLeavesTheFolderItWouldOverwrite) {

@@ -99,6 +99,7 @@ std::vector<Parameters> checked_parameters(ComputeContext& compute, const Parame
   for (const std::string& m : options.models) {
     out.push_back(model_parameters(scenario, m, budget, terrain));
     require_run_length(out.back(), model_entry(m).info().clock);
+    check_model_preconditions(compute, out.back(), terrain);  // before the first model runs
   }
   return out;
 }

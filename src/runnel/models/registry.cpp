@@ -85,11 +85,16 @@ void require_water_for_standing_water(const Parameters& params) {
 
 }  // namespace
 
+void check_model_preconditions(const ComputeContext& compute, const Parameters& params,
+                               const Heightmap& terrain) {
+  require_memory_for(compute, params, terrain);
+  require_water_for_standing_water(params);
+}
+
 std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& params,
                                   const Heightmap& terrain) {
   const ModelEntry& entry = model_entry(params.text("run.model"));
-  require_memory_for(compute, params, terrain);
-  require_water_for_standing_water(params);
+  check_model_preconditions(compute, params, terrain);
   return entry.make(compute, params, terrain);
 }
 

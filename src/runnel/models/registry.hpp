@@ -26,6 +26,11 @@ std::vector<std::string> model_names();
 const ModelEntry& model_entry(const std::string& name);
 
 // The model run.model names, on `terrain`, with `params`.
+// What make_model checks before it builds anything (the device's and the host's memory, standing
+// water the model can hold): for a caller that builds several models in turn and must refuse
+// before the first runs (runnel compare).
+void check_model_preconditions(const ComputeContext& compute, const Parameters& params,
+                               const Heightmap& terrain);
 std::unique_ptr<Model> make_model(ComputeContext& compute, const Parameters& params,
                                   const Heightmap& terrain);
 // The model a checkpoint holds, in the state it was saved in. A state whose mass does not balance
