@@ -156,3 +156,43 @@ TEST(OutputSafety, ARefusedCommandWritesNothing) {
 
 }  // namespace
 }  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// --overwrite replaces only what a runnel run wrote into the folder: a user's own file of an
+// output's name in a folder runnel never wrote into stays (and the run is refused), and nothing
+// is removed or written through a checkpoints/ link into another run's folder.
+TEST(OutputSafety, OverwriteRemovesOnlyWhatARunWroteAndNeverThroughALink) {
+  test::ScratchDir dir;
+  std::filesystem::create_directories(dir.path("mine"));
+  test::write_text(dir.path("mine/probes.csv"), "my own gauges\n");
+  const std::vector<std::string> run = {"run", "--generate", "plane",      "--steps",
+                                        "1",   "--quiet",    "--overwrite"};
+  auto with_out = [&](const std::string& out) {
+    std::vector<std::string> a = run;
+    a.insert(a.end(), {"--out", out});
+    return a;
+  };
+  auto r = test::run_cli(with_out(dir.path("mine")));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("no runnel run wrote"), std::string::npos) << r.err;
+  EXPECT_EQ(test::read_text(dir.path("mine/probes.csv")), "my own gauges\n");
+
+  // Another run's checkpoints, and a folder whose checkpoints/ links to them.
+  ASSERT_EQ(test::run_cli({"run", "--generate", "plane", "--steps", "2", "--checkpoint-every", "1",
+                           "--quiet", "--out", dir.path("other")})
+                .exit_code,
+            0);
+  std::filesystem::create_directories(dir.path("linked"));
+  std::filesystem::create_directory_symlink(dir.path("other/checkpoints"),
+                                            dir.path("linked/checkpoints"));
+  r = test::run_cli(with_out(dir.path("linked")));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("checkpoints is a link"), std::string::npos) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("other/checkpoints/step_00000001.h5")));
+  EXPECT_TRUE(std::filesystem::exists(dir.path("other/checkpoints/step_00000002.h5")));
+}
+
+}  // namespace
+}  // namespace runnel

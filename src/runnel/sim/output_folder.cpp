@@ -30,12 +30,14 @@ std::string read_marker(const fs::path& file) {
 }
 
 // The earlier run's files present in the folder: runnel's own output names and checkpoints only;
-// nothing else in the folder is ever touched.
+// nothing else in the folder is ever touched, and nothing through a link (a link named like an
+// output is itself the entry; a linked checkpoints/ folder is refused by the caller).
 std::vector<fs::path> earlier_outputs(const fs::path& dir) {
   std::vector<fs::path> found;
   std::error_code ec;
   for (const std::string& name : run_output_names())
-    if (fs::exists(dir / name, ec)) found.push_back(dir / name);
+    if (fs::exists(fs::symlink_status(dir / name, ec))) found.push_back(dir / name);
+  if (fs::is_symlink(dir / "checkpoints", ec)) return found;
   for (const auto& e : fs::directory_iterator(dir / "checkpoints", ec)) {
     const std::string f = e.path().filename().string();
     if (f.rfind("step_", 0) == 0 && e.path().extension() == ".h5") found.push_back(e.path());
@@ -89,9 +91,20 @@ OutputFolder::OutputFolder(const std::string& dir_text, const std::string& run_i
                       "choose another --out");
   }
   try {
+    // Rolling checkpoints are written into checkpoints/ and old ones removed: never through a
+    // link into another folder.
+    if (fs::is_symlink(dir / "checkpoints", ec))
+      throw input_error("--out " + dir_text +
+                        ": checkpoints is a link; runnel neither writes nor removes through it "
+                        "(choose another --out)");
     const std::string earlier = read_marker(dir / kRunMarker);
     const std::vector<fs::path> outputs = earlier_outputs(dir);
     if (earlier != run_id && !outputs.empty()) {
+      // Only what a run recorded here wrote is replaced: in a folder runnel never wrote into (no
+      // marker), a file of an output's name is the user's own.
+      if (earlier.empty())
+        throw input_error("--out " + dir_text + ": holds " + outputs.front().filename().string() +
+                          ", which no runnel run wrote there; choose another --out");
       if (!overwrite)
         throw input_error("--out " + dir_text + ": holds the outputs of another run (" +
                           outputs.front().filename().string() +
