@@ -16,6 +16,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -23,6 +24,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/sim/output_folder.hpp"
 #include "runnel/sim/scenario.hpp"
 #include "runnel/sweep/sweep.hpp"
 
@@ -45,10 +47,20 @@ int run_workers(const SweepOptions& opt, const SweepSpec& spec,
                 const std::vector<SweepMember>& members) {
   const std::string self = fs::read_symlink("/proc/self/exe").string();
   std::vector<std::size_t> queue;
-  for (const SweepMember& m : members)
-    if (member_state(opt.out, m.index) != MemberState::kDone) queue.push_back(m.index);
+  std::size_t busy = 0;
+  for (const SweepMember& m : members) {
+    if (member_state(opt.out, m.index) == MemberState::kDone) continue;
+    // A member another process is running now (a SLURM task, a --member run) is left to it.
+    if (run_lock_held(member_dir(opt.out, m.index))) {
+      ++busy;
+      if (!opt.quiet)
+        std::cerr << "sweep: member " << m.index << " is being run by another process; skipped\n";
+      continue;
+    }
+    queue.push_back(m.index);
+  }
   if (!opt.quiet) {
-    std::cerr << "sweep: " << members.size() << " members, " << members.size() - queue.size()
+    std::cerr << "sweep: " << members.size() << " members, " << members.size() - queue.size() - busy
               << " done already, " << opt.jobs << " worker process" << (opt.jobs == 1 ? "" : "es")
               << "\n";
   }
@@ -108,9 +120,13 @@ int run_mpi(const SweepOptions& opt, const SweepSpec& spec,
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   int claim_failed = 0;
   std::string claim_message;
+  std::optional<FolderLock> lock;  // rank 0 coordinates: one sweep a folder at a time
   if (rank == 0) {
     try {
       claim_sweep_folder(opt.out, members, opt.extend);
+      lock.emplace(opt.out, ".runnel-sweep.lock",
+                   "--out " + opt.out +
+                       ": another runnel sweep is running in this folder; wait for it to end");
     } catch (const Error& e) {
       claim_failed = 1;
       claim_message = e.what();
@@ -200,6 +216,10 @@ void sweep(SweepOptions opt) {
     return;
   }
   if (opt.jobs == 0) opt.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // One coordinating sweep a folder at a time (its workers and --member tasks do not take it).
+  const FolderLock lock(
+      opt.out, ".runnel-sweep.lock",
+      "--out " + opt.out + ": another runnel sweep is running in this folder; wait for it to end");
   const int failed = run_workers(opt, spec, members);
   std::cout << terminal_safe(opt.out) << "/results.csv: " << members.size() - failed << " of "
             << members.size() << " members done\n";

@@ -3,7 +3,10 @@
 // (as SLURM array tasks would) and by two MPI ranks gives byte-identical member outputs and the
 // same results.csv; a rerun skips done members and redoes interrupted ones; bad sweep files are
 // refused before anything runs.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -302,6 +305,54 @@ model = ["sph", "pipe"]
     EXPECT_FALSE(rows[pipe][1].empty()) << results;
     EXPECT_EQ(rows[pipe][2], "") << results;
   }
+}
+
+// One coordinating sweep a folder at a time; a member another process is running now is left to it;
+// and a member resumes only its own checkpoint, never another run's placed in its folder.
+TEST(CliSweep, TwoSweepsNeverShareAFolderOrAMember) {
+  ScratchDir dir;
+  test::write_text(dir.path("base.toml"), kBase);
+  test::write_text(dir.path("sweep.toml"), R"([sweep]
+base = "base.toml"
+checkpoint_every = 5
+[axes]
+model = ["pipe", "olsen"]
+)");
+  const std::string sweep = dir.path("sweep.toml"), out = dir.path("s");
+  // Claim the folder (the SLURM script is written once the folder is the sweep's).
+  ASSERT_EQ(run_cli({"sweep", sweep, "--out", out, "--slurm-script"}).exit_code, 0);
+  auto hold = [](const std::string& lock) {
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT, 0644);
+    EXPECT_GE(fd, 0);
+    EXPECT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    return fd;
+  };
+  // Another sweep coordinating in the folder (its lock held here, as a running sweep holds it).
+  int fd = hold(out + "/.runnel-sweep.lock");
+  auto r = run_cli({"sweep", sweep, "--out", out, "-j", "1"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("another runnel sweep is running"), std::string::npos) << r.err;
+  ::close(fd);
+  // Member 1 running in another process (its run lock held): skipped, not failed.
+  std::filesystem::create_directories(member_file(dir, "s", 1, ""));
+  fd = hold(member_file(dir, "s", 1, ".runnel.lock"));
+  r = run_cli({"sweep", sweep, "--out", out, "-j", "1"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("member 1 is being run by another process; skipped"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(std::filesystem::exists(member_file(dir, "s", 0, "result.csv")));
+  EXPECT_FALSE(std::filesystem::exists(member_file(dir, "s", 1, "result.csv")));
+  ::close(fd);
+  // Member 0's checkpoint placed in member 1's folder: refused, the member listed as failed.
+  std::filesystem::create_directories(member_file(dir, "s", 1, "checkpoints"));
+  std::filesystem::copy_file(member_file(dir, "s", 0, "checkpoints/step_00000010.h5"),
+                             member_file(dir, "s", 1, "checkpoints/step_00000010.h5"));
+  r = run_cli({"sweep", sweep, "--out", out, "-j", "1"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(member_file(dir, "s", 1, "result.csv")));
+  EXPECT_NE(test::read_text(dir.path("s/manifest.csv")).find("the checkpoint of another run"),
+            std::string::npos)
+      << test::read_text(dir.path("s/manifest.csv"));
 }
 
 TEST(CliSweep, BadSweepFilesAreRefusedBeforeAnythingRuns) {

@@ -70,6 +70,30 @@ const std::vector<std::string>& run_output_names() {
   return names;
 }
 
+bool run_lock_held(const std::string& dir) {
+  const int fd = ::open((fs::path(dir) / kLockName).c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
+  ::close(fd);
+  return held;
+}
+
+FolderLock::FolderLock(const std::string& dir, const std::string& name, const std::string& busy) {
+  const std::string path = (fs::path(dir) / name).string();
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw input_error(dir + ": cannot write into the folder (" + std::strerror(errno) + ")");
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    throw input_error(busy);
+  }
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
 OutputFolder::OutputFolder(const std::string& dir_text, const std::string& run_id, bool overwrite) {
   const fs::path dir(dir_text);
   std::error_code ec;

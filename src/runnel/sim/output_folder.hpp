@@ -17,6 +17,23 @@ const std::vector<std::string>& run_output_names();
 // - holding only this run's outputs: DIR/.runnel-run names the run (its parameters and its
 //   terrain's content); outputs of another run in the folder are refused, or removed with
 //   `overwrite`. A resume of the same run, or the same run again, replaces its own files.
+// Whether a live runnel run holds `dir`'s run lock now (a folder without one: false).
+bool run_lock_held(const std::string& dir);
+
+// An exclusive lock on `name` in `dir` (created), held while the object lives; refused with
+// `busy` (an input error) when another process holds it. Closing the descriptor (even a killed
+// process's) releases it.
+class FolderLock {
+ public:
+  FolderLock(const std::string& dir, const std::string& name, const std::string& busy);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 class OutputFolder {
  public:
   OutputFolder(const std::string& dir, const std::string& run_id, bool overwrite);

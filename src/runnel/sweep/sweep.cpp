@@ -343,6 +343,14 @@ void run_member(const SweepSpec& spec, const SweepMember& member, const std::str
     const std::string checkpoint = newest_checkpoint(dir / "checkpoints");
     const CheckpointData resumed =
         checkpoint.empty() ? CheckpointData{} : read_checkpoint(checkpoint);
+    // Only this member's own run is resumed: a checkpoint of other parameters or another model
+    // placed in its folder is refused, not continued as if it were the member.
+    if (!checkpoint.empty() &&
+        (resumed.model != member.params.text("run.model") ||
+         run_identity(resumed.parameters_toml) != run_identity(parameters_toml(member.params))))
+      throw input_error(checkpoint + ": the checkpoint of another run (" + resumed.model +
+                        " model, other parameters), not this member's; remove it to run the "
+                        "member from its start");
     const std::unique_ptr<Model> model =
         checkpoint.empty() ? make_model(compute, member.params, load_terrain(member.params))
                            : make_model_from_checkpoint(compute, resumed, checkpoint);
