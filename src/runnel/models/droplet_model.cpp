@@ -13,6 +13,7 @@
 #include "runnel/core/parameter_groups.hpp"
 #include "runnel/core/settings_table.hpp"
 #include "runnel/core/text.hpp"
+#include "runnel/models/memory_check.hpp"
 
 namespace runnel {
 
@@ -35,7 +36,7 @@ const SettingsTable<DropletSettings> kDropletTable = {
       {"droplet.lifetime", "30", "steps", 1, 100000, {}, "steps a droplet lives", &DropletSettings::lifetime, "DROPLET_LIFETIME"},
       {"droplet.initial_water", "1", "1", 0, 1e6, {}, "water a droplet starts with", &DropletSettings::initial_water, "DROPLET_INITIAL_WATER"},
       {"droplet.initial_speed", "1", "1", 0, 1e6, {}, "speed a droplet starts with", &DropletSettings::initial_speed, "DROPLET_INITIAL_SPEED"},
-      {"droplet.batch", "0", "droplets", 0, 1e8, {}, "droplets per parallel batch (they move in lockstep, each step on the terrain the last step left); 0: one per 64 cells, so few share a pit", &DropletSettings::batch},
+      {"droplet.batch", "0", "droplets", 0, 1e8, {}, "droplets per parallel batch (they move in lockstep, each step on the terrain the last step left); 0: one per 64 cells, so few share a pit; at most one per 4 vertices (more dig the pits they gather in without bound)", &DropletSettings::batch},
       {"droplet.volume", "0", "m^3", 0, 1e9, {}, "rain water one droplet stands for (rain_volume in metrics; runnel compare sets it to the SPH particle volume); 0: cell³", &DropletSettings::volume},
 };
 // clang-format on
@@ -78,7 +79,28 @@ constexpr std::size_t kDropletFields = 6;
 
 // The bytes of a batch's droplet state (kDropletFields planes of `stride` floats, the batch padded
 // to whole vectors), refused with the key's name when one device buffer cannot hold them.
-std::size_t state_bytes(const ComputeContext& compute, long long batch, long long stride) {
+// Bytes a droplet of a batch takes: on the device its state, load and plan (about 72), and on the
+// host the ordering by place (about 32).
+constexpr double kBytesPerBatchDroplet = 104;
+// Vertices a droplet of a batch at least: the droplets move in lockstep without seeing each other's
+// changes, and at one droplet for two vertices the ones gathering in a pit dig it without bound
+// until the balance breaks (measured on 257 x 257 fBm and plane terrains; one for 64, the default,
+// and one for 4 keep it exact).
+constexpr long long kLeastVerticesPerDroplet = 4;
+
+std::size_t state_bytes(const ComputeContext& compute, long long batch, long long stride,
+                        long long vertices) {
+  if (batch > std::max(vertices / kLeastVerticesPerDroplet, 1LL))
+    throw input_error("droplet.batch: " + std::to_string(batch) + " droplets on " +
+                      std::to_string(vertices) + " vertices; at most one for " +
+                      std::to_string(kLeastVerticesPerDroplet) +
+                      " vertices (a batch moves in lockstep, each droplet blind to the others)");
+  const MemoryRoom room = memory_room();
+  const double need = static_cast<double>(batch) * kBytesPerBatchDroplet;
+  if (room.bytes > 0 && need > room.bytes)
+    throw input_error("droplet.batch: " + std::to_string(batch) + " droplets need about " +
+                      format_number(need / 1e9) + " GB; " + room.limited_by + " leaves " +
+                      format_number(room.bytes / 1e9) + " GB");
   const double bytes = static_cast<double>(stride) * kDropletFields * sizeof(float);
   if (bytes > static_cast<double>(compute.info().max_alloc)) {
     throw input_error("droplet.batch: " + std::to_string(batch) + " droplets need " +
@@ -118,7 +140,8 @@ DropletModel::DropletModel(ComputeContext& compute, const Parameters& params,
       apply_kernel_(compute, droplet_program(compute, settings_, blocks_, params), "droplet_apply"),
       counters_(compute.context(), CL_MEM_READ_WRITE, 3 * sizeof(cl_long)),
       droplet_state_(compute.context(), CL_MEM_READ_WRITE,
-                     state_bytes(compute, batch_size(), plane_stride())),
+                     state_bytes(compute, batch_size(), plane_stride(),
+                                 static_cast<long long>(state_.vertices()))),
       droplet_load_(compute.context(), CL_MEM_READ_WRITE,
                     static_cast<std::size_t>(plane_stride()) * sizeof(cl_long)),
       plan_place_(compute.context(), CL_MEM_READ_WRITE,

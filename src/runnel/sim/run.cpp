@@ -212,6 +212,13 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
     std::string status = status_line(model, (model.steps() - first_step) / std::max(elapsed, 1e-9));
     if (report) {
       const MassBalance m = model.mass_balance();
+      // Volume is conserved exactly (integer quanta): a balance that no longer closes is a
+      // numerical failure, stopped here like a NaN (the last good state is kept).
+      if (m.residual_quanta != 0)
+        throw runtime_error("the mass balance no longer closes at step " +
+                            std::to_string(model.steps()) + " (t = " + format_number(model.time()) +
+                            "): " + std::to_string(m.residual_quanta) +
+                            " quanta unaccounted for; the run is unstable");
       char buf[160];
       std::snprintf(buf, sizeof buf, " | eroded %.4g m3 | balance %.2e m3 (rel %.1e)", m.eroded,
                     m.residual, m.relative);
@@ -234,6 +241,10 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
     if (probes.due(model.time())) read_gauges(model, probes);
     progress.update(fraction, status, report);
   }
+  if (const MassBalance m = model.mass_balance(); m.residual_quanta != 0)
+    throw runtime_error("the mass balance no longer closes at step " +
+                        std::to_string(model.steps()) + ": " + std::to_string(m.residual_quanta) +
+                        " quanta unaccounted for; the run is unstable");
   series.finish(model);
   compute.queue().finish();
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
