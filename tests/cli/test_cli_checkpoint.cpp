@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Checkpoints end to end: rolling checkpoints, the series, resume, info, export, Python (h5py).
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <functional>
 #include <sstream>
+#include <type_traits>
 
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/models/checkpoint.hpp"
@@ -98,6 +102,77 @@ TEST(CliCheckpoint, ARunStoppedAsUnstableKeepsItsLastGoodStateAndResumesWithOthe
                 .exit_code,
             2);
   EXPECT_FALSE(std::filesystem::exists(dir.path("x")));
+}
+
+// Overwrites a whole dataset of doubles or int64 in an HDF5 file, as an editor of the file would.
+template <class T>
+void overwrite_dataset(const std::string& file, const std::string& name, const std::vector<T>& v) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
+  ASSERT_GE(d, 0);
+  const hid_t type = std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
+  EXPECT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+  H5Dclose(d);
+  H5Fclose(f);
+}
+
+// An edited or damaged series is refused by the NetCDF export, not written as it is: a grid that
+// is not a regular raster, a time that is not a number, frames out of order or repeated (which
+// also bounds the work: one frame listed 300,000 times is not expanded), and no frames at all.
+TEST(CliCheckpoint, TheNetcdfExportRefusesASeriesItCannotTrust) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(with({"run", "--steps", "6", "--series-every", "2", "--model", "pipe", "--out",
+                          dir.path("o")},
+                         kSmallRun))
+                .exit_code,
+            0);
+  const std::string good = dir.path("o/series.h5");
+  ASSERT_EQ(run_cli({"export", good, "--format", "netcdf", "-o", dir.path("good.nc")}).exit_code,
+            0);
+  const H5File series = H5File::open_read(good);
+  const std::vector<hsize_t> grid = series.dims("/grid/x");
+  const std::vector<std::int64_t> steps = series.read_int64("/height_step");
+  const std::vector<double> times = series.read_double("/height_time", {steps.size()});
+  ASSERT_EQ(steps.size(), 4u);
+  struct Edit {
+    std::string what, expected;
+    std::function<void(const std::string&)> apply;
+  };
+  const std::vector<Edit> edits = {
+      {"x all 0", "/grid/x does not rise",
+       [&](const std::string& f) {
+         overwrite_dataset(f, "/grid/x", std::vector<double>(grid[0] * grid[1], 0.0));
+       }},
+      {"a NaN time", "has the time nan",
+       [&](const std::string& f) {
+         std::vector<double> t = times;
+         t[2] = NAN;
+         overwrite_dataset(f, "/height_time", t);
+       }},
+      {"a repeated frame", "does not come after",
+       [&](const std::string& f) {
+         overwrite_dataset(f, "/height_step", std::vector<std::int64_t>(steps.size(), steps[1]));
+       }},
+  };
+  for (const Edit& e : edits) {
+    const std::string edited = dir.path("edited.h5");
+    std::filesystem::copy_file(good, edited, std::filesystem::copy_options::overwrite_existing);
+    e.apply(edited);
+    const auto r = run_cli({"export", edited, "--format", "netcdf", "-o", dir.path("e.nc")});
+    EXPECT_EQ(r.exit_code, 2) << e.what << ": " << r.err;
+    EXPECT_NE(r.err.find(e.expected), std::string::npos) << e.what << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("e.nc"))) << e.what;
+  }
+  // A series of particles only has no terrain frame to export.
+  ASSERT_EQ(run_cli({"run", "--steps", "2", "--particles-every", "1", "--generate", "plane",
+                     "--set", "terrain.size=33", "--quiet", "--out", dir.path("p")})
+                .exit_code,
+            0);
+  const auto none =
+      run_cli({"export", dir.path("p/series.h5"), "--format", "netcdf", "-o", dir.path("p.nc")});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+  EXPECT_NE(none.err.find("no terrain frames"), std::string::npos) << none.err;
 }
 
 TEST(CliCheckpoint, AResumedRunExchangesOnTheUninterruptedRunsClock) {

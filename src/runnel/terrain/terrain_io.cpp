@@ -240,10 +240,11 @@ std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
         throw input_error(path + ": " + what + " holds " + format_number(v) + "; " + why);
   if (terrain) check_raster_place(path, what, r, *terrain);
   if (r.nx == nx && r.ny == ny) return r.h;
-  // Corner vertices map onto corner vertices: the same extent, so the same shape.
-  const double aspect = double(std::max(r.nx - 1, 1)) / std::max(r.ny - 1, 1);
+  // Corner vertices map onto corner vertices: the same extent, so the same shape, within a cell of
+  // the raster (a coarser raster cannot always match the terrain's aspect exactly) or 1 %.
   const double wanted = double(std::max(nx - 1, 1)) / std::max(ny - 1, 1);
-  if (std::fabs(aspect / wanted - 1.0) > 0.01)
+  const double columns = r.nx - 1, columns_for_shape = (r.ny - 1) * wanted;
+  if (std::fabs(columns - columns_for_shape) > std::max(1.0, 0.01 * columns))
     throw input_error(path + ": " + what + " has " + std::to_string(r.nx) + " x " +
                       std::to_string(r.ny) + " vertices, the terrain " + std::to_string(nx) +
                       " x " + std::to_string(ny) +

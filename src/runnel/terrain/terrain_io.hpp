@@ -62,9 +62,9 @@ using VertexValueCheck = std::function<std::string(float)>;
 // terrain format, every value checked by `check` (an input error naming `what`, the value and the
 // reason). One of another size is resampled bilinearly (corner vertices onto corner vertices), with
 // a warning on stderr naming `what`, printed once every check has passed; one of another shape
-// (its aspect more than 1 % from the terrain's: resampling would stretch it) is refused. Given
-// `terrain`, a raster georeferenced in the same CRS must cover the terrain's extent (within a
-// cell), or it is refused with both extents.
+// (its columns more than one, or 1 %, from what the terrain's aspect gives its rows: resampling
+// would stretch it) is refused. Given `terrain`, a raster georeferenced in the same CRS must cover
+// the terrain's extent (within a cell), or it is refused with both extents.
 std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
                                       const std::string& what, const VertexValueCheck& check = {},
                                       const Heightmap* terrain = nullptr);
