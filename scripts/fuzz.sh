@@ -10,13 +10,13 @@ seconds="${1:-600}"
 # Build the targets (the configuration scripts/sanitize.sh uses), without running the suite.
 CC=clang CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRUNNEL_SANITIZE=ON \
   -DRUNNEL_FUZZ=ON -DRUNNEL_BUILD_VIEWER=OFF >/dev/null
-cmake --build build-asan -j "$(nproc)" --target fuzz_asc fuzz_png fuzz_npy fuzz_checkpoint fuzz_scenario fuzz_sweep
+cmake --build build-asan -j "$(nproc)" --target fuzz_asc fuzz_png fuzz_npy fuzz_checkpoint fuzz_scenario fuzz_sweep fuzz_series
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:allocator_may_return_null=1:suppressions=$PWD/fuzz/asan.supp}"
-for reader in asc png npy checkpoint scenario sweep; do
+for reader in asc png npy checkpoint scenario sweep series; do
   mkdir -p "build-asan/fuzz/corpus/$reader" "build-asan/fuzz/findings/$reader"
   echo "fuzzing $reader for ${seconds} s"
   rss=2048
-  [ "$reader" = checkpoint ] && rss=6144  # libhdf5 may read a claimed 4 GiB header (fuzz/CMakeLists.txt)
+  { [ "$reader" = checkpoint ] || [ "$reader" = series ]; } && rss=6144  # libhdf5 may read a claimed 4 GiB header (fuzz/CMakeLists.txt)
   "build-asan/fuzz/fuzz_$reader" -max_total_time="$seconds" -timeout=60 -rss_limit_mb="$rss" -malloc_limit_mb=8192 \
     -print_final_stats=1 -artifact_prefix="build-asan/fuzz/findings/$reader/" \
     "build-asan/fuzz/corpus/$reader" "fuzz/corpus/$reader" 2>&1 | grep -E "stat::|ERROR|SUMMARY" || true
