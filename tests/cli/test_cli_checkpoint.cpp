@@ -68,9 +68,10 @@ TEST(CliCheckpoint, ARunStoppedAsUnstableKeepsItsLastGoodStateAndResumesWithOthe
                    "[terrain]\ngenerator = \"fbm\"\n[run]\nprobe_every = 0.5\n"
                    "[[probes]]\nname = \"g\"\nx = 60\ny = 60\n");
   // dfsph with a sane range it leaves after a few hundred steps of the storm.
-  const auto r = run_cli({"run", dir.path("s.toml"), "--sim-time", "20", "--set",
-                          "sph.solver=dfsph", "--set", "sph.density_max=1.001",
-                          "--checkpoint-every", "50", "--quiet", "--out", dir.path("o")});
+  const auto r =
+      run_cli({"run", dir.path("s.toml"), "--sim-time", "20", "--set", "sph.solver=dfsph", "--set",
+               "sph.density_max=1.001", "--checkpoint-every", "50", "--series-every", "100",
+               "--quiet", "--out", dir.path("o")});
   ASSERT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("unstable"), std::string::npos) << r.err;
@@ -84,6 +85,11 @@ TEST(CliCheckpoint, ARunStoppedAsUnstableKeepsItsLastGoodStateAndResumesWithOthe
   EXPECT_EQ(good.steps % 50, 0u);
   EXPECT_NE(metrics.find("\"last_good_step\": " + std::to_string(good.steps)), std::string::npos)
       << metrics;
+  // The series' frames up to the failure, under the final name (no partial file left).
+  EXPECT_FALSE(std::filesystem::exists(dir.path("o/series.h5.partial")));
+  const std::vector<std::int64_t> frames =
+      H5File::open_read(dir.path("o/series.h5")).read_int64("/height_step");
+  EXPECT_EQ(frames, (std::vector<std::int64_t>{0, 100, 200})) << "a frame every 100 steps to 262";
   // The gauge's readings up to the failure, one row per half second from 0.
   const std::string probes = test::read_text(dir.path("o/probes.csv"));
   EXPECT_GE(std::count(probes.begin(), probes.end(), '\n'), 1 + static_cast<long>(good.time / 0.5))

@@ -59,6 +59,7 @@ TEST(OutputSafety, AFullDiskStopsTheRunWithExitOneAndNoPartialFile) {
   EXPECT_EQ(series.exit_code, 1) << series.err;
   EXPECT_NE(series.err.find("series.h5"), std::string::npos) << series.err;
   EXPECT_FALSE(fs::exists(disk.path("b/series.h5"))) << "no partial series under its final name";
+  EXPECT_FALSE(fs::exists(disk.path("b/series.h5.partial"))) << "nor left beside it";
 }
 
 TEST(OutputSafety, AReusedOutFolderNeverMixesTwoRuns) {

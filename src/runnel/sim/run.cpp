@@ -417,6 +417,7 @@ RunSummary run_model(ComputeContext& compute, Model& model, const RunOptions& op
   } catch (const Error& e) {
     if (e.code() != ExitCode::kRuntime) throw;
     progress.abandon();
+    series.keep_written();
     std::string kept;
     try {
       write_readings();

@@ -3,6 +3,7 @@
 
 #include <bit>
 #include <cstdio>
+#include <stdexcept>
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
@@ -78,10 +79,15 @@ void SeriesWriter::start(Model& model) {
 void SeriesWriter::after_step(Model& model) {
   if (!file_) return;
   const std::uint64_t step = model.steps();
-  if (height_every_ > 0 && step % static_cast<std::uint64_t>(height_every_) == 0)
-    write_terrain(model);
-  if (particle_every_ > 0 && step % static_cast<std::uint64_t>(particle_every_) == 0)
-    write_particles(model);
+  try {
+    if (height_every_ > 0 && step % static_cast<std::uint64_t>(height_every_) == 0)
+      write_terrain(model);
+    if (particle_every_ > 0 && step % static_cast<std::uint64_t>(particle_every_) == 0)
+      write_particles(model);
+  } catch (...) {
+    broken_ = true;  // a frame half written (a full disk): the file is not kept
+    throw;
+  }
 }
 
 void SeriesWriter::write_terrain(Model& model) {
@@ -163,6 +169,11 @@ void SeriesWriter::finish(Model& model) {
   if (particle_every_ > 0 &&
       (particle_frames_.empty() || particle_frames_.back().step != model.steps()))
     write_particles(model);
+  publish();
+}
+
+// The frames' index, then the file under its final name with its XDMF index beside it.
+void SeriesWriter::publish() {
   for (auto [frames, name] :
        {std::pair{&height_frames_, "height"}, std::pair{&particle_frames_, "particle"}}) {
     std::vector<double> time;
@@ -179,6 +190,18 @@ void SeriesWriter::finish(Model& model) {
     fs::rename(out_ / kPartial, temporary);
   });
   write_xdmf();
+}
+
+void SeriesWriter::keep_written() noexcept {
+  if (!file_) return;
+  try {
+    if (broken_) throw std::runtime_error("a frame was left half written");
+    publish();
+  } catch (...) {
+    file_.reset();
+    std::error_code ec;
+    fs::remove(out_ / kPartial, ec);
+  }
 }
 
 void SeriesWriter::write_xdmf() const {

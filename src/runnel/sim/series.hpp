@@ -34,6 +34,10 @@ class SeriesWriter {
   // The frames of the final state (unless the interval just wrote them), the frame tables; renames
   // series.h5.partial to series.h5 and writes series.xmf.
   void finish(Model& model);
+  // A run that stopped on a failure: the frames written so far become series.h5 (no frame of the
+  // failed state is added); when a frame's write failed (a full disk) or the index cannot be
+  // written, the partial file is removed instead.
+  void keep_written() noexcept;
 
  private:
   struct Frame {
@@ -44,12 +48,14 @@ class SeriesWriter {
   void write_terrain(Model& model);
   void write_particles(Model& model);
   void write_xdmf() const;
+  void publish();
   // The terrain frame's fields beyond the height: which the model has (the same every frame).
   bool has_water_depth_ = false, has_speed_ = false, has_velocity_ = false;
   std::filesystem::path out_;
   long long height_every_, particle_every_;
   Heightmap grid_;  // the initial terrain: the grid and its georeferencing
   std::unique_ptr<H5File> file_;
+  bool broken_ = false;  // a frame's write failed: keep_written() removes the file
   std::vector<Frame> height_frames_, particle_frames_;
 };
 
