@@ -70,6 +70,9 @@ TEST(StandingWaterCli, BadBodiesAndGaugesAreRefusedWithTheirKeys) {
        "probes[2].name"},
       {"[[probes]]\nname = \"a,b\"\nx = 1\ny = 4\n", "probes[1].name"},
       {"[water]\nbodies = 3\n", "water.bodies"},
+      // A rectangle 1e-9 m wide is printed as such, not as [0.000000, 0.000000].
+      {"[[water.bodies]]\nx0 = 0\nx1 = 1e-9\ny0 = 0\ny1 = 8\nlevel = 1\n",
+       "the rectangle [0, 1e-09] x [0, 8] holds no vertex"},
   };
   for (const Case& c : cases) {
     test::ScratchDir dir;
