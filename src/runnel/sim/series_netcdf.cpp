@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "runnel/sim/series_netcdf.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/io/crash_isolated_read.hpp"
 #include "runnel/io/hdf5_file.hpp"
-#include "runnel/models/memory_check.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel {
@@ -35,10 +36,10 @@ void check_series_grid(const std::string& path, const std::vector<double>& x,
     }
 }
 
-// The frames' steps and times rise strictly and are finite, there is at least one, and all of them
-// fit in memory (a file listing one frame 300,000 times is refused, not expanded).
+// The frames' steps and times rise strictly and are finite, and there is at least one (a file
+// listing one frame 300,000 times is refused, not expanded).
 void check_series_frames(const std::string& path, const std::vector<std::int64_t>& steps,
-                         const std::vector<double>& times, const Heightmap& grid) {
+                         const std::vector<double>& times) {
   if (steps.empty())
     throw input_error(path + ": holds no terrain frames (a run writes them with --series-every N)");
   for (std::size_t k = 0; k < steps.size(); ++k) {
@@ -50,14 +51,16 @@ void check_series_frames(const std::string& path, const std::vector<std::int64_t
                         std::to_string(steps[k]) +
                         ") does not come after the one before it: steps and times must rise");
   }
-  const double bytes =
-      static_cast<double>(steps.size()) * static_cast<double>(grid.size()) * 3 * sizeof(float);
-  const MemoryRoom room = memory_room();
-  if (room.bytes > 0 && bytes > room.bytes)
-    throw input_error(path + ": " + std::to_string(steps.size()) + " frames of " +
-                      std::to_string(grid.nx) + " x " + std::to_string(grid.ny) + " need about " +
-                      format_number(bytes / 1e9) + " GB; " + room.limited_by + " leaves " +
-                      format_number(room.bytes / 1e9) + " GB");
+}
+
+// The stored name of each exported field in a frame's group.
+constexpr std::pair<const char*, const char*> kSeriesFields[] = {
+    {"height", "height"}, {"dh", "dh"}, {"depth", "water_depth"}};
+
+std::string frame_group(std::int64_t step) {
+  char group[48];
+  std::snprintf(group, sizeof group, "/terrain/%010lld", static_cast<long long>(step));
+  return group;
 }
 
 }  // namespace
@@ -83,24 +86,24 @@ SeriesForNetcdf read_series_for_netcdf(const std::string& series_path) {
   grid.origin_x = x[0] - 0.5 * grid.cell;  // the vertices stand at their pixels' centres
   grid.origin_z = y.back() - 0.5 * grid.cell;
   grid.georef.crs_wkt = series.read_string_attribute("/grid", "crs_wkt");
-  const std::vector<std::int64_t> steps = series.read_int64("/height_step");
-  const std::vector<double> times = series.read_double("/height_time", {steps.size()});
-  check_series_frames(series_path, steps, times, grid);
-  std::vector<NetcdfFrame>& frames = out.frames;
-  for (std::size_t k = 0; k < steps.size(); ++k) {
-    char group[48];
-    std::snprintf(group, sizeof group, "/terrain/%010lld", static_cast<long long>(steps[k]));
-    NetcdfFrame frame;
-    frame.time = times[k];
-    for (auto [stored, name] : {std::pair{"height", "height"}, std::pair{"dh", "dh"},
-                                std::pair{"depth", "water_depth"}}) {
-      const std::string dataset = std::string(group) + "/" + stored;
-      if (series.exists(dataset)) frame.fields.emplace_back(name, series.read_float(dataset, dims));
+  out.steps = series.read_int64("/height_step");
+  out.times = series.read_double("/height_time", {out.steps.size()});
+  check_series_frames(series_path, out.steps, out.times);
+  // Every frame holds the same fields, as the first one (their data is read as it is written).
+  for (auto [stored, name] : kSeriesFields)
+    if (series.exists(frame_group(out.steps.front()) + "/" + stored)) out.fields.push_back(name);
+  for (std::size_t k = 0; k < out.steps.size(); ++k) {
+    const std::string group = frame_group(out.steps[k]);
+    if (out.fields.empty() || !series.exists(group))
+      throw input_error(series_path + ": frame " + std::to_string(out.steps[k]) + " has no " +
+                        group + " (a series written before frames had their own)");
+    for (auto [stored, name] : kSeriesFields) {
+      const bool listed =
+          std::find(out.fields.begin(), out.fields.end(), std::string(name)) != out.fields.end();
+      if (listed != series.exists(group + "/" + stored))
+        throw input_error(series_path + ": frame " + std::to_string(out.steps[k]) +
+                          " holds other fields than the first frame (" + stored + ")");
     }
-    if (frame.fields.empty())
-      throw input_error(series_path + ": frame " + std::to_string(steps[k]) + " has no " +
-                        std::string(group) + " (a series written before frames had their own)");
-    frames.push_back(std::move(frame));
   }
   out.time_units = series.has_attribute("/", "time_units")
                        ? series.read_string_attribute("/", "time_units")
@@ -108,11 +111,33 @@ SeriesForNetcdf read_series_for_netcdf(const std::string& series_path) {
   return out;
 }
 
+std::vector<float> read_series_field(const H5File& series, const SeriesForNetcdf& s,
+                                     std::size_t frame, const std::string& field) {
+  for (auto [stored, name] : kSeriesFields)
+    if (field == name)
+      return series.read_float(frame_group(s.steps[frame]) + "/" + stored,
+                               {static_cast<hsize_t>(s.grid.ny), static_cast<hsize_t>(s.grid.nx)});
+  return {};
+}
+
 void write_series_netcdf(const std::string& path, const std::string& series_path) {
-  // libhdf5 crashes on some damaged files instead of reporting them: the read runs once in a child.
-  refuse_if_reading_crashes(series_path, [&] { read_series_for_netcdf(series_path); });
+  // libhdf5 crashes on some damaged files instead of reporting them: the whole read runs once in a
+  // child, a frame at a time.
+  refuse_if_reading_crashes(series_path, [&] {
+    const SeriesForNetcdf s = read_series_for_netcdf(series_path);
+    const H5File series = H5File::open_read(series_path);
+    for (std::size_t f = 0; f < s.steps.size(); ++f)
+      for (const std::string& field : s.fields) read_series_field(series, s, f, field);
+  });
   const SeriesForNetcdf s = read_series_for_netcdf(series_path);
-  write_netcdf(path, s.grid, s.time_units, s.frames);
+  const H5File series = H5File::open_read(series_path);
+  NetcdfFrameSource source;
+  source.times = s.times;
+  source.fields = s.fields;
+  source.read = [&](std::size_t f, const std::string& field) {
+    return read_series_field(series, s, f, field);
+  };
+  write_netcdf(path, s.grid, s.time_units, source);
 }
 
 }  // namespace runnel

@@ -64,7 +64,7 @@ std::shared_ptr<GDALMDArray> coordinate(GDALGroup& root, const std::shared_ptr<G
 }
 
 void write_file(const std::string& path, const Heightmap& grid, const std::string& time_units,
-                const std::vector<NetcdfFrame>& frames) {
+                const NetcdfFrameSource& frames) {
   init_gdal();
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("netCDF");
   if (!driver) throw runtime_error(path + ": this GDAL has no netCDF driver");
@@ -78,19 +78,18 @@ void write_file(const std::string& path, const Heightmap& grid, const std::strin
   text_attribute(*root, "source", "runnel");
 
   const auto nx = static_cast<GUInt64>(grid.nx), ny = static_cast<GUInt64>(grid.ny);
-  auto time = root->CreateDimension("time", GDAL_DIM_TYPE_TEMPORAL, "", frames.size());
+  auto time = root->CreateDimension("time", GDAL_DIM_TYPE_TEMPORAL, "", frames.times.size());
   auto y = root->CreateDimension("y", GDAL_DIM_TYPE_HORIZONTAL_Y, "", ny);
   auto x = root->CreateDimension("x", GDAL_DIM_TYPE_HORIZONTAL_X, "", nx);
   if (!time || !y || !x) throw runtime_error(path + ": cannot create the dimensions");
   const MapFrame map(grid);
-  std::vector<double> xs(grid.nx), ys(grid.ny), times;
+  std::vector<double> xs(grid.nx), ys(grid.ny);
   for (int i = 0; i < grid.nx; ++i) xs[i] = map.x(i * grid.cell);
   for (int j = 0; j < grid.ny; ++j) ys[j] = map.y(j * grid.cell);
-  for (const NetcdfFrame& f : frames) times.push_back(f.time);
   const bool projected = !grid.georef.crs_wkt.empty();
   coordinate(*root, x, xs, "m", projected ? "projection_x_coordinate" : "", "X");
   coordinate(*root, y, ys, "m", projected ? "projection_y_coordinate" : "", "Y");
-  auto t = coordinate(*root, time, times, time_units.c_str(), "", "T");
+  auto t = coordinate(*root, time, frames.times, time_units.c_str(), "", "T");
   text_attribute(*t, "long_name", "model time");
 
   // The CRS as CF's grid mapping variable, named as rioxarray and GDAL name it.
@@ -100,10 +99,9 @@ void write_file(const std::string& path, const Heightmap& grid, const std::strin
     text_attribute(*crs, "crs_wkt", grid.georef.crs_wkt);
     text_attribute(*crs, "spatial_ref", grid.georef.crs_wkt);
   }
-  if (frames.empty()) return;
+  if (frames.times.empty()) return;
   const float fill = static_cast<float>(grid.georef.nodata.value_or(NAN));
-  for (std::size_t k = 0; k < frames.front().fields.size(); ++k) {
-    const std::string& name = frames.front().fields[k].first;
+  for (const std::string& name : frames.fields) {
     const FieldMeta& meta = meta_of(name);
     auto array = root->CreateMDArray(name, {time, y, x}, GDALExtendedDataType::Create(GDT_Float32));
     if (!array) throw runtime_error(path + ": cannot create " + name);
@@ -114,10 +112,10 @@ void write_file(const std::string& path, const Heightmap& grid, const std::strin
     text_attribute(*array, "long_name", meta.long_name);
     if (*meta.standard_name) text_attribute(*array, "standard_name", meta.standard_name);
     if (projected) text_attribute(*array, "grid_mapping", "spatial_ref");
-    for (std::size_t f = 0; f < frames.size(); ++f) {
-      if (frames[f].fields.size() <= k || frames[f].fields[k].first != name)
+    for (std::size_t f = 0; f < frames.times.size(); ++f) {
+      std::vector<float> values = frames.read(f, name);
+      if (values.size() != grid.size())
         throw runtime_error(path + ": frame " + std::to_string(f) + " lacks the field " + name);
-      std::vector<float> values = frames[f].fields[k].second;
       for (std::size_t v = 0; v < values.size(); ++v)
         if (grid.georef.hole(v)) values[v] = fill;
       const GUInt64 start[3] = {f, 0, 0};
@@ -133,6 +131,20 @@ void write_file(const std::string& path, const Heightmap& grid, const std::strin
 
 void write_netcdf(const std::string& path, const Heightmap& grid, const std::string& time_units,
                   const std::vector<NetcdfFrame>& frames) {
+  NetcdfFrameSource source;
+  for (const NetcdfFrame& f : frames) source.times.push_back(f.time);
+  if (!frames.empty())
+    for (const auto& [name, values] : frames.front().fields) source.fields.push_back(name);
+  source.read = [&](std::size_t f, const std::string& name) {
+    for (const auto& [field, values] : frames[f].fields)
+      if (field == name) return values;
+    return std::vector<float>();
+  };
+  write_netcdf(path, grid, time_units, source);
+}
+
+void write_netcdf(const std::string& path, const Heightmap& grid, const std::string& time_units,
+                  const NetcdfFrameSource& frames) {
   write_path_atomically(path, [&](const std::string& temporary) {
     CPLErrorReset();
     write_file(temporary, grid, time_units, frames);  // the dataset is closed when it returns

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,5 +25,15 @@ struct NetcdfFrame {
 // its _FillValue. xarray, GDAL, QGIS and Landlab read it.
 void write_netcdf(const std::string& path, const Heightmap& grid, const std::string& time_units,
                   const std::vector<NetcdfFrame>& frames);
+
+// The frames of an export read one field of one frame at a time as they are written, so that a
+// long series never sits in memory whole: the times, the fields every frame has, and the reader.
+struct NetcdfFrameSource {
+  std::vector<double> times;
+  std::vector<std::string> fields;
+  std::function<std::vector<float>(std::size_t frame, const std::string& field)> read;
+};
+void write_netcdf(const std::string& path, const Heightmap& grid, const std::string& time_units,
+                  const NetcdfFrameSource& frames);
 
 }  // namespace runnel
