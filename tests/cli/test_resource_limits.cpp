@@ -394,11 +394,20 @@ TEST(ResourceLimits, EveryMessageIsOneLineWithoutTerminalControls) {
 namespace runnel {
 namespace {
 
+// AddressSanitizer, as GCC and clang announce it.
+#if defined(__SANITIZE_ADDRESS__)
+#define RUNNEL_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RUNNEL_TEST_ASAN 1
+#endif
+#endif
+
 // Under an address-space limit (`ulimit -v`, as batch systems set it) a model too large for what
 // the limit leaves is refused with the sizes, before PoCL aborts inside an allocation. (Not under
 // AddressSanitizer, which needs the whole address space for its shadow memory.)
 TEST(ResourceLimits, AnAddressSpaceLimitIsHonouredBeforeAllocating) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(RUNNEL_TEST_ASAN)
   GTEST_SKIP() << "AddressSanitizer cannot run under ulimit -v";
 #else
   test::ScratchDir dir;
