@@ -54,12 +54,19 @@ py::array_t<float, py::array::c_style | py::array::forcecast> real_heights(const
   return py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(heights);
 }
 
-Heightmap terrain_from(const py::array& array, double cell) {
+// A terrain of `cell` m holding the heights of a 2-D array of real numbers, unchecked beyond its
+// shape (the callers check the values once they are what the terrain will hold).
+Heightmap terrain_of_array(const py::array& array, double cell) {
   const auto heights = real_heights(array);
   if (heights.ndim() != 2) throw input_error("heights: a 2-D array (rows, columns) is needed");
   check_terrain_size("heights", heights.shape(1), heights.shape(0));
   Heightmap t(static_cast<int>(heights.shape(1)), static_cast<int>(heights.shape(0)), cell);
   std::copy(heights.data(), heights.data() + heights.size(), t.h.begin());
+  return t;
+}
+
+Heightmap terrain_from(const py::array& array, double cell) {
+  Heightmap t = terrain_of_array(array, cell);
   check_terrain_values("heights", t);
   return t;
 }
@@ -69,18 +76,15 @@ Heightmap terrain_from(const py::array& array, double cell) {
 Heightmap terrain_with_holes(const py::array& array, double cell,
                              const py::array_t<bool, py::array::c_style | py::array::forcecast>& holes,
                              double nodata) {
-  const auto heights = real_heights(array);
-  if (heights.ndim() != 2 || holes.ndim() != 2 || holes.shape(0) != heights.shape(0) ||
-      holes.shape(1) != heights.shape(1))
+  Heightmap t = terrain_of_array(array, cell);
+  if (holes.ndim() != 2 || holes.shape(0) != t.ny || holes.shape(1) != t.nx)
     throw input_error("holes: a 2-D array of the heights' shape is needed");
-  check_terrain_size("heights", heights.shape(1), heights.shape(0));
-  Heightmap t(static_cast<int>(heights.shape(1)), static_cast<int>(heights.shape(0)), cell);
   long long count = 0;
-  for (py::ssize_t k = 0; k < heights.size(); ++k) {
-    const bool hole = holes.data()[k];
-    t.h[static_cast<std::size_t>(k)] = hole ? NAN : heights.data()[k];
-    count += hole;
-  }
+  for (std::size_t k = 0; k < t.h.size(); ++k)
+    if (holes.data()[k]) {
+      t.h[k] = NAN;  // what apply_nodata_policy fills and marks
+      ++count;
+    }
   t.georef.nodata = nodata;
   apply_nodata_policy("heights", t, count, NodataPolicy::kFill);
   check_terrain_values("heights", t);

@@ -124,7 +124,7 @@ int run_mpi(const SweepOptions& opt, const SweepSpec& spec,
   if (rank == 0) {
     try {
       claim_sweep_folder(opt.out, members, opt.extend);
-      lock.emplace(opt.out, ".runnel-sweep.lock",
+      lock.emplace(opt.out, ".runnel-sweep.lock", "--out " + opt.out,
                    "--out " + opt.out +
                        ": another runnel sweep is running in this folder; wait for it to end");
     } catch (const Error& e) {
@@ -218,7 +218,7 @@ void sweep(SweepOptions opt) {
   if (opt.jobs == 0) opt.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   // One coordinating sweep a folder at a time (its workers and --member tasks do not take it).
   const FolderLock lock(
-      opt.out, ".runnel-sweep.lock",
+      opt.out, ".runnel-sweep.lock", "--out " + opt.out,
       "--out " + opt.out + ": another runnel sweep is running in this folder; wait for it to end");
   const int failed = run_workers(opt, spec, members);
   std::cout << terminal_safe(opt.out) << "/results.csv: " << members.size() - failed << " of "

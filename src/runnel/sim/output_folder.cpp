@@ -78,11 +78,12 @@ bool run_lock_held(const std::string& dir) {
   return held;
 }
 
-FolderLock::FolderLock(const std::string& dir, const std::string& name, const std::string& busy) {
+FolderLock::FolderLock(const std::string& dir, const std::string& name, const std::string& who,
+                       const std::string& busy) {
   const std::string path = (fs::path(dir) / name).string();
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0)
-    throw input_error(dir + ": cannot write into the folder (" + std::strerror(errno) + ")");
+    throw input_error(who + ": cannot write into the output folder (" + std::strerror(errno) + ")");
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     ::close(fd_);
     fd_ = -1;
@@ -101,52 +102,34 @@ OutputFolder::OutputFolder(const std::string& dir_text, const std::string& run_i
   if (ec || !fs::is_directory(dir, ec))
     throw input_error("--out " + dir_text + ": cannot create the output folder");
 
-  const std::string lock_path = (dir / kLockName).string();
-  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0) {
-    throw input_error("--out " + dir_text + ": cannot write into the output folder (" +
-                      std::strerror(errno) + ")");
-  }
-  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-    ::close(lock_fd_);
-    lock_fd_ = -1;
+  lock_.emplace(dir_text, kLockName, "--out " + dir_text,
+                "--out " + dir_text +
+                    ": another runnel run is writing into this folder; wait for it to end or "
+                    "choose another --out");
+  // Rolling checkpoints are written into checkpoints/ and old ones removed: never through a
+  // link into another folder.
+  if (fs::is_symlink(dir / "checkpoints", ec))
     throw input_error("--out " + dir_text +
-                      ": another runnel run is writing into this folder; wait for it to end or "
-                      "choose another --out");
+                      ": checkpoints is a link; runnel neither writes nor removes through it "
+                      "(choose another --out)");
+  const std::string earlier = read_marker(dir / kRunMarker);
+  const std::vector<fs::path> outputs = earlier_outputs(dir);
+  if (earlier != run_id && !outputs.empty()) {
+    // Only what a run recorded here wrote is replaced: in a folder runnel never wrote into (no
+    // marker), a file of an output's name is the user's own.
+    if (earlier.empty())
+      throw input_error("--out " + dir_text + ": holds " + outputs.front().filename().string() +
+                        ", which no runnel run wrote there; choose another --out");
+    if (!overwrite)
+      throw input_error("--out " + dir_text + ": holds the outputs of another run (" +
+                        outputs.front().filename().string() +
+                        "); choose another --out, or --overwrite to replace them");
+    for (const fs::path& p : outputs) fs::remove(p, ec);
   }
-  try {
-    // Rolling checkpoints are written into checkpoints/ and old ones removed: never through a
-    // link into another folder.
-    if (fs::is_symlink(dir / "checkpoints", ec))
-      throw input_error("--out " + dir_text +
-                        ": checkpoints is a link; runnel neither writes nor removes through it "
-                        "(choose another --out)");
-    const std::string earlier = read_marker(dir / kRunMarker);
-    const std::vector<fs::path> outputs = earlier_outputs(dir);
-    if (earlier != run_id && !outputs.empty()) {
-      // Only what a run recorded here wrote is replaced: in a folder runnel never wrote into (no
-      // marker), a file of an output's name is the user's own.
-      if (earlier.empty())
-        throw input_error("--out " + dir_text + ": holds " + outputs.front().filename().string() +
-                          ", which no runnel run wrote there; choose another --out");
-      if (!overwrite)
-        throw input_error("--out " + dir_text + ": holds the outputs of another run (" +
-                          outputs.front().filename().string() +
-                          "); choose another --out, or --overwrite to replace them");
-      for (const fs::path& p : outputs) fs::remove(p, ec);
-    }
-    // Written as every output is (a temporary, then a rename): a folder that let the lock be
-    // opened but takes no new file (a read-only mount that had the lock) is refused here, before
-    // the first step.
-    write_text_atomically((dir / kRunMarker).string(), run_id + "\n");
-  } catch (...) {
-    ::close(lock_fd_);
-    throw;
-  }
-}
-
-OutputFolder::~OutputFolder() {
-  if (lock_fd_ >= 0) ::close(lock_fd_);  // closing releases the flock
+  // Written as every output is (a temporary, then a rename): a folder that let the lock be
+  // opened but takes no new file (a read-only mount that had the lock) is refused here, before
+  // the first step.
+  write_text_atomically((dir / kRunMarker).string(), run_id + "\n");
 }
 
 }  // namespace runnel

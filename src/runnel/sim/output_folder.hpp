@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,11 +22,13 @@ const std::vector<std::string>& run_output_names();
 bool run_lock_held(const std::string& dir);
 
 // An exclusive lock on `name` in `dir` (created), held while the object lives; refused with
-// `busy` (an input error) when another process holds it. Closing the descriptor (even a killed
+// `busy` (an input error) when another process holds it, and with "`who`: cannot write into the
+// output folder" when the lock file cannot be opened. Closing the descriptor (even a killed
 // process's) releases it.
 class FolderLock {
  public:
-  FolderLock(const std::string& dir, const std::string& name, const std::string& busy);
+  FolderLock(const std::string& dir, const std::string& name, const std::string& who,
+             const std::string& busy);
   ~FolderLock();
   FolderLock(const FolderLock&) = delete;
   FolderLock& operator=(const FolderLock&) = delete;
@@ -37,12 +40,11 @@ class FolderLock {
 class OutputFolder {
  public:
   OutputFolder(const std::string& dir, const std::string& run_id, bool overwrite);
-  ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
 
  private:
-  int lock_fd_ = -1;
+  std::optional<FolderLock> lock_;
 };
 
 }  // namespace runnel

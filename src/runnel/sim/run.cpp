@@ -173,6 +173,16 @@ struct GoodState {
   }
 };
 
+// Volume is conserved exactly (integer quanta): a balance that no longer closes is a numerical
+// failure, stopped like a NaN (the run keeps its last good state).
+void require_balance(const Model& model, const MassBalance& m) {
+  if (m.residual_quanta != 0)
+    throw runtime_error("the mass balance no longer closes at step " +
+                        std::to_string(model.steps()) + " (t = " + format_number(model.time()) +
+                        "): " + std::to_string(m.residual_quanta) +
+                        " quanta unaccounted for; the run is unstable");
+}
+
 // What the step loop measured.
 struct Stepped {
   std::vector<JsonObject> reports;  // the mass balance every options.report_every steps
@@ -212,13 +222,7 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
     std::string status = status_line(model, (model.steps() - first_step) / std::max(elapsed, 1e-9));
     if (report) {
       const MassBalance m = model.mass_balance();
-      // Volume is conserved exactly (integer quanta): a balance that no longer closes is a
-      // numerical failure, stopped here like a NaN (the last good state is kept).
-      if (m.residual_quanta != 0)
-        throw runtime_error("the mass balance no longer closes at step " +
-                            std::to_string(model.steps()) + " (t = " + format_number(model.time()) +
-                            "): " + std::to_string(m.residual_quanta) +
-                            " quanta unaccounted for; the run is unstable");
+      require_balance(model, m);
       char buf[160];
       std::snprintf(buf, sizeof buf, " | eroded %.4g m3 | balance %.2e m3 (rel %.1e)", m.eroded,
                     m.residual, m.relative);
@@ -241,10 +245,7 @@ Stepped step_until_done(ComputeContext& compute, Model& model, const RunOptions&
     if (probes.due(model.time())) read_gauges(model, probes);
     progress.update(fraction, status, report);
   }
-  if (const MassBalance m = model.mass_balance(); m.residual_quanta != 0)
-    throw runtime_error("the mass balance no longer closes at step " +
-                        std::to_string(model.steps()) + ": " + std::to_string(m.residual_quanta) +
-                        " quanta unaccounted for; the run is unstable");
+  require_balance(model, model.mass_balance());
   series.finish(model);
   compute.queue().finish();
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

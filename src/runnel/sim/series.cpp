@@ -3,7 +3,6 @@
 
 #include <bit>
 #include <cstdio>
-#include <stdexcept>
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
@@ -194,14 +193,16 @@ void SeriesWriter::publish() {
 
 void SeriesWriter::keep_written() noexcept {
   if (!file_) return;
-  try {
-    if (broken_) throw std::runtime_error("a frame was left half written");
-    publish();
-  } catch (...) {
-    file_.reset();
-    std::error_code ec;
-    fs::remove(out_ / kPartial, ec);
+  if (!broken_) {
+    try {
+      publish();
+      return;
+    } catch (...) {
+    }
   }
+  file_.reset();
+  std::error_code ec;
+  fs::remove(out_ / kPartial, ec);
 }
 
 void SeriesWriter::write_xdmf() const {
