@@ -85,24 +85,6 @@ inline void particle_candidates(uint i, float3 pi, Grid grid, const __global uin
     }                                                                                              \
   }
 
-// ∇_i W_ij of a pair the neighbour walk visits: as the density pass stored it for a listed
-// neighbour (the pair's float4), computed as it does for a particle that walks its cells. The
-// solves' passes run ten times a step over the same positions: reading the gradient replaces the
-// gathers of x_j and the kernel's evaluation.
-inline float3 pair_gradient(uint slot, float4 pair, uint j, uint image, float3 pi, const __global float* x,
-                            const __global float* y, const __global float* z, float domain_x, float domain_z) {
-  if (slot < DFSPH_SLOTS) return pair.xyz;
-  const float3 xij = pi - image_position(image, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
-  return wendland_grad_factor(sqrt(dot(xij, xij))) * xij;
-}
-#define DFSPH_PAIR_GRADIENT pair_gradient(slot_, pair_, j, image_, pi, x, y, z, domain_x, domain_z)
-
-// G(d)·n of the terrain under particle i, as the density pass stored it (one block of n per
-// component).
-inline float3 floor_gradient_of(uint i, uint n, const __global float* floor_gradient) {
-  return (float3)(floor_gradient[i], floor_gradient[n + i], floor_gradient[2 * n + i]);
-}
-
 // The terrain's tangent plane under a particle: distance d along the unit normal n.
 typedef struct {
   float d;
@@ -118,86 +100,190 @@ inline FloorPlane floor_plane(float3 p, const __global float* terrain_height, co
   return f;
 }
 
+// The plane under particle i as the density pass stored it (one block of n per component: n, d;
+// with the volume map, G(d)·n in place of n).
+inline FloorPlane floor_of(uint i, uint n, const __global float* planes) {
+  FloorPlane f;
+  f.n = (float3)(planes[i], planes[n + i], planes[2 * n + i]);
+  f.d = planes[3 * n + i];
+  return f;
+}
+
+// A pair and the floor's image of its neighbour: the neighbour at pj reflected across particle
+// i's tangent plane, when both lie above it (then |x_i − x_j'|² = |x_ij|² + 4 d_i d_j: an image is
+// within the support only if the neighbour is). `image` is ∇_i W_ij', `w_image` W_ij' (both 0
+// without an image).
+typedef struct {
+  float3 direct, image;
+  float w, w_image;
+} MirroredPair;
+
+inline MirroredPair mirrored_pair(float3 pi, float3 pj, FloorPlane f) {
+  MirroredPair m;
+  const float3 xij = pi - pj;
+  const float r = sqrt(dot(xij, xij));
+  m.w = wendland_w(r);
+  m.direct = wendland_grad_factor(r) * xij;
+  const float dj = f.d - dot(xij, f.n);
+  const float3 xim = xij + (2.0f * dj) * f.n;
+  const float rim = sqrt(dot(xim, xim));
+  const float mirrored = DFSPH_FLOOR_IMAGES && f.d > 0.0f && dj > 0.0f ? 1.0f : 0.0f;
+  m.w_image = mirrored * wendland_w(rim);
+  m.image = (mirrored * wendland_grad_factor(rim)) * xim;
+  return m;
+}
+
+// G(d)·n, the gradient of the terrain's volume map under a particle (∇Γ = −G n).
+inline float3 floor_gradient(FloorPlane f) { return wall_integral(f.d) * f.n; }
+
+// ∇_i W_ii' of particle i and its own image across the plane (2d below it, along n).
+inline float3 self_image_gradient(FloorPlane f) {
+  const float d = max(f.d, 0.0f);
+  return (wendland_grad_factor(2.0f * d) * 2.0f * d) * f.n;
+}
+
+// A listed pair's terms for the solves: s = ∇W_ij + ∇W_ij' (how κ_i + κ_j pushes i) and
+// σ = n·∇W_ij' (the image's velocity is the neighbour's with its normal part reversed:
+// (u_i − u_j)·∇W_ij + (u_i − R u_j)·∇W_ij' = (u_i − u_j)·s + 2σ u_j·n). As the density pass stored
+// them for a listed neighbour, computed as it does for a particle that walks its cells. The
+// solves' passes run ten times a step over the same positions: reading the pair replaces the
+// gathers of x_j and the kernel's evaluations.
+typedef struct {
+  float3 s;
+  float sigma;
+} ListedPair;
+
+inline ListedPair listed_pair(uint slot, float4 pair, const __global float* pair_image, uint i, uint n, uint j,
+                              uint image, float3 pi, FloorPlane f, const __global float* x,
+                              const __global float* y, const __global float* z, float domain_x,
+                              float domain_z) {
+  ListedPair l;
+  if (slot < DFSPH_SLOTS) {
+    l.s = pair.xyz;
+    l.sigma = DFSPH_FLOOR_IMAGES ? pair_image[(size_t)slot * n + i] : 0.0f;
+    return l;
+  }
+  const MirroredPair m =
+      mirrored_pair(pi, image_position(image, (float3)(x[j], y[j], z[j]), domain_x, domain_z), f);
+  l.s = m.direct + m.image;
+  l.sigma = dot(f.n, m.image);
+  return l;
+}
+#define DFSPH_LISTED_PAIR \
+  listed_pair(slot_, pair_, pair_image, i, n, j, image_, pi, f, x, y, z, domain_x, domain_z)
+
 __kernel void dfsph_density(const __global float* x, const __global float* y, const __global float* z, const uint n,
                             const float ox, const float oy, const float oz, const float inv_cell, const int gx,
                             const int gy, const int gz, const __global uint* cell_start,
                             const __global uint* cell_end, const __global float* terrain_height,
                             const __global float* terrain_normal, const int tnx, const int tny, const float tcell,
                             const float domain_x, const float domain_z, __global float* rho, __global float* factor,
-                            __global float* theta, __global float4* pairs, __global uint* neighbour_count,
-                            __global float* floor_gradient) {
+                            __global float* theta, __global float4* pairs, __global float* pair_image,
+                            __global uint* neighbour_count, __global float* planes) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const float3 pi = (float3)(x[i], y[i], z[i]);
+  const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
   LoneTile t;
   particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z, &t);
   float w_fluid = 0.0f, w_ghost = 0.0f, others = 0.0f, sq_fluid = 0.0f, sq_ghost = 0.0f;
-  float3 g_fluid = (float3)(0.0f), g_ghost = (float3)(0.0f);
+  float3 g_fluid = (float3)(0.0f), g_ghost = (float3)(0.0f), g_self = (float3)(0.0f);
   uint listed = 0;
   LONE_CANDIDATES_BEGIN(t)
   const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
+  const MirroredPair m = mirrored_pair(pi, pj, f);
+  const bool self = image_ == 0 && j == i;
+  // The pair's push, s = ∇W_ij + ∇W_ij', and how κ_i moves neighbour j and its image, seen at i:
+  // ∇W_ij + R ∇W_ij' (R the reflection). Particle i's own image is counted apart (its κ is κ_i).
+  const float sigma = dot(f.n, m.image);
+  const float3 s = self ? m.direct : m.direct + m.image;
+  const float3 back = s - (2.0f * sigma) * f.n;
+  const float sq = self ? 0.0f : dot(back, back);
+  if (self) g_self = m.image;
   const float3 xij = pi - pj;
-  const float r2 = dot(xij, xij);
-  const float r = sqrt(r2);
-  const float w = wendland_w(r);
-  const float3 grad = wendland_grad_factor(r) * xij;
-  if (r2 < BEYOND_SUPPORT2 && (image_ != 0 || j != i)) {
+  if (dot(xij, xij) < BEYOND_SUPPORT2 && !self) {
     if (listed < DFSPH_SLOTS) {
       const uint entry = j | (image_ << DFSPH_IMAGE_SHIFT);
-      pairs[(size_t)listed * n + i] = (float4)(grad, as_float(entry ^ DFSPH_ENTRY_FLIP));
+      pairs[(size_t)listed * n + i] = (float4)(s, as_float(entry ^ DFSPH_ENTRY_FLIP));
+#if DFSPH_FLOOR_IMAGES
+      pair_image[(size_t)listed * n + i] = sigma;
+#endif
     }
     ++listed;
   }
-  const float sq = dot(grad, grad);
   if (image_ == 0) {
-    w_fluid += w;
-    g_fluid += grad;
+    w_fluid += m.w + m.w_image;
+    g_fluid += s;
     sq_fluid += sq;
-    if (j != i) others += w;
+    if (!self) others += m.w;
   } else {
-    w_ghost += w;
-    g_ghost += grad;
+    w_ghost += m.w + m.w_image;
+    g_ghost += s;
     sq_ghost += sq;
-    others += w;
+    others += m.w;
   }
   LONE_CANDIDATES_END
-  const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
   const float th = fluid_fullness((SPH_MASS / SPH_RHO0) * others, f.d, SPH_RHO0);
+#if DFSPH_FLOOR_IMAGES
+  // κ_i pushes i from every pair and twice from its own image (which carries κ_i too).
+  const float rho_hat = DFSPH_V0 * (w_fluid + w_ghost);
+  const float3 g = DFSPH_V0 * (g_fluid + g_ghost + 2.0f * g_self);
+  const float denominator = dot(g, g) + DFSPH_V0 * DFSPH_V0 * (sq_fluid + sq_ghost);
+#else
   const float rho_hat = DFSPH_V0 * (w_fluid + w_ghost) + wall_volume(f.d);
   const float3 g = DFSPH_V0 * (g_fluid + g_ghost) - wall_integral(f.d) * f.n;
   const float3 g_pressure = g - wall_integral(f.d) * f.n;  // how κ_i moves i: the terrain mirrors it
   const float denominator = max(dot(g, g_pressure), 0.0f) + DFSPH_V0 * DFSPH_V0 * (sq_fluid + sq_ghost);
+#endif
   neighbour_count[i] = listed;
-  const float3 gn = wall_integral(f.d) * f.n;
-  floor_gradient[i] = gn.x;
-  floor_gradient[n + i] = gn.y;
-  floor_gradient[2 * n + i] = gn.z;
+  // The solves read the plane (n, d); with the volume map they need only G(d)·n, stored in n's place.
+#if DFSPH_FLOOR_IMAGES
+  const float3 stored = f.n;
+#else
+  const float3 stored = floor_gradient(f);
+#endif
+  planes[i] = stored.x;
+  planes[n + i] = stored.y;
+  planes[2 * n + i] = stored.z;
+  planes[3 * n + i] = f.d;
   rho[i] = SPH_RHO0 * rho_hat;
   factor[i] = denominator > 1e-6f / (SPH_H * SPH_H) ? 1.0f / denominator : 0.0f;
   theta[i] = th;
 }
 
-// Viscosity and gravity at the divergence-free velocities: Monaghan's artificial viscosity with the
-// weakly compressible solver's α and c0 (kinematic viscosity α c0 h / 10), on the rest density, as
-// an explicit force; the wall ghosts' too (free slip: their tangential velocity is the particle's
-// own, so they damp only the normal motion).
-//   dv_i/dt = −Σ_j m Π_ij ∇_iW_ij + g,  Π_ij = −α c0 μ_ij / ρ0 when v_ij·x_ij < 0,
-//   μ_ij = h v_ij·x_ij / (|x_ij|² + 0.01h²)
+// Viscosity, gravity and the floor images' hydrostatic pressure at the divergence-free velocities.
+// Viscosity: Monaghan's artificial viscosity with the weakly compressible solver's α and c0
+// (kinematic viscosity α c0 h / 10), on the rest density, as an explicit force; the wall ghosts'
+// too (free slip: their tangential velocity is the particle's own, so they damp only the normal
+// motion).
+//   dv_i/dt = −Σ_j m Π_ij ∇_iW_ij + g − V0 Σ_j' c_j ∇W_ij',  Π_ij = −α c0 μ_ij / ρ0 when
+//   v_ij·x_ij < 0, μ_ij = h v_ij·x_ij / (|x_ij|² + 0.01h²)
+// The floor's image j' of a neighbour lies 2 d_j below it along the normal; its pressure is the
+// neighbour's κ_j (in the solves) plus the hydrostatic increment c_j = 2 g d_j n_y (Adami et al.
+// 2012: the pressure carried on across the wall), which does not depend on κ and so is a force
+// here. Without it the image layer mirrors the bottom layer's pressure and holds it with half the
+// bulk's pressure gradient.
 __kernel void dfsph_non_pressure(const __global float* x, const __global float* y, const __global float* z,
                                  const __global float* vx, const __global float* vy, const __global float* vz,
                                  const uint n, const float ox, const float oy,
                                  const float oz, const float inv_cell, const int gx, const int gy, const int gz,
                                  const __global uint* cell_start, const __global uint* cell_end,
                                  const float domain_x, const float domain_z, const __global float4* pairs,
-                                 const __global uint* neighbour_count, __global float* ax, __global float* ay,
-                                 __global float* az) {
+                                 const __global uint* neighbour_count, const __global float* planes,
+                                 const __global float* theta, __global float* ax, __global float* ay, __global float* az) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 vi = (float3)(vx[i], vy[i], vz[i]);
+  const FloorPlane f = floor_of(i, n, planes);
   const float eta2 = 0.01f * SPH_H * SPH_H;
+  const float lift = 2.0f * SPH_GRAVITY * f.n.y * theta[i];  // c_j per metre of d_j
+#if DFSPH_FLOOR_IMAGES
+  float3 acc = (-DFSPH_V0 * lift * max(f.d, 0.0f)) * self_image_gradient(f);
+#else
   float3 acc = (float3)(0.0f);
+#endif
   DFSPH_NEIGHBOURS(
     const float3 pj = image_position(image_, (float3)(x[j], y[j], z[j]), domain_x, domain_z);
     const float3 vj = image_velocity(image_, (float3)(vx[j], vy[j], vz[j]));
@@ -206,6 +292,10 @@ __kernel void dfsph_non_pressure(const __global float* x, const __global float* 
     const float vdotx = dot(vi - vj, xij);
     const float visc = -SPH_ALPHA_VISC * SPH_C0 * SPH_H * min(vdotx, 0.0f) / ((r2 + eta2) * SPH_RHO0);
     acc += (-SPH_MASS * visc * wendland_grad_factor(sqrt(r2))) * xij;
+    if (DFSPH_FLOOR_IMAGES) {
+      const MirroredPair m = mirrored_pair(pi, pj, f);
+      acc += (-DFSPH_V0 * lift * max(f.d - dot(xij, f.n), 0.0f)) * m.image;
+    }
   )
   ax[i] = acc.x;
   ay[i] = acc.y - SPH_GRAVITY;

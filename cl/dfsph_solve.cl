@@ -62,18 +62,25 @@ __kernel void dfsph_pressure_acceleration(
     const uint n, const float ox, const float oy, const float oz, const float inv_cell,
     const int gx, const int gy, const int gz, const __global uint* cell_start, const __global uint* cell_end,
     const float domain_x, const float domain_z, const __global float4* pairs,
-    const __global uint* neighbour_count, const __global float* floor_gradient,
+    const __global float* pair_image, const __global uint* neighbour_count, const __global float* planes,
     __global float* apx, __global float* apy, __global float* apz) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float ki = kappa[i];
+  const FloorPlane f = floor_of(i, n, planes);
+#if DFSPH_FLOOR_IMAGES
+  // Its own image carries κ_i as well: twice κ_i on that pair.
+  float3 acc = (-DFSPH_V0 * 2.0f * ki) * self_image_gradient(f);
+#else
   float3 acc = (float3)(0.0f);
+#endif
   DFSPH_NEIGHBOURS(
-    acc += (-DFSPH_V0 * (ki + kappa[j])) * DFSPH_PAIR_GRADIENT;
+    acc += (-DFSPH_V0 * (ki + kappa[j])) * DFSPH_LISTED_PAIR.s;
   )
-  const float3 gn = floor_gradient_of(i, n, floor_gradient);
-  acc += (2.0f * ki) * gn;
+#if !DFSPH_FLOOR_IMAGES
+  acc += (2.0f * ki) * f.n;  // G(d)·n, the volume map's: the particle's own κ mirrored
+#endif
   apx[i] = acc.x;
   apy[i] = acc.y;
   apz[i] = acc.z;
@@ -95,8 +102,8 @@ __kernel void dfsph_density_change(
     const float oy, const float oz, const float inv_cell, const int gx, const int gy, const int gz,
     const __global uint* cell_start, const __global uint* cell_end, const float domain_x,
     const float domain_z, const float dt, const float dt_k, const float error_scale, const uint divergence,
-    const uint iterate, const __global float4* pairs, const __global uint* neighbour_count,
-    const __global float* floor_gradient,
+    const uint iterate, const __global float4* pairs, const __global float* pair_image,
+    const __global uint* neighbour_count, const __global float* planes,
     volatile __global long* errors, volatile __global uint* error_max) {
   __local long group_quanta[DFSPH_GROUP];
   __local uint group_count[DFSPH_GROUP], group_worst[DFSPH_GROUP];
@@ -106,13 +113,24 @@ __kernel void dfsph_density_change(
   if (i < n) {
   const float3 pi = (float3)(x[i], y[i], z[i]);
   const float3 ui = (float3)(ux[i], uy[i], uz[i]);
+  const FloorPlane f = floor_of(i, n, planes);
+#if DFSPH_FLOOR_IMAGES
+  // Its own image moves with its normal velocity reversed: (u_i − R u_i)·∇W_ii' = 2 (u_i·n) n·∇W_ii'.
+  float sum = 2.0f * dot(ui, f.n) * dot(f.n, self_image_gradient(f));
+  DFSPH_NEIGHBOURS(
+    const float3 uj = image_velocity(image_, (float3)(ux[j], uy[j], uz[j]));
+    const ListedPair l = DFSPH_LISTED_PAIR;
+    sum += dot(ui - uj, l.s) + 2.0f * l.sigma * dot(uj, f.n);
+  )
+  const float change = DFSPH_V0 * sum;
+#else
   float sum = 0.0f;
   DFSPH_NEIGHBOURS(
     const float3 uj = image_velocity(image_, (float3)(ux[j], uy[j], uz[j]));
-    sum += dot(ui - uj, DFSPH_PAIR_GRADIENT);
+    sum += dot(ui - uj, DFSPH_LISTED_PAIR.s);
   )
-  const float3 gn = floor_gradient_of(i, n, floor_gradient);
-  const float change = DFSPH_V0 * sum - dot(ui, gn);
+  const float change = DFSPH_V0 * sum - dot(ui, f.n);  // G(d)·n: the terrain at rest
+#endif
   // The divergence-free solve leaves particles of a deficient neighbourhood alone.
   const bool solved = !divergence || theta[i] > 0.0f;
   float residual;

@@ -30,6 +30,7 @@ struct SphSettings {
   double dfsph_density_error;     // dfsph: mean density error the constant-density solve allows, %
   double dfsph_divergence_error;  // dfsph: mean compression per step the divergence solve allows, %
   int dfsph_max_iterations;       // dfsph: iterations of each solve at most
+  bool dfsph_floor_images;        // dfsph: the terrain as mirror images, not its volume map
   double dt_min;                  // s
   double dt_max;                  // s
   double gravity;                 // m/s²

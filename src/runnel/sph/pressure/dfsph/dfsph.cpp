@@ -46,14 +46,19 @@ void Dfsph::measure_density(ParticleStore& store, const SpatialHash& hash, Devic
     list_capacity_ = std::max(n, list_capacity_ + list_capacity_ / 2);
     pairs_ = cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
                         list_capacity_ * kSlots * sizeof(cl_float4));
-    floor_gradients_ =
-        cl::Buffer(compute_.context(), CL_MEM_READ_WRITE, 3 * list_capacity_ * sizeof(cl_float));
+    // The images' terms only where the terrain is mirrored (a placeholder float otherwise).
+    pair_images_ =
+        cl::Buffer(compute_.context(), CL_MEM_READ_WRITE,
+                   settings_.dfsph_floor_images ? list_capacity_ * kSlots * sizeof(cl_float)
+                                                : sizeof(cl_float));
+    planes_ =
+        cl::Buffer(compute_.context(), CL_MEM_READ_WRITE, 4 * list_capacity_ * sizeof(cl_float));
   }
   bind_neighbourhood(density_, store, hash, terrain);
   store.bind(density_, {kRho});
   density_.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
-  density_.set("pairs", pairs_).set("neighbour_count", store.spare(kListed));
-  density_.set("floor_gradient", floor_gradients_);
+  density_.set("pairs", pairs_).set("pair_image", pair_images_);
+  density_.set("neighbour_count", store.spare(kListed)).set("planes", planes_);
   density_.launch(round_up_work(n));
 }
 
@@ -64,6 +69,7 @@ void Dfsph::non_pressure_accelerations(ParticleStore& store, const SpatialHash& 
   bind_neighbourhood(non_pressure_, store, hash, terrain);
   store.bind(non_pressure_, {kVx, kVy, kVz, kAx, kAy, kAz});
   non_pressure_.set("pairs", pairs_).set("neighbour_count", store.spare(kListed));
+  non_pressure_.set("planes", planes_).set("theta", store.spare(kTheta));
   non_pressure_.launch(round_up_work(n));
 }
 
@@ -153,7 +159,7 @@ Dfsph::SolveResult Dfsph::solve(ParticleStore& store, const SpatialHash& hash,
   for (Kernel* k : {&change, &accel}) {
     bind_neighbourhood(*k, store, hash, terrain);
     k->set("pairs", pairs_).set("neighbour_count", store.spare(kListed));
-    k->set("floor_gradient", floor_gradients_);
+    k->set("pair_image", pair_images_).set("planes", planes_);
   }
   store.bind(change, {kRho});
   change.set("factor", store.spare(kFactor)).set("theta", store.spare(kTheta));
@@ -239,10 +245,17 @@ std::vector<float> Dfsph::pressure(ParticleStore& store) const {
   return p;
 }
 
+std::size_t Dfsph::bytes_per_particle() const {
+  return kSlots * sizeof(cl_float4) + 4 * sizeof(cl_float) +
+         (settings_.dfsph_floor_images ? kSlots * sizeof(cl_float) : 0);
+}
+
 std::size_t Dfsph::allocated_bytes() const {
   std::size_t bytes = 0;
-  for (const cl::Buffer* b : {&pairs_, &floor_gradients_})
+  for (const cl::Buffer* b : {&pairs_, &planes_})
     if ((*b)() != nullptr) bytes += b->getInfo<CL_MEM_SIZE>();
+  if (settings_.dfsph_floor_images && pair_images_() != nullptr)
+    bytes += pair_images_.getInfo<CL_MEM_SIZE>();
   return bytes;
 }
 

@@ -52,10 +52,11 @@ class Dfsph final : public PressureSolver {
   std::vector<float> pressure(ParticleStore& store) const override;
   // The stats as JSON: solves, mean iterations, capped solves, last errors.
   JsonObject json() const override;
-  // Its listed pairs (a neighbour's index and the pair's kernel gradient, one float4 each) and the
-  // terrain's gradient under each particle; the bytes those buffers hold now (0 before the first
-  // density pass).
-  std::size_t bytes_per_particle() const override { return kBytesPerParticle; }
+  // Its listed pairs (a neighbour's index and the pair's kernel gradient with its floor image's,
+  // one float4 each, and with sph.dfsph_floor_images the image's normal gradient, one float) and
+  // the terrain's tangent plane under each particle; the bytes those buffers hold now (0 before
+  // the first density pass).
+  std::size_t bytes_per_particle() const override;
   std::size_t allocated_bytes() const override;
   // The solves' kept pressures: their warm start.
   std::vector<ParticleField> kept_fields() const override { return {kKappa, kKappaV}; }
@@ -76,8 +77,6 @@ class Dfsph final : public PressureSolver {
   // (cl/dfsph_solve.cl's DFSPH_GROUP).
   static constexpr std::size_t kGroup = 64;
   static constexpr std::size_t kSlots = 96;  // DFSPH_SLOTS of cl/dfsph_density.cl
-  static constexpr std::size_t kBytesPerParticle =
-      kSlots * sizeof(cl_float4) + 3 * sizeof(cl_float);
   struct SolveResult {
     int iterations;
     bool capped;
@@ -101,10 +100,10 @@ class Dfsph final : public PressureSolver {
   SphSettings settings_;
   Kernel density_, non_pressure_, half_kick_, pressure_acceleration_, density_change_, finish_;
   cl::Buffer errors_, error_max_;
-  // Each particle's neighbours within the support and their pairs' ∇W, kSlots float4s a
-  // particle (cl/dfsph_density.cl), and G(d)·n of the terrain under each particle, from the
-  // density pass, for the solves.
-  cl::Buffer pairs_, floor_gradients_;
+  // Each particle's neighbours within the support and their pairs' ∇W_ij + ∇W_ij', kSlots float4s
+  // a particle, the images' n·∇W_ij', kSlots floats a particle (cl/dfsph_density.cl), and the
+  // terrain's tangent plane under each particle (n, d), from the density pass, for the solves.
+  cl::Buffer pairs_, pair_images_, planes_;
   std::size_t list_capacity_ = 0;
   DfsphStats stats_;
   double density_dt_ = 0, divergence_dt_ = 0;  // the steps of the last solves (κ is kept × dt^k)
