@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Rain emitter (physics.md §4): `count` new particles written at the end of the particle arrays,
-// at uniformly random (x, z) in the rain region, `spawn_height` above the terrain (never below the
+// at uniformly random (x, z) in the rain region, `spawn_height` above the terrain, or with
+// `above_water` above the water's surface (the terrain plus the depth field; never below the
 // contact surface, `contact_radius` above it, where the particle would be inside the ground),
 // falling at `speed`. Slot k draws from the counter first_counter + k of the run's seed: the same particles
 // whatever the thread count, and a resumed run draws what an uninterrupted one would.
@@ -9,6 +10,19 @@
 // share of the rain through each cell), then a uniform place in it.
 
 #define RAIN_STREAM 0x7261696eUL  // "rain"
+#define RAIN_WATER_QUANTUM 1e-6f    // m of depth a count (WATER_QUANTUM of water_depth.cl)
+
+// The water depth at (px, pz): the fine field of water_depth.cl (counts on the vertices)
+// interpolated bilinearly in the cell.
+inline float water_depth_at(const __global long* water, int tnx, int tny, float tcell, float px, float pz) {
+  const float u = px / tcell, v = pz / tcell;
+  const int i = clamp((int)floor(u), 0, tnx - 2), j = clamp((int)floor(v), 0, tny - 2);
+  const float fu = clamp(u - (float)i, 0.0f, 1.0f), fv = clamp(v - (float)j, 0.0f, 1.0f);
+  const float d00 = (float)water[j * tnx + i], d10 = (float)water[j * tnx + i + 1];
+  const float d01 = (float)water[(j + 1) * tnx + i], d11 = (float)water[(j + 1) * tnx + i + 1];
+  const float counts = (1.0f - fv) * ((1.0f - fu) * d00 + fu * d10) + fv * ((1.0f - fu) * d01 + fu * d11);
+  return RAIN_WATER_QUANTUM * counts;
+}
 
 __kernel void rain_emit(__global float* x, __global float* y, __global float* z, __global float* vx,
                         __global float* vy, __global float* vz, __global float* rho, __global int* sediment,
@@ -20,7 +34,8 @@ __kernel void rain_emit(__global float* x, __global float* y, __global float* z,
                         const float lifespan_mean, const float lifespan_jitter, const float spread,
                         const float gravity,
                         const __global float* terrain_height, const __global float* terrain_normal, const int tnx,
-                        const int tny, const float tcell, const __global float* cell_cdf, const int cells) {
+                        const int tny, const float tcell, const __global float* cell_cdf, const int cells,
+                        const __global long* water, const int above_water) {
   const uint k = get_global_id(0);
   if (k >= count) return;
   const ulong counter = 4UL * (first_counter + k);
@@ -58,7 +73,8 @@ __kernel void rain_emit(__global float* x, __global float* y, __global float* z,
   // count fell since its time within the step, the k-th of count equal shares, for τ.
   const float tau = spread * ((float)(count - k) - 0.5f) / (float)count;
   x[i] = px;
-  y[i] = fmax(s.height + spawn_height - tau * (speed + 0.5f * gravity * tau), contact.height + surface_eps);
+  const float base = s.height + (above_water ? water_depth_at(water, tnx, tny, tcell, px, pz) : 0.0f);
+  y[i] = fmax(base + spawn_height - tau * (speed + 0.5f * gravity * tau), contact.height + surface_eps);
   z[i] = pz;
   vx[i] = 0.0f;
   vy[i] = -speed - gravity * tau;

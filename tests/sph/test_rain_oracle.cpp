@@ -11,6 +11,7 @@
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/terrain/generators.hpp"
 #include "runnel/terrain/surface.hpp"
+#include "runnel/validation/tank.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -96,6 +97,66 @@ TEST(RainOracle, IncompressibleStepsSpreadTheDropsOverTheStep) {
   EXPECT_NEAR(reference.front().age, dt, dt / count);
   EXPECT_NEAR(reference.back().age, 0.0, dt / count);
   EXPECT_LT(drops.f[kVy].front(), -1.5f - 0.9f * float(sph.gravity * dt));
+}
+
+}  // namespace
+}  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// rain.above_water: over a pool the drops appear the spawn height above its surface, not inside
+// it. The pool is a block 4 particles deep on a flat floor; its depth field (water volume over the
+// cell area) is 4 dx inside it, so a drop over its middle appears 4 dx + spawn height above the
+// floor, and everywhere the kernel's height is the oracle's from the depth field the pass measured.
+TEST(RainOracle, AboveWaterDropsAppearAboveAPoolsSurface) {
+  const Heightmap floor = flat_floor(24, 24, 0.2);
+  Parameters p = default_parameters();
+  p.set("rain.rate", 20000.0);
+  p.set("rain.above_water", true);
+  p.set("rain.spawn_height", 0.1);
+  const double dx = 0.1;
+  const SphSettings sph = SphSettings::from(p, dx, 2.0);
+  SphSolver solver(compute(), sph, floor, 3.0);
+  HostParticles pool;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 20; ++k)
+        pool.push(1.45f + 0.1f * i, 0.05f + 0.1f * j, 1.45f + 0.1f * k, 0, 0, 0, 1000.0f, 1e30f);
+  solver.add(pool);
+  solver.prepare();  // measures the depth field
+  const std::size_t vertices = static_cast<std::size_t>(floor.nx) * floor.ny;
+  std::vector<cl_long> counts(vertices);
+  compute().queue().enqueueReadBuffer(solver.water_field(), CL_TRUE, 0, vertices * sizeof(cl_long),
+                                      counts.data());
+  std::vector<double> depth(vertices);
+  for (std::size_t v = 0; v < vertices; ++v) depth[v] = 1e-6 * static_cast<double>(counts[v]);
+
+  const RainSettings settings = RainSettings::from(p, solver.terrain(), sph.spacing, 2.0);
+  RainEmitter emitter(compute(), settings, 11, float(sph.rho0));
+  const std::size_t count = emitter.emit(solver, 0.02);
+  ASSERT_EQ(count, 400u);
+  const HostParticles all = solver.particles().download();
+  const auto reference = rain_reference::emit(settings, sph.contact_radius, sph.surface_eps, floor,
+                                              11, 0, count, 0.0, 0.0, depth);
+  double worst_y = 0;
+  int over_the_middle = 0;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (all.id[i] < pool.size()) continue;  // the pool's own particles
+    const std::size_t slot = all.id[i] - pool.size();
+    ASSERT_LT(slot, count);
+    worst_y = std::max(worst_y, std::fabs(all.f[kY][i] - reference[slot].y));
+    const double x = all.f[kX][i], z = all.f[kZ][i];
+    if (x > 2.0 && x < 3.0 && z > 2.0 && z < 3.0) {
+      EXPECT_NEAR(all.f[kY][i], 4 * dx + 0.1, 0.1 * dx) << "a drop over the pool's middle";
+      ++over_the_middle;
+    }
+    ++k;
+  }
+  EXPECT_EQ(k, count);
+  EXPECT_GT(over_the_middle, 0);
+  EXPECT_LT(worst_y, 1e-4);
 }
 
 }  // namespace

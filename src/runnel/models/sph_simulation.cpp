@@ -78,6 +78,7 @@ Simulation::Simulation(ComputeContext& compute, const Parameters& params, const 
   ground_ = make_ground(compute, params, solver_->terrain(), initial_, initial_fixed_);
   // With an exchange interval the water depth is measured only for the exchanges' steps.
   solver_->measure_depth_every(erosion.exchange_interval);
+  solver_->keep_water_field_current(rain.above_water);
   erosion_ = std::make_unique<Erosion>(compute, erosion, *solver_,
                                        static_cast<std::uint64_t>(params.integer("run.seed")),
                                        ground_ ? &ground_->bed() : nullptr);

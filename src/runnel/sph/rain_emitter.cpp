@@ -28,6 +28,7 @@ const SettingsTable<RainSettings> kRainTable = {
       {"rain.rate", "0", "particles/s", 0, 1e9, {}, "particles spawned per second; 0: from rain.intensity, or if that is 0 too, max_particles / lifespan", &RainSettings::rate},
       {"rain.intensity", "0", "mm/h", 0, 1e9, {}, "rain intensity over the region (converted through the particle volume dx³); used when rain.rate is 0", &RainSettings::intensity_mm_h},
       {"rain.spawn_height", "0", "m", 0, 1e6, {}, "height above the terrain where drops appear; 0: 1 dx", &RainSettings::spawn_height},
+      {"rain.above_water", "false", "", 0, 0, {}, "drops appear rain.spawn_height above the water's surface (the terrain plus the water depth on its vertices, as the last step measured it) rather than above the terrain: rain enters ponds and sheets at their surface instead of inside them", &RainSettings::above_water},
       {"rain.speed", "0", "m/s", 0, 1e4, {}, "initial downward speed of a drop", &RainSettings::speed},
       {"rain.max_particles", "0", "particles", 0, 1e8, {}, "particle budget: the emitter never lets more particles live at once (drops it holds back are counted, reported in metrics.json and cautioned about); 0: follow the storm (rain.rate or rain.intensity times the longest lifespan, within the device's memory), or 20000 when neither is given", &RainSettings::max_particles},
       {"rain.lifespan", "0", "s", 0, 1e9, {}, "mean lifespan of a drop before it evaporates; 0: the time to cross the terrain at a tenth of the reference speed (water under bed friction runs slower than a free fall)", &RainSettings::lifespan},
@@ -217,6 +218,7 @@ std::size_t RainEmitter::emit(SphSolver& solver, double dt) {
   Kernel& k = kernel_;
   store.bind(k, {kX, kY, kZ, kVx, kVy, kVz, kRho, kSediment, kAge, kLifespan, kContacts, kId});
   solver.terrain().bind(k);
+  k.set("water", solver.water_field()).set("above_water", cl_int{settings_.above_water});
   k.set("first_index", static_cast<cl_uint>(first))
       .set("count", static_cast<cl_uint>(count))
       .set("seed", static_cast<cl_ulong>(seed_))

@@ -23,6 +23,7 @@ struct RainSettings {
   double rate;            // particles/s
   double intensity_mm_h;  // the same rate as rain depth per hour
   double spawn_height;    // m
+  bool above_water;       // the spawn height is above the water's surface, not the terrain
   double speed;           // m/s
   std::int64_t max_particles;
   // rain.max_particles was 0: the budget follows the storm (rate × the longest lifespan), so no

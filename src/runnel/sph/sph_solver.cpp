@@ -100,6 +100,9 @@ SphSolver::SphSolver(ComputeContext& compute, const SphSettings& settings, const
   depth_coarsen_ = Kernel(compute, program, "water_depth_coarsen");
   water_ = cl::Buffer(compute.context(), CL_MEM_READ_WRITE,
                       film_level_vertices(floor.nx, floor.ny) * sizeof(cl_long));
+  // No water before the first depth pass (the rain emitter may read it first).
+  compute.queue().enqueueFillBuffer(water_, cl_long{0}, 0,
+                                    film_level_vertices(floor.nx, floor.ny) * sizeof(cl_long));
   stat_blocks_ = compute.wide() ? kStatBlocksGpu : kStatBlocksCpu;
   stats_buffer_ =
       cl::Buffer(compute.context(), CL_MEM_READ_WRITE, stat_blocks_ * kStatColumns * sizeof(float));
@@ -139,6 +142,9 @@ void SphSolver::drift() {
   SphPipeline p = pipeline();
   if (hash_stale_) {  // a restored state: same order, cell tables rebuilt
     build_hash();
+    // The water field of the restored positions, which the uninterrupted run measured at the
+    // last step's end (the particles' depth D came back with them).
+    if (water_field_every_step_) scatter_water();
     pressure_->rehashed(p);
   }
   pressure_->before_drift(p, dt_);
@@ -150,25 +156,32 @@ void SphSolver::drift() {
 // kernels skip them, and the choice between the two takes the last finished build's tiles (they
 // give the same field, so the choice changes the time only).
 void SphSolver::measure_water_depth() {
+  if (!scatter_water()) return;
+  const cl_uint n = static_cast<cl_uint>(store_.size());
+  const int levels = film_levels(terrain_.nx(), terrain_.ny());
+  coarsen_water(levels);
+  store_.bind(depth_gather_, {kX, kZ, kId});
+  depth_gather_.set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
+  depth_gather_.set("tcell", terrain_.cell());
+  store_.bind(depth_gather_, {kDepth});
+  depth_gather_.set("levels", levels);
+  depth_gather_.launch_lanes(n);
+}
+
+bool SphSolver::scatter_water() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   const std::size_t vertices = static_cast<std::size_t>(terrain_.nx()) * terrain_.ny();
   compute_.queue().enqueueFillBuffer(water_, cl_long{0}, 0, vertices * sizeof(cl_long));
-  if (n == 0) return;
+  if (n == 0) return false;
   // Where the water lies deep, consecutive particles share vertices, and counting them in runs
   // saves most of the atomics on them; a GPU's atomics are cheap, and it needs the work-items.
   const bool in_runs = compute_.info().type != "GPU" && n >= kDeepWaterPerTile * hash_.tile_count();
   Kernel& scatter = in_runs ? depth_scatter_runs_ : depth_scatter_;
-  for (Kernel* k : {&scatter, &depth_gather_}) {
-    store_.bind(*k, {kX, kZ, kId});
-    k->set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
-    k->set("tcell", terrain_.cell());
-  }
+  store_.bind(scatter, {kX, kZ, kId});
+  scatter.set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
+  scatter.set("tcell", terrain_.cell());
   scatter.launch(round_up_work(in_runs ? (n + kWaterRun - 1) / kWaterRun : n));
-  const int levels = film_levels(terrain_.nx(), terrain_.ny());
-  coarsen_water(levels);
-  store_.bind(depth_gather_, {kDepth});
-  depth_gather_.set("levels", levels);
-  depth_gather_.launch_lanes(n);
+  return true;
 }
 
 // The water counted on coarser grids for the films' depth (water_depth_reference.hpp), in one
@@ -184,7 +197,11 @@ void SphSolver::coarsen_water(int levels) {
 void SphSolver::complete_step() {
   sort_particles();  // by cell, dead particles last; cell tables, tiles
   // D at x(n+1), new drops included: the next step's friction and erosion.
-  if (depth_interval_ <= 0) measure_water_depth();
+  if (depth_interval_ <= 0) {
+    measure_water_depth();
+  } else if (water_field_every_step_) {
+    scatter_water();  // the field alone, for the rain above the water; D stays the exchanges'
+  }
   drop_dead_particles();  // the hash's live count and tiles, read while any depth pass runs
   SphPipeline p = pipeline();
   pressure_->complete(p, dt_);  // a(n+1) at x(n+1)

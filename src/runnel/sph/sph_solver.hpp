@@ -51,6 +51,9 @@ class SphSolver {
 
   ParticleStore& particles() { return store_; }
   DeviceTerrain& terrain() { return terrain_; }
+  // The water depth on the terrain's vertices, in counts of 1 µm (cl/water_depth.cl: the fine
+  // field first, then the films' coarser levels), as the last depth pass measured it.
+  const cl::Buffer& water_field() const { return water_; }
   float terrain_cell() const { return terrain_.cell(); }
   SpatialHash& hash() { return hash_; }
   const SphSettings& settings() const { return settings_; }
@@ -72,6 +75,9 @@ class SphSolver {
   // a fresh D); in between, each particle's D rides along the sort and the bed friction reads it
   // as last measured, and drops rained since then read 0 (docs/erosion.md, "Exchange interval").
   void measure_depth_every(double seconds);
+  // The water field (water_field()) measured at every step's end even where the particles' depth
+  // waits for the exchanges (measure_depth_every): the rain above the water reads it.
+  void keep_water_field_current(bool every_step) { water_field_every_step_ = every_step; }
   // Puts particles the terrain rose under back on its surface (after erosion and talus).
   void project_to_surface();
   // After the terrain's heights were replaced between steps (a coupler's new heights): the
@@ -108,6 +114,8 @@ class SphSolver {
  private:
   void drift_and_collide();
   void measure_water_depth();
+  // The fine water field alone (no films' levels, no particle depths); false without particles.
+  bool scatter_water();
   void coarsen_water(int levels);
   SphPipeline pipeline() { return {store_, hash_, terrain_}; }
   void build_hash();  // the two halves below at once
@@ -129,6 +137,7 @@ class SphSolver {
   // Water on each terrain vertex, counts of 1 µm of depth, then its coarser levels for the films
   // (cl/water_depth.cl).
   cl::Buffer water_;
+  bool water_field_every_step_ = false;
   cl::Buffer stats_buffer_, counters_buffer_;
   cl_uint stat_blocks_;           // step_stats' rows at most (a CPU: a few, a GPU: many)
   std::vector<float> stat_rows_;  // their values, read each step
