@@ -184,7 +184,16 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
   if (i >= n) return;
   const Grid grid = make_grid(ox, oy, oz, inv_cell, gx, gy, gz);
   const float3 pi = (float3)(x[i], y[i], z[i]);
-  const FloorPlane f = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
+  const FloorPlane terrain = floor_plane(pi, terrain_height, terrain_normal, tnx, tny, tcell);
+#if DFSPH_FLOOR_IMAGES
+  // The mirror plane at least the contact radius below the particle: the contact keeps a particle
+  // there from the terrain's contact surface, but in a concave bend (a wall's foot) the face under
+  // it can pass closer, and a particle that near its own image would count as compressed twice.
+  FloorPlane f = terrain;
+  f.d = max(terrain.d, SPH_CONTACT_RADIUS);
+#else
+  const FloorPlane f = terrain;
+#endif
   LoneTile t;
   particle_candidates(i, pi, grid, cell_start, cell_end, domain_x, domain_z, &t);
   float w_fluid = 0.0f, w_ghost = 0.0f, others = 0.0f, sq_fluid = 0.0f, sq_ghost = 0.0f;
@@ -224,7 +233,7 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
     others += m.w;
   }
   LONE_CANDIDATES_END
-  const float th = fluid_fullness((SPH_MASS / SPH_RHO0) * others, f.d, SPH_RHO0);
+  const float th = fluid_fullness((SPH_MASS / SPH_RHO0) * others, terrain.d, SPH_RHO0);
 #if DFSPH_FLOOR_IMAGES
   // κ_i pushes i from every pair and twice from its own image (which carries κ_i too).
   const float rho_hat = DFSPH_V0 * (w_fluid + w_ghost);
