@@ -245,6 +245,9 @@ class RunnelBmi(Bmi):
 
 def _height_quantum(model):
     """erosion.height_quantum: metres a count of the integer height fields."""
-    import tomllib
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python before 3.11: the same parser from PyPI
+        import tomli as tomllib
 
     return float(tomllib.loads(model.parameters_toml())["erosion"]["height_quantum"])
