@@ -16,7 +16,7 @@ pip=(.venv/bin/python -m pip install --quiet --disable-pip-version-check -c pyth
 # gimli.units 0.3: bmi-tester 0.5 imports gimli.units, which 0.4 no longer provides (its units
 # check would be skipped).
 "${pip[@]}" "bmipy>=2,<3" "bmi-tester>=0.5,<0.6" "gimli.units>=0.3.4,<0.4" "scikit-build-core>=0.8,<2" \
-  "landlab>=2.7" "xarray>=2023" "netCDF4>=1.6" nbclient nbformat ipykernel
+  "landlab>=2.7" "xarray>=2023" "netCDF4>=1.6" nbclient nbformat ipykernel matplotlib-inline
 # --no-build-isolation: build with the environment's scikit-build-core and Debian's pybind11.
 CMAKE_BUILD_PARALLEL_LEVEL="$(nproc)" "${pip[@]}" --no-build-isolation \
   --config-settings=build-dir="$PWD/.venv/runnel-build/{wheel_tag}" .
