@@ -58,6 +58,11 @@ TEST(CliNodata, HolesComeBackAsNodataInEveryRasterAndTheMetricsLeaveThemOut) {
   ASSERT_EQ(back.georef.holes.size(), back.h.size());
   EXPECT_EQ(back.georef.holes[9 * 20 + 7], 1);
   EXPECT_EQ(std::count(back.georef.holes.begin(), back.georef.holes.end(), 1), 1);
+  // NPY's hole is NaN: the final heights and the drainage area, NaN there and only there.
+  for (const char* npy : {"final.npy", "drainage_area.npy"}) {
+    const Heightmap raw = read_npy(dir.path("run/" + std::string(npy)), 1.0, NodataPolicy::kFill);
+    EXPECT_EQ(raw.georef.holes, back.georef.holes) << npy;
+  }
 }
 
 TEST(CliNodata, TheRefusalNamesTheKeyThatFillsTheHolesAndTheKeyWorks) {

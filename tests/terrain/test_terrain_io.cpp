@@ -3,9 +3,11 @@
 // one-line input error (exit code 2) naming the file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 #include "runnel/core/error.hpp"
 #include "runnel/terrain/generators.hpp"
@@ -224,10 +226,10 @@ TEST(TerrainIo, MalformedPngAndNpyGiveOneLineErrors) {
     bytes += '\0';
     write_text(dir.path("threed.npy"), bytes + h + std::string(32, '\0'));
   }
-  const float nan = std::nanf("");
-  std::string nan_data(16, '\0');
-  std::memcpy(nan_data.data() + 4, &nan, 4);
-  write_npy_raw(dir.path("nan.npy"), "<f4", false, 2, 2, nan_data);
+  const float inf = std::numeric_limits<float>::infinity();
+  std::string inf_data(16, '\0');
+  std::memcpy(inf_data.data() + 4, &inf, 4);
+  write_npy_raw(dir.path("inf.npy"), "<f4", false, 2, 2, inf_data);
 
   expect_input_error([&] { read_terrain(dir.path("truncated.png")); }, "truncated.png", "PNG");
   expect_input_error([&] { read_terrain(dir.path("text.png")); }, "text.png", "not a PNG");
@@ -240,7 +242,7 @@ TEST(TerrainIo, MalformedPngAndNpyGiveOneLineErrors) {
   expect_input_error([&] { read_terrain(dir.path("int.npy")); }, "int.npy",
                      "not float32 or float64");
   expect_input_error([&] { read_terrain(dir.path("threed.npy")); }, "threed.npy", "3 dimensions");
-  expect_input_error([&] { read_terrain(dir.path("nan.npy")); }, "nan.npy", "not a finite");
+  expect_input_error([&] { read_terrain(dir.path("inf.npy")); }, "inf.npy", "not a finite");
   expect_input_error([&] { read_terrain(dir.path("missing.asc")); }, "missing.asc", "no such file");
   expect_input_error([&] { read_terrain(dir.path("t.xyz")); }, "t.xyz", "unknown terrain format");
   test::write_text(dir.path("junk.tif"), "not a TIFF at all");
@@ -271,6 +273,37 @@ TEST(TerrainIo, RealDemReadsWithItsHeader) {
   EXPECT_DOUBLE_EQ(t.cell, 83.0);
   EXPECT_NEAR(t.min_height(), 236.0, 1.0);
   EXPECT_NEAR(t.max_height(), 1076.0, 1.0);
+}
+
+}  // namespace
+}  // namespace runnel
+
+namespace runnel {
+namespace {
+
+// NPY has no NODATA value: NaN is its hole. Read, a NaN is a hole under terrain.nodata's policy
+// (refused, or filled from its neighbours and remembered); written, a hole is NaN again.
+TEST(TerrainIo, NpyHolesAreNanBothWays) {
+  test::ScratchDir dir;
+  Heightmap t(3, 2, 1.0);
+  t.h = {1.0f, std::nanf(""), 3.0f, 4.0f, 5.0f, 6.0f};
+  std::string data(t.h.size() * 4, '\0');
+  std::memcpy(data.data(), t.h.data(), data.size());
+  write_npy_raw(dir.path("holed.npy"), "<f4", false, 2, 3, data);
+  ReadOptions refuse;
+  refuse.nodata = NodataPolicy::kRefuse;
+  expect_input_error([&] { read_terrain(dir.path("holed.npy"), refuse); }, "holed.npy",
+                     "1 NODATA cells");
+  const Heightmap filled = read_terrain(dir.path("holed.npy"));
+  ASSERT_EQ(filled.georef.holes.size(), 6u);
+  EXPECT_EQ(filled.georef.holes[1], 1);
+  EXPECT_EQ(std::count(filled.georef.holes.begin(), filled.georef.holes.end(), 1), 1);
+  // Filled with the mean of its valid neighbours: 1, 3, 4, 5, 6.
+  EXPECT_FLOAT_EQ(filled.h[1], (1.0f + 3.0f + 4.0f + 5.0f + 6.0f) / 5.0f);
+  write_terrain(dir.path("back.npy"), filled);
+  const Heightmap raw = read_npy(dir.path("back.npy"), 1.0, NodataPolicy::kFill);
+  EXPECT_EQ(raw.georef.holes, filled.georef.holes) << "the hole comes back as NaN";
+  for (std::size_t k : {0u, 2u, 3u, 4u, 5u}) EXPECT_EQ(raw.h[k], t.h[k]) << k;
 }
 
 }  // namespace

@@ -297,6 +297,7 @@ std::vector<double> write_terrain_outputs(const std::filesystem::path& out, Mode
   Heightmap drainage(final_terrain.nx, final_terrain.ny, final_terrain.cell);
   std::vector<double> area = metrics::flow_accumulation(final_terrain);
   for (std::size_t k = 0; k < area.size(); ++k) drainage.h[k] = static_cast<float>(area[k]);
+  drainage.georef.holes = final_terrain.georef.holes;  // NaN there: no data, no area
   write_terrain((out / "drainage_area.npy").string(), drainage);
   return area;
 }

@@ -4,9 +4,11 @@
 // size.
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "runnel/core/error.hpp"
@@ -153,7 +155,7 @@ NpyArray parse_npy_header(const std::string& header, const std::string& path) {
 
 }  // namespace
 
-Heightmap read_npy(const std::string& path, double cell_if_none) {
+Heightmap read_npy(const std::string& path, double cell_if_none, NodataPolicy nodata) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw input_error(path + ": cannot open for reading");
   const std::streamoff file_size = in.tellg();
@@ -179,6 +181,7 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
                     (a.byte_order == '<' && std::endian::native == std::endian::big);
 
   Heightmap terrain(static_cast<int>(nx), static_cast<int>(ny), cell_if_none);
+  long long holes = 0;
   for (long long k = 0; k < nx * ny; ++k) {
     double v = 0.0;
     if (a.item_size == 4) {
@@ -194,7 +197,9 @@ Heightmap read_npy(const std::string& path, double cell_if_none) {
     const long long row = a.fortran ? k % ny : k / nx;
     const long long col = a.fortran ? k / ny : k % nx;
     terrain.h[static_cast<std::size_t>(row * nx + col)] = static_cast<float>(v);
+    holes += std::isnan(v) ? 1 : 0;
   }
+  apply_nodata_policy(path, terrain, holes, nodata);  // NaN: the holes NPY writes
   return terrain;  // read_terrain checks the values, naming what they are
 }
 
@@ -215,7 +220,10 @@ void write_npy(const std::string& path, const Heightmap& terrain) {
     std::fwrite(header.data(), 1, header.size(), f);
     static_assert(std::endian::native == std::endian::little,
                   "the .npy writer assumes a little-endian host");
-    std::fwrite(terrain.h.data(), sizeof(float), terrain.h.size(), f);
+    // The holes (filled for the models) as NaN, NPY's only NODATA.
+    const std::vector<float> h =
+        heights_with_holes(terrain, std::numeric_limits<float>::quiet_NaN());
+    std::fwrite(h.data(), sizeof(float), h.size(), f);
     if (std::ferror(f)) throw runtime_error(path + ": write failed");
   });
 }

@@ -40,7 +40,7 @@ Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
       terrain = read_png16(path, options.png_range, options.cell_if_none);
       break;
     case TerrainFormat::kNpy:
-      terrain = read_npy(path, options.cell_if_none);
+      terrain = read_npy(path, options.cell_if_none, options.nodata);
       break;
     case TerrainFormat::kGeoTiff:
     case TerrainFormat::kGdal:

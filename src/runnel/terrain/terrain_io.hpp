@@ -80,7 +80,10 @@ Heightmap read_png16(const std::string& path, const std::optional<HeightRange>& 
                      double cell_if_none = 1.0);
 void write_png16(const std::string& path, const Heightmap& terrain,
                  const std::optional<HeightRange>& range);
-Heightmap read_npy(const std::string& path, double cell_if_none = 1.0);
+// NPY has no NODATA value: NaN marks a hole both ways (read with `nodata`'s policy; written at the
+// terrain's holes).
+Heightmap read_npy(const std::string& path, double cell_if_none = 1.0,
+                   NodataPolicy nodata = NodataPolicy::kFill);
 void write_npy(const std::string& path, const Heightmap& terrain);
 // Any raster GDAL reads, band 1, with its CRS (which must be projected in metres), geotransform
 // (north-up, square pixels) and NODATA value; GeoTIFF out, float32, DEFLATE-compressed.
