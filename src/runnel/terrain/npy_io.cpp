@@ -156,6 +156,14 @@ NpyArray parse_npy_header(const std::string& header, const std::string& path) {
 }  // namespace
 
 Heightmap read_npy(const std::string& path, double cell_if_none, NodataPolicy nodata) {
+  Heightmap terrain = read_npy_values(path, cell_if_none);
+  long long holes = 0;
+  for (float v : terrain.h) holes += std::isnan(v) ? 1 : 0;
+  apply_nodata_policy(path, terrain, holes, nodata);  // NaN: the holes NPY writes
+  return terrain;
+}
+
+Heightmap read_npy_values(const std::string& path, double cell_if_none) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw input_error(path + ": cannot open for reading");
   const std::streamoff file_size = in.tellg();
@@ -181,7 +189,6 @@ Heightmap read_npy(const std::string& path, double cell_if_none, NodataPolicy no
                     (a.byte_order == '<' && std::endian::native == std::endian::big);
 
   Heightmap terrain(static_cast<int>(nx), static_cast<int>(ny), cell_if_none);
-  long long holes = 0;
   for (long long k = 0; k < nx * ny; ++k) {
     double v = 0.0;
     if (a.item_size == 4) {
@@ -197,9 +204,7 @@ Heightmap read_npy(const std::string& path, double cell_if_none, NodataPolicy no
     const long long row = a.fortran ? k % ny : k / nx;
     const long long col = a.fortran ? k / ny : k % nx;
     terrain.h[static_cast<std::size_t>(row * nx + col)] = static_cast<float>(v);
-    holes += std::isnan(v) ? 1 : 0;
   }
-  apply_nodata_policy(path, terrain, holes, nodata);  // NaN: the holes NPY writes
   return terrain;  // read_terrain checks the values, naming what they are
 }
 

@@ -40,7 +40,8 @@ Heightmap read_terrain(const std::string& path, const ReadOptions& options) {
       terrain = read_png16(path, options.png_range, options.cell_if_none);
       break;
     case TerrainFormat::kNpy:
-      terrain = read_npy(path, options.cell_if_none, options.nodata);
+      terrain = options.npy_nan_is_nodata ? read_npy(path, options.cell_if_none, options.nodata)
+                                          : read_npy_values(path, options.cell_if_none);
       break;
     case TerrainFormat::kGeoTiff:
     case TerrainFormat::kGdal:
@@ -233,6 +234,7 @@ std::vector<float> read_vertex_raster(const std::string& path, int nx, int ny,
   ReadOptions options;
   options.quantity = what;
   options.unit = "";
+  options.npy_nan_is_nodata = false;
   const Heightmap r = read_terrain(path, options);
   if (check)
     for (float v : r.h)

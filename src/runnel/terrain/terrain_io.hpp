@@ -27,6 +27,9 @@ struct ReadOptions {
   double cell_if_none = 1.0;  // the cell size of a file that carries none (NPY, a foreign PNG)
   // What the values are, for the messages: a terrain's heights, or a vertex raster's quantity.
   std::string quantity = "height", unit = " m";
+  // NPY's NaN is a terrain's NODATA hole (under `nodata`); a vertex raster (a water depth, a mask)
+  // refuses it as a value that is not a number.
+  bool npy_nan_is_nodata = true;
 };
 
 struct WriteOptions {
@@ -84,6 +87,8 @@ void write_png16(const std::string& path, const Heightmap& terrain,
 // terrain's holes).
 Heightmap read_npy(const std::string& path, double cell_if_none = 1.0,
                    NodataPolicy nodata = NodataPolicy::kFill);
+// The array's values as they are, NaN included (read_terrain's checks then refuse it).
+Heightmap read_npy_values(const std::string& path, double cell_if_none = 1.0);
 void write_npy(const std::string& path, const Heightmap& terrain);
 // Any raster GDAL reads, band 1, with its CRS (which must be projected in metres), geotransform
 // (north-up, square pixels) and NODATA value; GeoTIFF out, float32, DEFLATE-compressed.
