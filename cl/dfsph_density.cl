@@ -133,9 +133,6 @@ inline MirroredPair mirrored_pair(float3 pi, float3 pj, FloorPlane f) {
   return m;
 }
 
-// G(d)·n, the gradient of the terrain's volume map under a particle (∇Γ = −G n).
-inline float3 floor_gradient(FloorPlane f) { return wall_integral(f.d) * f.n; }
-
 // ∇_i W_ii' of particle i and its own image across the plane (2d below it, along n).
 inline float3 self_image_gradient(FloorPlane f) {
   const float d = max(f.d, 0.0f);
@@ -250,7 +247,7 @@ __kernel void dfsph_density(const __global float* x, const __global float* y, co
 #if DFSPH_FLOOR_IMAGES
   const float3 stored = f.n;
 #else
-  const float3 stored = floor_gradient(f);
+  const float3 stored = wall_integral(f.d) * f.n;  // ∇Γ = −G n
 #endif
   planes[i] = stored.x;
   planes[n + i] = stored.y;

@@ -9,6 +9,8 @@
 #include <random>
 #include <sstream>
 
+#include "runnel/sph/sph_solver.hpp"
+
 namespace runnel::test {
 
 ScratchDir::ScratchDir() {
@@ -145,6 +147,18 @@ void expect_same_state(const CheckpointData& a, const CheckpointData& b) {
   EXPECT_EQ(a.particles.id, b.particles.id);
   for (int f = 0; f < kPersistentFieldCount; ++f) EXPECT_EQ(a.particles.f[f], b.particles.f[f]);
   EXPECT_EQ(a.particles.sediment, b.particles.sediment);
+}
+
+double incompressible_energy(SphSolver& solver) {
+  const SphSettings& s = solver.settings();
+  const HostParticles p = solver.particles().download();
+  double e = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double v2 = double(p.f[kVx][i]) * p.f[kVx][i] + double(p.f[kVy][i]) * p.f[kVy][i] +
+                      double(p.f[kVz][i]) * p.f[kVz][i];
+    e += s.mass() * (0.5 * v2 + s.gravity * p.f[kY][i]);
+  }
+  return e;
 }
 
 }  // namespace runnel::test

@@ -12,6 +12,10 @@
 #include "runnel/core/heightmap.hpp"
 #include "runnel/models/checkpoint.hpp"
 
+namespace runnel {
+class SphSolver;
+}
+
 namespace runnel::test {
 
 // The device every OpenCL test runs on, created once per test process: the CPU (PoCL), or
@@ -80,5 +84,9 @@ QuantaComparison compare_quanta(const std::vector<std::int64_t>& device,
 // A terrain of independent uniform heights in [0, relief) m on 1 m cells: every cell a pit or a
 // peak, so an oracle comparison exercises every neighbour relation of the grid models' kernels.
 Heightmap rough_terrain(int nx, int ny, float relief, unsigned seed);
+
+// The mechanical energy of incompressible water, E = Σ m (½|v|² + g y), v the velocities the last
+// step ended with (no elastic energy: dfsph's water does not compress).
+double incompressible_energy(SphSolver& solver);
 
 }  // namespace runnel::test

@@ -141,17 +141,24 @@ TEST(DfsphFloorImages, DensityAndFactorMatchABruteForceSumAndTheSystemIsSymmetri
   EXPECT_LT(worst_factor, 1e-4);
 }
 
+// dfsph in a walled tank, with or without the floor images, its solves to 0.001 % of ρ0 with up
+// to 1,000 iterations.
+Parameters tight_tank_parameters(bool images) {
+  Parameters p = default_parameters();
+  p.set("sph.solver", std::string("dfsph"));
+  p.set("sph.dfsph_floor_images", images);
+  p.set("sph.walls", true);
+  p.set("sph.dfsph_density_error", 0.001);
+  p.set("sph.dfsph_divergence_error", 0.001);
+  p.set("sph.dfsph_max_iterations", 1000);
+  return p;
+}
+
 // A solve to 0.001 % of ρ0 with up to 1,000 iterations: with the images the system is symmetric
 // and Jacobi converges on every mode; with the volume map (the push mirrored, the rate exact) the
 // floor's alternating mode grows and the solves stop at the cap.
 int capped_solves_in_a_tight_tank(bool images) {
-  Parameters params = default_parameters();
-  params.set("sph.solver", std::string("dfsph"));
-  params.set("sph.dfsph_floor_images", images);
-  params.set("sph.walls", true);
-  params.set("sph.dfsph_density_error", 0.001);
-  params.set("sph.dfsph_divergence_error", 0.001);
-  params.set("sph.dfsph_max_iterations", 1000);
+  const Parameters params = tight_tank_parameters(images);
   const double height = 0.4, dx = height / 16, width = 5 * dx;
   const SphSettings s = SphSettings::from(params, dx, std::sqrt(9.81 * height));
   SphSolver solver(compute(), s, flat_floor(10, 10, 0.5 * dx), 2 * height);
@@ -178,39 +185,21 @@ TEST(DfsphFloorImages, ATightSolveConvergesWhereTheVolumeMapsRunsAway) {
 namespace runnel {
 namespace {
 
-// E = Σ m (½|v|² + g y) of the particles (the water is incompressible: no elastic energy).
-double mechanical_energy(SphSolver& solver) {
-  const SphSettings& s = solver.settings();
-  const HostParticles p = solver.particles().download();
-  double e = 0;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    e += s.mass() * (0.5 * (double(p.f[kVx][i]) * p.f[kVx][i] + double(p.f[kVy][i]) * p.f[kVy][i] +
-                            double(p.f[kVz][i]) * p.f[kVz][i]) +
-                     s.gravity * p.f[kY][i]);
-  return e;
-}
-
 // A block settled for a second in a walled tank, then watched for a second, its solves to 0.001 %
 // of ρ0: the largest rise of E over any 10 steps, against E. With the images the system is
 // symmetric, a converged pressure step cannot add energy, and E never rises by more than 10⁻⁵ of
 // itself; with the volume map (not symmetric) the same tolerances let it gain.
 double worst_rise_over_ten_steps(bool images) {
-  Parameters params = default_parameters();
-  params.set("sph.walls", true);
-  params.set("sph.solver", std::string("dfsph"));
-  params.set("sph.dfsph_floor_images", images);
-  params.set("sph.dfsph_density_error", 0.001);
-  params.set("sph.dfsph_divergence_error", 0.001);
-  params.set("sph.dfsph_max_iterations", 1000);
+  const Parameters params = tight_tank_parameters(images);
   const double height = 0.2, dx = height / 8, width = 8 * dx;
   const SphSettings s = SphSettings::from(params, dx, std::sqrt(9.81 * height));
   SphSolver solver(compute(), s, flat_floor(16, 16, 0.5 * dx), 2 * height);
   solver.add(uniform_block(s, width, height, width));
   while (solver.time() < 1.0) solver.step();
-  std::vector<double> e{mechanical_energy(solver)};
+  std::vector<double> e{test::incompressible_energy(solver)};
   while (solver.time() < 2.0) {
     solver.step();
-    e.push_back(mechanical_energy(solver));
+    e.push_back(test::incompressible_energy(solver));
   }
   double worst = 0;
   long long gains = 0;

@@ -87,18 +87,7 @@ TEST(SphEnergy, SettledBlockInATankOnlyLosesEnergy) {
 namespace runnel {
 namespace {
 
-// dfsph's water is incompressible: E = Σ m (½|v|² + g y), v the velocity at the step's end.
-double incompressible_energy(SphSolver& solver) {
-  const SphSettings& s = solver.settings();
-  const HostParticles p = solver.particles().download();
-  double e = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double v2 = double(p.f[kVx][i]) * p.f[kVx][i] + double(p.f[kVy][i]) * p.f[kVy][i] +
-                      double(p.f[kVz][i]) * p.f[kVz][i];
-    e += s.mass() * (0.5 * v2 + s.gravity * p.f[kY][i]);
-  }
-  return e;
-}
+using test::incompressible_energy;
 
 // The incompressible solver's settled block loses energy over a second, but not in every step:
 // the solves stop at a tolerance, and what they leave acts as small pressure impulses (measured:

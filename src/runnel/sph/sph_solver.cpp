@@ -160,12 +160,16 @@ void SphSolver::measure_water_depth() {
   const cl_uint n = static_cast<cl_uint>(store_.size());
   const int levels = film_levels(terrain_.nx(), terrain_.ny());
   coarsen_water(levels);
-  store_.bind(depth_gather_, {kX, kZ, kId});
-  depth_gather_.set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
-  depth_gather_.set("tcell", terrain_.cell());
+  bind_water_field(depth_gather_);
   store_.bind(depth_gather_, {kDepth});
   depth_gather_.set("levels", levels);
   depth_gather_.launch_lanes(n);
+}
+
+void SphSolver::bind_water_field(Kernel& k) {
+  store_.bind(k, {kX, kZ, kId});
+  k.set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
+  k.set("tcell", terrain_.cell());
 }
 
 bool SphSolver::scatter_water() {
@@ -177,9 +181,7 @@ bool SphSolver::scatter_water() {
   // saves most of the atomics on them; a GPU's atomics are cheap, and it needs the work-items.
   const bool in_runs = compute_.info().type != "GPU" && n >= kDeepWaterPerTile * hash_.tile_count();
   Kernel& scatter = in_runs ? depth_scatter_runs_ : depth_scatter_;
-  store_.bind(scatter, {kX, kZ, kId});
-  scatter.set("water", water_).set("tnx", terrain_.nx()).set("tny", terrain_.ny());
-  scatter.set("tcell", terrain_.cell());
+  bind_water_field(scatter);
   scatter.launch(round_up_work(in_runs ? (n + kWaterRun - 1) / kWaterRun : n));
   return true;
 }

@@ -116,6 +116,8 @@ class SphSolver {
   void measure_water_depth();
   // The fine water field alone (no films' levels, no particle depths); false without particles.
   bool scatter_water();
+  // The particles' x, z and ids and the water field, for its scatter and gather passes.
+  void bind_water_field(Kernel& k);
   void coarsen_water(int levels);
   SphPipeline pipeline() { return {store_, hash_, terrain_}; }
   void build_hash();  // the two halves below at once
