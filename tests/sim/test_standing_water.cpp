@@ -15,6 +15,7 @@
 #include "runnel/sph/standing_water_particles.hpp"
 #include "runnel/terrain/probes.hpp"
 #include "runnel/terrain/standing_water.hpp"
+#include "runnel/terrain/surface.hpp"
 #include "test_support.hpp"
 
 namespace runnel {
@@ -130,6 +131,41 @@ TEST(StandingWater, SphParticlesFillEachColumnFromTheBedToTheWatersTop) {
     ASSERT_EQ(water.f[kVx][k], 0.0f);
     ASSERT_GE(water.f[kRho][k], static_cast<float>(s.rho0));  // hydrostatic: compressed below
   }
+}
+
+TEST(StandingWater, SphParticlesStayBelowALakesLevelAndClearOfItsSteepBanks) {
+  // A pool 0.5 m deep in a box whose walls rise 1 m over one 0.1 m cell: over a wall's face the
+  // water's top is the level (not bed + interpolated depth, which climbs the face), and no
+  // particle starts nearer the face than the contact radius (the contact surface's raise is capped
+  // on a face this steep). Distances by dense samples of the surface, 2 mm apart.
+  Heightmap box(17, 17, 0.1, 0.0f);
+  for (int j = 0; j < 17; ++j)
+    for (int i = 0; i < 17; ++i)
+      if (i < 2 || j < 2 || i > 14 || j > 14) box.at(i, j) = 1.0f;
+  std::vector<float> depth(box.size());
+  for (std::size_t k = 0; k < depth.size(); ++k) depth[k] = std::max(0.0f, 0.5f - box.h[k]);
+  Parameters p = default_parameters();
+  p.set("sph.spacing", 0.05);
+  const SphSettings s = SphSettings::from(p, 0.05, 2.0);
+  const HostParticles water = standing_water_particles(s, box, depth);
+  const double r = s.contact_radius, step = 0.002;
+  ASSERT_GT(water.size(), 1000u);
+  int beside_a_face = 0;
+  for (std::size_t k = 0; k < water.size(); ++k) {
+    const double x = water.f[kX][k], y = water.f[kY][k], z = water.f[kZ][k];
+    ASSERT_LT(y, 0.5) << "particle " << k << " at (" << x << ", " << y << ", " << z << ")";
+    double nearest = 1e30;
+    for (double sz = z - r; sz <= z + r; sz += step)
+      for (double sx = x - r; sx <= x + r; sx += step) {
+        const double dy = y - surface_height(box, sx, sz);
+        nearest = std::min(nearest, (x - sx) * (x - sx) + dy * dy + (z - sz) * (z - sz));
+      }
+    // A sample 2 mm off the nearest point on a 10:1 face is at most ~1.5 mm farther.
+    ASSERT_GE(std::sqrt(nearest), r - 0.0015)
+        << "particle " << k << " at (" << x << ", " << y << ", " << z << ")";
+    if (x < 0.2 + r || z < 0.2 + r) ++beside_a_face;
+  }
+  EXPECT_GT(beside_a_face, 100) << "the test looks at particles beside the walls";
 }
 
 TEST(StandingWater, AnSphLakeAtRestKeepsItsLevelAndVolume) {
