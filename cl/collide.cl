@@ -44,7 +44,11 @@ typedef struct {
   float t;       // segment parameter of the hit, or −1
   float3 point;  // m
   float3 normal; // interpolated vertex normal, unit
+  float3 face;   // the hit triangle's own normal, unit
 } TerrainHit;
+
+// The unit normal of triangle (v0, v1, v2), wound as the tiles' triangles are (cross(e2, e1) up).
+inline float3 face_normal(float3 v0, float3 v1, float3 v2) { return normalize(cross(v2 - v0, v1 - v0)); }
 
 inline void test_tile(const __global float* surface, const __global float* normal, int nx, float cell, int i, int j,
                       float3 o, float3 d, TerrainHit* best) {
@@ -61,12 +65,14 @@ inline void test_tile(const __global float* surface, const __global float* norma
     best->t = t;
     best->point = o + t * d;
     best->normal = normalize((1.0f - u - v) * vload3(k00, normal) + u * vload3(k10, normal) + v * vload3(k11, normal));
+    best->face = face_normal(p00, p10, p11);
   }
   t = moller_trumbore(o, d, p00, p11, p01, &u, &v);
   if (t >= 0.0f && (best->t < 0.0f || t < best->t)) {
     best->t = t;
     best->point = o + t * d;
     best->normal = normalize((1.0f - u - v) * vload3(k00, normal) + u * vload3(k11, normal) + v * vload3(k01, normal));
+    best->face = face_normal(p00, p11, p01);
   }
 }
 
@@ -113,4 +119,28 @@ inline float3 contact_response(float3 v, float3 n) {
   const float vn = dot(v, n);
   if (vn >= 0.0f) return v;
   return v - ((1.0f + SPH_RESTITUTION) * vn) * n;
+}
+
+// The same against a face whose own normal is `face`: after the response along the interpolated
+// normal n, whatever still moves into the face is taken away. Where the two normals differ (a
+// wall's foot, a bend between steep faces) the smooth response alone can leave a velocity into the
+// face that the next step's contact stops again, growing by g·dt a step in a particle that does
+// not move. On a plane the two normals agree and the second step changes nothing.
+inline float3 contact_response_on_face(float3 v, float3 n, float3 face) {
+  const float3 out = contact_response(v, n);
+#if SPH_CONTACT_FACE_NORMAL
+  const float into = dot(out, face);
+  return into < 0.0f ? out - into * face : out;
+#else
+  return out;
+#endif
+}
+
+// The own normal of the contact surface's triangle under (x, z), clamped to the heightmap.
+inline float3 contact_face_at(const __global float* surface, int nx, int ny, float cell, float x, float z) {
+  const TilePoint t = tile_point(nx, ny, cell, x, z);
+  const int i = t.k00 % nx, j = t.k00 / nx;
+  const float3 p00 = contact_vertex(surface, i, j, nx, cell), p11 = contact_vertex(surface, i + 1, j + 1, nx, cell);
+  return t.w01 == 0.0f ? face_normal(p00, contact_vertex(surface, i + 1, j, nx, cell), p11)
+                       : face_normal(p00, p11, contact_vertex(surface, i, j + 1, nx, cell));
 }

@@ -89,9 +89,9 @@ inline float3 bed_friction(float3 v, float3 n, float k, float dt) {
 // into the velocity at the step's end. Timing the rebound this way makes a bounce lose or gain
 // energy only at O(dt²), whatever the fraction t (reflecting the drift velocity instead gains or
 // loses g·|v|·dt·(1 − 2t) per bounce).
-inline float3 rebound(float3* v, float3 a, float3 n, float t, float dt) {
+inline float3 rebound(float3* v, float3 a, float3 n, float3 face, float t, float dt) {
   const float3 impact = *v + a * (dt * (t - 0.5f));
-  float3 out = contact_response(impact, n);
+  float3 out = contact_response_on_face(impact, n, face);
   const float remaining = (1.0f - t) * dt;
   float3 a_rest = a;
   const float an = dot(a, n), vn = dot(out, n);
@@ -163,17 +163,18 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
   }
   if (moving_in) {
     touching = true;
-    p = start + rebound(&v, a, s0.normal, 0.0f, dt);
+    const float3 face = contact_face_at(terrain_contact, tnx, tny, tcell, start.x, start.z);
+    p = start + rebound(&v, a, s0.normal, face, 0.0f, dt);
   } else {
     const TerrainHit hit =
         collide_segment(terrain_contact, terrain_normal, tnx, tny, tcell, start, p - start);
     if (hit.t >= 0.0f) {
       touching = true;
-      p = hit.point + rebound(&v, a, hit.normal, hit.t, dt);
+      p = hit.point + rebound(&v, a, hit.normal, hit.face, hit.t, dt);
       const TerrainHit again = collide_segment(terrain_contact, terrain_normal, tnx, tny, tcell,
                                                hit.point + SPH_SURFACE_EPS * hit.normal, p - hit.point);
       if (again.t >= 0.0f) {
-        v = contact_response(v, again.normal);
+        v = contact_response_on_face(v, again.normal, again.face);
         p = again.point;
       }
     }
@@ -186,7 +187,7 @@ __kernel void drift(const __global float* x, const __global float* y, const __gl
     // only the second case is a projection, counted: the contact should leave none.
     if (!touching && s.height - p.y > SPH_SURFACE_EPS) atom_inc(&counters[COUNTER_PROJECTIONS]);
     p.y = s.height;
-    v = contact_response(v, s.normal);
+    v = contact_response_on_face(v, s.normal, contact_face_at(terrain_contact, tnx, tny, tcell, p.x, p.z));
     touching = true;
   }
   // Touching: in contact this step, or resting within ε. Bed friction on the water column.
@@ -268,7 +269,8 @@ __kernel void project_to_surface(__global float* x, __global float* y, __global 
   if (y[i] >= s.height) return;
   if (s.height - y[i] > SPH_SURFACE_EPS) atom_inc(&counters[COUNTER_PROJECTIONS]);
   y[i] = s.height;
-  const float3 v = contact_response((float3)(vx[i], vy[i], vz[i]), s.normal);
+  const float3 v = contact_response_on_face((float3)(vx[i], vy[i], vz[i]), s.normal,
+                                            contact_face_at(terrain_contact, tnx, tny, tcell, x[i], z[i]));
   vx[i] = v.x;
   vy[i] = v.y;
   vz[i] = v.z;

@@ -185,6 +185,36 @@ TEST(Collision, FastDropletsNeverTunnelAtTheLargestTimeStep) {
   EXPECT_EQ(c.surface_projections, 0) << "the contact leaves none below the surface";
 }
 
+// Speed of a lone frictionless drop that starts at the bottom of a V-shaped valley (faces rising
+// 1 : 1 on both sides) moving at 2 m/s straight into one face, after `steps` steps.
+double speed_in_a_valley_after(bool face_normal, int steps) {
+  Heightmap valley(33, 33, 0.25, 0.0f);
+  for (int j = 0; j < 33; ++j)
+    for (int i = 0; i < 33; ++i) valley.at(i, j) = static_cast<float>(std::fabs(0.25 * i - 4.0));
+  Parameters p = default_parameters();
+  p.set("sph.manning_n", 0.0);
+  p.set("sph.contact_face_normal", face_normal);
+  SphSolver solver(compute(), SphSettings::from(p, 0.5, 5.0), valley, 10.0);
+  const Heightmap surface = contact_surface(valley, solver.settings().contact_radius);
+  HostParticles drop;
+  drop.push(4.0f, static_cast<float>(surface_height(surface, 4.0, 4.0)), 4.0f, 2.0f, 0, 0, 1000,
+            1e30f);
+  solver.add(drop);
+  for (int k = 0; k < steps; ++k) solver.step();
+  const HostParticles q = solver.particles().download();
+  return std::hypot(q.f[kVx][0], q.f[kVy][0], q.f[kVz][0]);
+}
+
+TEST(Collision, AtABendTheVelocityIntoTheHitFaceIsTakenAway) {
+  // The valley's bottom vertex has a vertical interpolated normal, the faces beside it lean 45°.
+  // Against the faces' own normals the drop climbs a face, falls back and loses the normal part
+  // of each impact (restitution 0): it comes to rest within a few bounces. Against the
+  // interpolated normal alone it keeps its 2 m/s into the face while the contact stops it there
+  // every step, a speed with no motion (the default, docs/sph.md, "The contact at bends").
+  EXPECT_LT(speed_in_a_valley_after(true, 200), 0.2);
+  EXPECT_GT(speed_in_a_valley_after(false, 200), 1.0) << "the default keeps the phantom speed";
+}
+
 TEST(Collision, AParticleLeavingThroughAnOpenEdgeIsNoProjection) {
   // A droplet thrown down and out over the map's edge: the drift books it as outflow, its last
   // position beyond the edge and below the height there. The projection that follows a terrain

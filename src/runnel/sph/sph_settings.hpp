@@ -31,6 +31,7 @@ struct SphSettings {
   double dfsph_divergence_error;  // dfsph: mean compression per step the divergence solve allows, %
   int dfsph_max_iterations;       // dfsph: iterations of each solve at most
   bool dfsph_floor_images;        // dfsph: the terrain as mirror images, not its volume map
+  bool contact_face_normal;       // the contact also clears the velocity into the hit face
   double dt_min;                  // s
   double dt_max;                  // s
   double gravity;                 // m/s²
