@@ -61,3 +61,58 @@ def test_paraview_reads_every_frame_with_both_readers(tmp_path, model, fields):
         for f in got:
             assert f["points"] == 33 * 33, f"{reader} at t = {f['time']}"
             assert fields <= set(f["arrays"]), f"{reader} at t = {f['time']}: {f['arrays']}"
+
+
+# Runs inside pvpython under Xvfb: the last particle frame drawn red on white in each representation,
+# through the default XDMF3 reader, and the red pixels counted.
+DRAW = r"""
+import json, sys
+from paraview import simple
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+reader = simple.Xdmf3ReaderS(FileName=[sys.argv[1]])
+view = simple.CreateRenderView()
+view.Background = [1, 1, 1]
+view.OrientationAxesVisibility = 0
+view.ViewTime = reader.TimestepValues[-1]
+shown = simple.Show(reader, view)
+shown.ColorArrayName = ["POINTS", ""]
+shown.AmbientColor = shown.DiffuseColor = [1, 0, 0]
+shown.PointSize = 6
+view.ResetCamera()
+red = {}
+for representation in ("Points", "Surface", "Point Gaussian"):
+    shown.SetRepresentationType(representation)
+    path = sys.argv[2] + "/" + representation.replace(" ", "_") + ".png"
+    simple.SaveScreenshot(path, view, ImageResolution=[400, 300])
+    png = vtkPNGReader()
+    png.SetFileName(path)
+    png.Update()
+    image = png.GetOutput()
+    rgb = vtk_to_numpy(image.GetPointData().GetScalars())
+    red[representation] = int(((rgb[:, 0] > 128) & (rgb[:, 1] < 80) & (rgb[:, 2] < 80)).sum())
+print(json.dumps(red))
+"""
+
+
+@pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="xvfb-run is not installed (scripts/setup.sh)")
+def test_paraview_draws_the_particles_in_every_representation(tmp_path):
+    # The particles alone (no terrain frames): every red pixel is a particle. Each particle is a vertex
+    # cell of its own; a point set without cells reads as points but draws nothing in Points and Surface.
+    out = tmp_path / "run"
+    r = subprocess.run([RUNNEL_BINARY, "run", "--generate", "fbm", "--set", "terrain.size=33", "--set", "run.steps=30",
+                        "--particles-every", "10", "--quiet", "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    xmf = (out / "series.xmf").read_text()
+    last = int(xmf.rsplit('NumberOfElements="', 1)[1].split('"')[0])
+    assert last > 10, "the last frame holds particles"
+    script = tmp_path / "draw.py"
+    script.write_text(DRAW)
+    r = subprocess.run(["xvfb-run", "-a", PVPYTHON, str(script), str(out / "series.xmf"), str(tmp_path)],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-3000:]
+    red = json.loads(r.stdout.strip().splitlines()[-1])
+    # Points of 6 pixels: tens of pixels each (some overlap); the Gaussian splats at least one each.
+    assert red["Points"] >= 10 * last, red
+    assert red["Surface"] >= 10 * last, red
+    assert red["Point Gaussian"] >= last, red

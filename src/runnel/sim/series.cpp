@@ -159,6 +159,11 @@ void SeriesWriter::write_particles(Model& model) {
   std::vector<std::uint32_t> id(p.id);
   for (auto& v : id) v &= ~kDeadFlag;
   file_->write(group + "/id", id, {n});
+  // Each particle a vertex cell of its own: without the list ParaView's default XDMF3 reader reads
+  // the points and no cells, and draws nothing.
+  std::vector<std::uint32_t> vertices(n);
+  for (std::size_t k = 0; k < n; ++k) vertices[k] = static_cast<std::uint32_t>(k);
+  file_->write(group + "/vertices", vertices, {n});
 }
 
 void SeriesWriter::finish(Model& model) {
@@ -249,7 +254,8 @@ void SeriesWriter::write_xdmf() const {
       x += " <Grid Name=\"particles_" + step_name(f.step) + "\" GridType=\"Uniform\">\n";
       x += "  <Time Value=\"" + std::string(time) + "\"/>\n";
       x += "  <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n +
-           "\" NodesPerElement=\"1\"/>\n";
+           "\" NodesPerElement=\"1\">" + hdf_item(n, "UInt", 4, group + "/vertices") +
+           "</Topology>\n";
       x += "  <Geometry GeometryType=\"XYZ\">" +
            hdf_item(n + " 3", "Float", 8, group + "/position") + "</Geometry>\n";
       x += "  <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" +
