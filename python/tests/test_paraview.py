@@ -2,6 +2,9 @@
 """The ParaView-ready outputs, read back by independent readers and compared with the checkpoint:
 series.xmf (resolved here from its XML and series.h5 with h5py, the way an XDMF reader does; ParaView's
 own readers are in test_paraview_readers.py), and the PLY particle frame (VTK's vtkPLYReader and meshio)."""
+import json
+import shutil
+import subprocess
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -134,6 +137,55 @@ def test_the_ply_frame_is_the_checkpoints_particles(sph_run, run_cli):
     mesh = meshio.read(sph_run / "particles.ply")
     assert np.array_equal(mesh.point_data["id"], ids)
     assert set(mesh.point_data) >= {"vx", "vy", "vz", "density", "sediment", "age", "id"}
+
+
+def test_the_vtp_frame_opens_in_paraview_with_its_cells_and_fields(sph_run, run_cli, tmp_path):
+    # ParaView's default reader for .vtp (XMLPolyDataReader) in pvpython: a vertex cell per particle
+    # and every field; positions and ids those of the checkpoint in the map frame. (Its PLY reader
+    # reads the positions only, no cells and none of the other properties.)
+    pvpython = shutil.which("pvpython")
+    if pvpython is None:
+        pytest.skip("ParaView's pvpython is not installed (scripts/setup.sh)")
+    r = run_cli("export", sph_run / "final.h5", "--format", "vtp", "-o", sph_run / "particles.vtp")
+    assert r.returncode == 0, r.stderr
+    script = tmp_path / "read_vtp.py"
+    script.write_text(
+        "import json, sys\n"
+        "from paraview import simple, servermanager\n"
+        "from vtkmodules.util.numpy_support import vtk_to_numpy\n"
+        "reader = simple.OpenDataFile(sys.argv[1])\n"
+        "reader.UpdatePipeline()\n"
+        "data = servermanager.Fetch(reader)\n"
+        "pd = data.GetPointData()\n"
+        "print(json.dumps({'reader': reader.GetXMLName(), 'cells': data.GetNumberOfVerts(),\n"
+        "    'points': vtk_to_numpy(data.GetPoints().GetData()).tolist(),\n"
+        "    'id': vtk_to_numpy(pd.GetArray('id')).tolist(),\n"
+        "    'arrays': {pd.GetArrayName(i): pd.GetArray(i).GetNumberOfComponents()\n"
+        "               for i in range(pd.GetNumberOfArrays())}}))\n")
+    r = subprocess.run([pvpython, str(script), str(sph_run / "particles.vtp")], capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stderr[-3000:]
+    got = json.loads(r.stdout.strip().splitlines()[-1])
+    with h5py.File(sph_run / "final.h5", "r") as f:
+        x, y, z = (f["/particles/" + k][()] for k in ("x", "y", "z"))
+        ids = f["/particles/id"][()] & 0x7FFFFFFF
+        cell = f["/terrain"].attrs["cell"]
+        west, north = 0.5 * cell, (f["/terrain/height"].shape[0] - 0.5) * cell
+    assert got["reader"] == "XMLPolyDataReader"
+    assert got["cells"] == len(x) > 0
+    assert got["arrays"] == {"velocity": 3, "density": 1, "sediment": 1, "age": 1, "id": 1}
+    assert np.array_equal(np.array(got["points"]), np.stack([west + x.astype(np.float64), north - z.astype(np.float64),
+                                                             y.astype(np.float64)], axis=1))
+    assert np.array_equal(got["id"], ids)
+
+
+def test_a_particle_export_is_named_for_its_format(sph_run, run_cli):
+    target = sph_run / "named_wrong.ply"
+    target.write_bytes(b"kept")
+    r = run_cli("export", sph_run / "final.h5", "--format", "vtp", "-o", target)
+    assert r.returncode == 2
+    assert "named_wrong.ply" in r.stderr and ".vtp" in r.stderr and r.stderr.count("\n") == 1
+    assert target.read_bytes() == b"kept"
 
 
 def test_particles_every_is_refused_for_a_grid_model(run_cli, tmp_path):

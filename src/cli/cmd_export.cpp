@@ -12,6 +12,7 @@
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/fields.hpp"
 #include "runnel/models/registry.hpp"
+#include "runnel/sim/particle_export.hpp"
 #include "runnel/sim/series.hpp"
 #include "runnel/sim/series_netcdf.hpp"
 #include "runnel/terrain/netcdf_io.hpp"
@@ -80,15 +81,16 @@ void add_export_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "export",
       "Export the terrain of a checkpoint (.h5) as asc, png, npy, tif, obj or netcdf, or its SPH "
-      "particles as ply (binary PLY in the map frame, for splashsurf and ParaView); or a run's "
+      "particles as ply (binary PLY in the map frame, for splashsurf and MeshLab) or vtp (VTK "
+      "PolyData: ParaView draws and colours them); or a run's "
       "series.h5 as one NetCDF with a time axis (--format netcdf)");
   cmd->add_option("checkpoint", opt->file, "checkpoint file (.h5), or series.h5 for netcdf")
       ->required();
   cmd->add_option("--format", opt->format,
                   "asc, png, npy, tif (GeoTIFF), obj (a triangle mesh), netcdf (CF-1.8 NetCDF-4, "
-                  ".nc: height, dh, water depth; xarray, GDAL, QGIS) or ply (the particles)")
+                  ".nc: height, dh, water depth; xarray, GDAL, QGIS), ply or vtp (the particles)")
       ->required()
-      ->check(CLI::IsMember({"asc", "png", "npy", "tif", "obj", "ply", "netcdf"}));
+      ->check(CLI::IsMember({"asc", "png", "npy", "tif", "obj", "ply", "vtp", "netcdf"}));
   cmd->add_option("-o,--output", opt->output, "file to write")->required();
   cmd->add_option("--range", opt->range, "png: heights MIN:MAX in metres mapped to 0..65535");
   cmd->callback([opt] {
@@ -109,8 +111,11 @@ void add_export_command(CLI::App& app) {
       return;
     }
     const CheckpointData data = read_checkpoint(opt->file);
-    if (opt->format == "ply") {
-      write_particles_ply(opt->output, data);
+    if (opt->format == "ply" || opt->format == "vtp") {
+      if (std::filesystem::path(opt->output).extension() != "." + opt->format)
+        throw input_error("-o " + opt->output + ": a " + opt->format + " file is named ." +
+                          opt->format);
+      (opt->format == "ply" ? write_particles_ply : write_particles_vtp)(opt->output, data);
       std::fprintf(stderr, "runnel: wrote %s (%zu particles, step %llu)\n",
                    terminal_safe(opt->output).c_str(), data.particles.size(),
                    static_cast<unsigned long long>(data.steps));

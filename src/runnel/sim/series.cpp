@@ -6,6 +6,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/sim/particle_export.hpp"
 #include "runnel/sph/particle_store.hpp"
 
 namespace runnel {
@@ -137,28 +138,16 @@ void SeriesWriter::write_particles(Model& model) {
   particle_frames_.push_back({step, model.time(), d.particles.size()});
   const HostParticles& p = d.particles;
   const std::size_t n = p.size();
-  const MapFrame map(grid_);
-  std::vector<double> position(3 * n);
-  std::vector<float> velocity(3 * n);
-  for (std::size_t k = 0; k < n; ++k) {
-    position[3 * k] = map.x(p.f[kX][k]);
-    position[3 * k + 1] = map.y(p.f[kZ][k]);
-    position[3 * k + 2] = p.f[kY][k];
-    velocity[3 * k] = p.f[kVx][k];
-    velocity[3 * k + 1] = -p.f[kVz][k];
-    velocity[3 * k + 2] = p.f[kVy][k];
-  }
+  const MapParticles m = map_particles(p, grid_);
   const std::string group = "/particles/" + step_name(step);
   file_->create_group(group);
   file_->attribute(group, "time", d.time);
-  file_->write(group + "/position", position, {n, 3});
-  file_->write(group + "/velocity", velocity, {n, 3});
+  file_->write(group + "/position", m.position, {n, 3});
+  file_->write(group + "/velocity", m.velocity, {n, 3});
   file_->write(group + "/density", p.f[kRho], {n});
   file_->write(group + "/sediment", p.sediment, {n});
   file_->write(group + "/age", p.f[kAge], {n});
-  std::vector<std::uint32_t> id(p.id);
-  for (auto& v : id) v &= ~kDeadFlag;
-  file_->write(group + "/id", id, {n});
+  file_->write(group + "/id", m.id, {n});
   // Each particle a vertex cell of its own: without the list ParaView's default XDMF3 reader reads
   // the points and no cells, and draws nothing.
   std::vector<std::uint32_t> vertices(n);
@@ -272,39 +261,6 @@ void SeriesWriter::write_xdmf() const {
   }
   x += "</Domain>\n</Xdmf>\n";
   write_text_atomically((out_ / "series.xmf").string(), x);
-}
-
-void write_particles_ply(const std::string& path, const CheckpointData& d) {
-  static_assert(std::endian::native == std::endian::little,
-                "the PLY body is written as it lies in memory");
-  if (d.model != "sph")
-    throw input_error(path + ": the " + d.model + " model has no particles to export");
-  const HostParticles& p = d.particles;
-  const MapFrame map(d.terrain);
-  write_file_atomically(path, [&](std::FILE* f) {
-    std::fprintf(
-        f,
-        "ply\nformat binary_little_endian 1.0\ncomment runnel SPH particles, step %llu, t = %.9g "
-        "s, "
-        "map frame (x east, y north, z up)\nelement vertex %zu\nproperty double x\nproperty double "
-        "y\nproperty double z\nproperty float vx\nproperty float vy\nproperty float vz\nproperty "
-        "float density\nproperty int sediment\nproperty float age\nproperty uint id\nend_header\n",
-        static_cast<unsigned long long>(d.steps), d.time, p.size());
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      const double position[3] = {map.x(p.f[kX][k]), map.y(p.f[kZ][k]), p.f[kY][k]};
-      const float velocity[3] = {p.f[kVx][k], -p.f[kVz][k], p.f[kVy][k]};
-      const float density = p.f[kRho][k], age = p.f[kAge][k];
-      const std::int32_t sediment = p.sediment[k];
-      const std::uint32_t id = p.id[k] & ~kDeadFlag;
-      std::fwrite(position, sizeof position, 1, f);
-      std::fwrite(velocity, sizeof velocity, 1, f);
-      std::fwrite(&density, sizeof density, 1, f);
-      std::fwrite(&sediment, sizeof sediment, 1, f);
-      std::fwrite(&age, sizeof age, 1, f);
-      std::fwrite(&id, sizeof id, 1, f);
-    }
-    if (std::ferror(f)) throw runtime_error(path + ": write failed");
-  });
 }
 
 }  // namespace runnel

@@ -59,8 +59,4 @@ class SeriesWriter {
   std::vector<Frame> height_frames_, particle_frames_;
 };
 
-// A checkpoint's SPH particles as a binary PLY file (splashsurf, ParaView, MeshLab): positions in
-// the map frame (double), velocity, density, sediment, age and the stable id per vertex.
-void write_particles_ply(const std::string& path, const CheckpointData& data);
-
 }  // namespace runnel

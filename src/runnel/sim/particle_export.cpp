@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: MIT
+#include "runnel/sim/particle_export.hpp"
+
+#include <bit>
+#include <cstdio>
+
+#include "runnel/core/error.hpp"
+#include "runnel/io/atomic_file.hpp"
+
+namespace runnel {
+
+namespace {
+
+void require_particles(const std::string& path, const CheckpointData& d) {
+  if (d.model != "sph")
+    throw input_error(path + ": the " + d.model + " model has no particles to export");
+}
+
+}  // namespace
+
+MapParticles map_particles(const HostParticles& p, const Heightmap& terrain) {
+  const MapFrame map(terrain);
+  const std::size_t n = p.size();
+  MapParticles m{std::vector<double>(3 * n), std::vector<float>(3 * n), p.id};
+  for (std::size_t k = 0; k < n; ++k) {
+    m.position[3 * k] = map.x(p.f[kX][k]);
+    m.position[3 * k + 1] = map.y(p.f[kZ][k]);
+    m.position[3 * k + 2] = p.f[kY][k];
+    m.velocity[3 * k] = p.f[kVx][k];
+    m.velocity[3 * k + 1] = -p.f[kVz][k];
+    m.velocity[3 * k + 2] = p.f[kVy][k];
+    m.id[k] &= ~kDeadFlag;
+  }
+  return m;
+}
+
+void write_particles_ply(const std::string& path, const CheckpointData& d) {
+  static_assert(std::endian::native == std::endian::little,
+                "the PLY body is written as it lies in memory");
+  require_particles(path, d);
+  const HostParticles& p = d.particles;
+  const MapParticles m = map_particles(p, d.terrain);
+  write_file_atomically(path, [&](std::FILE* f) {
+    std::fprintf(
+        f,
+        "ply\nformat binary_little_endian 1.0\ncomment runnel SPH particles, step %llu, t = %.9g "
+        "s, "
+        "map frame (x east, y north, z up)\nelement vertex %zu\nproperty double x\nproperty double "
+        "y\nproperty double z\nproperty float vx\nproperty float vy\nproperty float vz\nproperty "
+        "float density\nproperty int sediment\nproperty float age\nproperty uint id\nend_header\n",
+        static_cast<unsigned long long>(d.steps), d.time, p.size());
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const float density = p.f[kRho][k], age = p.f[kAge][k];
+      const std::int32_t sediment = p.sediment[k];
+      std::fwrite(&m.position[3 * k], sizeof(double), 3, f);
+      std::fwrite(&m.velocity[3 * k], sizeof(float), 3, f);
+      std::fwrite(&density, sizeof density, 1, f);
+      std::fwrite(&sediment, sizeof sediment, 1, f);
+      std::fwrite(&age, sizeof age, 1, f);
+      std::fwrite(&m.id[k], sizeof(std::uint32_t), 1, f);
+    }
+    if (std::ferror(f)) throw runtime_error(path + ": write failed");
+  });
+}
+
+void write_particles_vtp(const std::string& path, const CheckpointData& d) {
+  static_assert(std::endian::native == std::endian::little,
+                "the appended data is written as it lies in memory");
+  require_particles(path, d);
+  const HostParticles& p = d.particles;
+  const std::size_t n = p.size();
+  const MapParticles m = map_particles(p, d.terrain);
+  std::vector<std::int64_t> connectivity(n), offsets(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    connectivity[k] = static_cast<std::int64_t>(k);
+    offsets[k] = static_cast<std::int64_t>(k + 1);
+  }
+  // The arrays in the order their blocks follow in the appended data, each block its byte count
+  // (UInt64) and its bytes.
+  struct Array {
+    const char* name;
+    const char* type;
+    int components;
+    const void* data;
+    std::size_t bytes;
+  };
+  const std::vector<Array> point_data = {
+      {"velocity", "Float32", 3, m.velocity.data(), m.velocity.size() * sizeof(float)},
+      {"density", "Float32", 1, p.f[kRho].data(), n * sizeof(float)},
+      {"sediment", "Int32", 1, p.sediment.data(), n * sizeof(std::int32_t)},
+      {"age", "Float32", 1, p.f[kAge].data(), n * sizeof(float)},
+      {"id", "UInt32", 1, m.id.data(), n * sizeof(std::uint32_t)}};
+  const Array points = {"Points", "Float64", 3, m.position.data(),
+                        m.position.size() * sizeof(double)};
+  const Array cells[2] = {{"connectivity", "Int64", 1, connectivity.data(), n * 8},
+                          {"offsets", "Int64", 1, offsets.data(), n * 8}};
+  std::size_t offset = 0;
+  const auto declare = [&](const Array& a) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "<DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "
+                  "format=\"appended\" offset=\"%zu\"/>\n",
+                  a.type, a.name, a.components, offset);
+    offset += sizeof(std::uint64_t) + a.bytes;
+    return std::string(line);
+  };
+  std::string xml =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PolyData>\n";
+  char piece[160];
+  std::snprintf(piece, sizeof piece,
+                "<Piece NumberOfPoints=\"%zu\" NumberOfVerts=\"%zu\" NumberOfLines=\"0\" "
+                "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
+                n, n);
+  xml += piece;
+  xml += "<PointData Scalars=\"density\" Vectors=\"velocity\">\n";
+  for (const Array& a : point_data) xml += declare(a);
+  xml += "</PointData>\n<Points>\n" + declare(points) + "</Points>\n<Verts>\n";
+  for (const Array& a : cells) xml += declare(a);
+  xml += "</Verts>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
+  write_file_atomically(path, [&](std::FILE* f) {
+    std::fwrite(xml.data(), 1, xml.size(), f);
+    std::vector<const Array*> order;
+    for (const Array& a : point_data) order.push_back(&a);
+    order.push_back(&points);
+    for (const Array& a : cells) order.push_back(&a);
+    for (const Array* a : order) {
+      const std::uint64_t bytes = a->bytes;
+      std::fwrite(&bytes, sizeof bytes, 1, f);
+      if (bytes > 0) std::fwrite(a->data, 1, a->bytes, f);
+    }
+    std::fputs("\n</AppendedData>\n</VTKFile>\n", f);
+    if (std::ferror(f)) throw runtime_error(path + ": write failed");
+  });
+}
+
+}  // namespace runnel
