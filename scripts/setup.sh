@@ -12,6 +12,7 @@ packages=(
   nlohmann-json3-dev  # runnel-viewer session logs (strokes.json) are read back: the standard C++ JSON parser
   ffmpeg  # runnel-viewer --record out.mp4 (H.264), and ffprobe counts its frames in the tests
   libgdal-dev gdal-bin  # GeoTIFF in and out; gdalinfo checks the georeferencing in the tests
+  libudunits2-0  # the CF checker's units (cfunits loads UDUNITS-2): the NetCDF exports checked CF-valid
   libkissfft-dev  # spectral (inverse FFT) terrain synthesis: BSD-licensed, any grid size
   libopenmpi-dev openmpi-bin  # mpirun -np K runnel sweep (optional at build time)
   python3 python3-numpy python3-h5py

@@ -17,7 +17,9 @@ def model_to_xarray(model):
     xarray.Dataset
         height (the exact heights), dh (their change from the initial terrain) and, for a grid
         model with water, water_depth, each (time, y, x) in metres; coordinates x, y (pixel
-        centres) and time (the model's clock, its units in the attribute).
+        centres) and time (the model's clock: for a clock in seconds a datetime on the export's
+        nominal epoch, 1970-01-01, as xarray decodes the NetCDF export; years and iterations as
+        numbers, their units in the attribute).
     """
     import xarray as xr
 
@@ -42,13 +44,23 @@ def model_to_xarray(model):
         if projected:
             attrs["grid_mapping"] = "spatial_ref"
         data_vars[name] = (("time", "y", "x"), np.asarray(values, dtype=np.float32)[np.newaxis], attrs)
-    units = {"s": "s", "yr": "yr", "iterations": "1"}[model.clock]
+    from . import _runnel
+
+    clock_units = {"s": "s", "yr": "yr", "iterations": "1"}[model.clock]
+    time_attrs = _runnel._cf_time_attributes(clock_units)
+    time = float(model.time)
+    if clock_units == "s":  # a CF time coordinate: xarray decodes it as it decodes the export's
+        time = np.datetime64("1970-01-01T00:00:00") + np.timedelta64(int(round(time * 1e9)), "ns")
+        time_attrs = {k: v for k, v in time_attrs.items() if k not in ("units", "calendar")}
     coords = {
-        "time": ("time", [float(model.time)], {"units": units, "axis": "T", "long_name": "model time"}),
-        "y": ("y", y, {"units": "m", "axis": "Y", **({"standard_name": "projection_y_coordinate"} if projected else {})}),
-        "x": ("x", x, {"units": "m", "axis": "X", **({"standard_name": "projection_x_coordinate"} if projected else {})}),
+        "time": ("time", [time], time_attrs),
+        "y": ("y", y, {"units": "m", "axis": "Y", "long_name": "northing of the pixel centres",
+                       **({"standard_name": "projection_y_coordinate"} if projected else {})}),
+        "x": ("x", x, {"units": "m", "axis": "X", "long_name": "easting of the pixel centres",
+                       **({"standard_name": "projection_x_coordinate"} if projected else {})}),
     }
     if projected:
-        coords["spatial_ref"] = ((), 0, {"crs_wkt": initial.crs_wkt, "spatial_ref": initial.crs_wkt})
+        coords["spatial_ref"] = ((), 0, {**_runnel._cf_grid_mapping(initial.crs_wkt),
+                                        "crs_wkt": initial.crs_wkt, "spatial_ref": initial.crs_wkt})
     return xr.Dataset(data_vars, coords=coords,
                       attrs={"Conventions": "CF-1.8", "title": "runnel terrain", "source": "runnel"})

@@ -17,6 +17,7 @@
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/terrain/generators.hpp"
+#include "runnel/terrain/netcdf_io.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
 namespace runnel::python {
@@ -250,6 +251,30 @@ Terrain
       },
       "The terrain generators' names.");
   m.def("model_names", &model_names, "The erosion models' names (runnel.Model's first argument).");
+  m.def(
+      "_cf_grid_mapping",
+      [](const std::string& crs_wkt) {
+        py::dict attributes;
+        for (const CfAttribute& a : cf_grid_mapping(crs_wkt)) {
+          if (a.is_number) {
+            attributes[py::str(a.name)] = a.number;
+          } else {
+            attributes[py::str(a.name)] = a.text;
+          }
+        }
+        return attributes;
+      },
+      py::arg("crs_wkt"),
+      "The CF grid mapping attributes of a CRS, as runnel's NetCDF export writes them.");
+  m.def(
+      "_cf_time_attributes",
+      [](const std::string& units) {
+        py::dict attributes;
+        for (const auto& [name, value] : cf_time_attributes(units)) attributes[py::str(name)] = value;
+        return attributes;
+      },
+      py::arg("units"),
+      "The CF attributes of the time coordinate for a model clock's units (s, yr or 1).");
   m.def("terrain_metrics", &terrain_metrics, py::arg("initial"), py::arg("final"),
         R"doc(The shared terrain metrics of docs/metrics.md between two states of one terrain.
 

@@ -2,7 +2,11 @@
 """NetCDF out, read by the real clients: `runnel export --format netcdf` of a checkpoint and of a
 series, and Model.to_xarray(), opened with xarray and with GDAL and georeferenced as the input
 GeoTIFF (made with GDAL) is."""
+import os
+import shutil
 import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -72,8 +76,11 @@ def test_gdal_reads_the_input_geotiffs_georeferencing_back(run):
 
 def test_a_series_is_one_netcdf_with_a_time_axis(run):
     with xr.open_dataset(run / "series.nc") as d:
-        assert d.time.values.tolist() == pytest.approx([0.0, 0.1, 0.2, 0.25])
-        assert d.time.attrs["units"] == "s"
+        # A CF time coordinate on the nominal epoch: xarray decodes it; the seconds are its offsets.
+        seconds = (d.time.values - np.datetime64("1970-01-01T00:00:00")) / np.timedelta64(1, "s")
+        assert seconds.tolist() == pytest.approx([0.0, 0.1, 0.2, 0.25])
+        assert d.time.encoding["units"] == "seconds since 1970-01-01 00:00:00"
+        assert d.time.attrs["standard_name"] == "time"
         assert d.height.shape == (4, 20, 24)
         with xr.open_dataset(run / "final.nc") as final:
             assert np.array_equal(d.height.values[-1], final.height.values[0]), "the last frame is the end"
@@ -88,7 +95,9 @@ def test_to_xarray_matches_the_netcdf_export(run, tmp_path):
         assert np.allclose(d.height.values, exported.height.values, rtol=0, atol=1e-4)  # float32 at 400 m
         # The export's Δh is exact; Python's takes the initial heights' float32 view (3e-5 m at 400 m).
         assert np.allclose(d.dh.values, exported.dh.values, rtol=0, atol=3e-5)
-        assert d.spatial_ref.attrs["crs_wkt"] == exported.spatial_ref.attrs["crs_wkt"]
+        assert d.spatial_ref.attrs == exported.spatial_ref.attrs
+        assert d.time.values.tolist() == exported.time.values.tolist()
+        assert d.time.attrs == exported.time.attrs
     d.to_netcdf(tmp_path / "from_python.nc")
     assert gdal.Open(f'NETCDF:"{tmp_path / "from_python.nc"}":height').GetGeoTransform() == \
         pytest.approx(TRANSFORM, abs=1e-6)
@@ -99,3 +108,37 @@ def test_a_netcdf_export_is_named_nc(run, tmp_path):
                         str(tmp_path / "final.h5.out")], capture_output=True, text=True)
     assert r.returncode == 2 and ".nc" in r.stderr and len(r.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "final.h5.out").exists()
+
+
+def test_the_exports_are_cf_valid_by_the_cf_checker(run, tmp_path):
+    """cfchecks (PyPI cfchecker, CF-1.8) on the checkpoint's and the series' export, georeferenced, and on a
+    landscape model's and an iteration model's checkpoint without a CRS: 0 errors and 0 warnings. The CF tables
+    it needs are bundled (tests/data/cf: the standard names runnel uses, empty area and region tables), so the
+    check needs no network."""
+    cfchecks = shutil.which("cfchecks", path=os.path.dirname(sys.executable)) or shutil.which("cfchecks")
+    if cfchecks is None:
+        pytest.skip("cfchecker is not installed (scripts/setup-python.sh)")
+    tables = Path(__file__).parent / "data" / "cf"
+    files = [run / "final.nc", run / "series.nc"]
+    for model in ("stream-power", "droplet"):
+        out = tmp_path / model
+        r = subprocess.run([RUNNEL_BINARY, "run", "--generate", "fbm", "--set", "terrain.size=17", "--model", model,
+                            "--steps", "2", "--quiet", "--out", str(out)], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        r = subprocess.run([RUNNEL_BINARY, "export", str(out / "final.h5"), "--format", "netcdf", "-o",
+                            str(out / "final.nc")], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        files.append(out / "final.nc")
+    for nc in files:
+        r = subprocess.run([cfchecks, "-v", "1.8", "-s", str(tables / "cf-standard-name-table.xml"),
+                            "-a", str(tables / "area-type-table.xml"), "-r", str(tables / "standardized-region-list.xml"),
+                            str(nc)], capture_output=True, text=True, timeout=300)
+        report = r.stdout + r.stderr
+        assert "ERRORS detected: 0" in report and "WARNINGS given: 0" in report, f"{nc}:\n{report[-3000:]}"
+
+
+def test_a_georeferenced_export_names_its_grid_mapping(run):
+    with xr.open_dataset(run / "final.nc") as d:
+        assert d.spatial_ref.attrs["grid_mapping_name"] == "transverse_mercator"
+        assert d.spatial_ref.attrs["longitude_of_central_meridian"] == pytest.approx(-87.0)  # UTM zone 16
+        assert d.spatial_ref.attrs["scale_factor_at_central_meridian"] == pytest.approx(0.9996)

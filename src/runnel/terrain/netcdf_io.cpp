@@ -5,7 +5,9 @@
 #include <gdal_priv.h>
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
+#include <random>
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
@@ -49,7 +51,8 @@ void number_attribute(GDALIHasAttribute& owner, const std::string& name, double 
 
 std::shared_ptr<GDALMDArray> coordinate(GDALGroup& root, const std::shared_ptr<GDALDimension>& dim,
                                         const std::vector<double>& values, const char* units,
-                                        const char* standard_name, const char* axis) {
+                                        const char* standard_name, const char* axis,
+                                        const char* long_name) {
   auto array = root.CreateMDArray(dim->GetName(), {dim}, GDALExtendedDataType::Create(GDT_Float64));
   if (!array) throw runtime_error("netcdf: cannot create " + dim->GetName());
   const GUInt64 start = 0;
@@ -59,7 +62,8 @@ std::shared_ptr<GDALMDArray> coordinate(GDALGroup& root, const std::shared_ptr<G
     throw runtime_error("netcdf: cannot write " + dim->GetName() + " (" + gdal_message() + ")");
   text_attribute(*array, "units", units);
   if (*standard_name) text_attribute(*array, "standard_name", standard_name);
-  text_attribute(*array, "axis", axis);
+  if (*axis) text_attribute(*array, "axis", axis);
+  text_attribute(*array, "long_name", long_name);
   return array;
 }
 
@@ -87,15 +91,30 @@ void write_file(const std::string& path, const Heightmap& grid, const std::strin
   for (int i = 0; i < grid.nx; ++i) xs[i] = map.x(i * grid.cell);
   for (int j = 0; j < grid.ny; ++j) ys[j] = map.y(j * grid.cell);
   const bool projected = !grid.georef.crs_wkt.empty();
-  coordinate(*root, x, xs, "m", projected ? "projection_x_coordinate" : "", "X");
-  coordinate(*root, y, ys, "m", projected ? "projection_y_coordinate" : "", "Y");
-  auto t = coordinate(*root, time, frames.times, time_units.c_str(), "", "T");
-  text_attribute(*t, "long_name", "model time");
+  coordinate(*root, x, xs, "m", projected ? "projection_x_coordinate" : "", "X",
+             "easting of the pixel centres");
+  coordinate(*root, y, ys, "m", projected ? "projection_y_coordinate" : "", "Y",
+             "northing of the pixel centres");
+  auto t = root->CreateMDArray("time", {time}, GDALExtendedDataType::Create(GDT_Float64));
+  if (!t) throw runtime_error(path + ": cannot create time");
+  const GUInt64 start = 0;
+  const size_t count = frames.times.size();
+  if (!t->Write(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64),
+                frames.times.data()))
+    throw runtime_error(path + ": cannot write time (" + gdal_message() + ")");
+  for (const auto& [name, value] : cf_time_attributes(time_units)) text_attribute(*t, name, value);
 
   // The CRS as CF's grid mapping variable, named as rioxarray and GDAL name it.
   if (projected) {
     auto crs = root->CreateMDArray("spatial_ref", {}, GDALExtendedDataType::Create(GDT_Int32));
     if (!crs) throw runtime_error(path + ": cannot create spatial_ref");
+    for (const CfAttribute& a : cf_grid_mapping(grid.georef.crs_wkt)) {
+      if (a.is_number) {
+        number_attribute(*crs, a.name, a.number);
+      } else {
+        text_attribute(*crs, a.name, a.text);
+      }
+    }
     text_attribute(*crs, "crs_wkt", grid.georef.crs_wkt);
     text_attribute(*crs, "spatial_ref", grid.georef.crs_wkt);
   }
@@ -128,6 +147,73 @@ void write_file(const std::string& path, const Heightmap& grid, const std::strin
 }
 
 }  // namespace
+
+std::vector<CfAttribute> cf_grid_mapping(const std::string& crs_wkt) {
+  init_gdal();
+  OGRSpatialReference srs;
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (srs.importFromWkt(crs_wkt.c_str()) != OGRERR_NONE)
+    throw runtime_error("netcdf: the terrain's CRS is not WKT GDAL reads");
+  // GDAL 3.6 turns a CRS into CF attributes only inside its netCDF driver: a one-value variable
+  // with the CRS is written to a scratch file, and its grid mapping variable's attributes read
+  // back.
+  std::random_device entropy;
+  const std::filesystem::path scratch =
+      std::filesystem::temp_directory_path() /
+      ("runnel-crs-" + std::to_string(entropy()) + std::to_string(entropy()) + ".nc");
+  std::vector<CfAttribute> out;
+  {
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("netCDF");
+    if (!driver) throw runtime_error("netcdf: this GDAL has no netCDF driver");
+    std::unique_ptr<GDALDataset> dataset(
+        driver->CreateMultiDimensional(scratch.c_str(), nullptr, nullptr));
+    if (!dataset)
+      throw runtime_error("netcdf: cannot write a scratch file in " +
+                          scratch.parent_path().string() + " (" + gdal_message() + ")");
+    auto root = dataset->GetRootGroup();
+    auto one = root->CreateDimension("one", "", "", 1);
+    auto value = root->CreateMDArray("value", {one}, GDALExtendedDataType::Create(GDT_Byte));
+    if (!value || !value->SetSpatialRef(&srs))
+      throw runtime_error("netcdf: GDAL cannot write this CRS as CF (" + gdal_message() + ")");
+  }
+  {
+    std::unique_ptr<GDALDataset> dataset(GDALDataset::Open(
+        scratch.c_str(), GDAL_OF_MULTIDIM_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+    auto root = dataset ? dataset->GetRootGroup() : nullptr;
+    auto value = root ? root->OpenMDArray("value") : nullptr;
+    auto mapping = value ? value->GetAttribute("grid_mapping") : nullptr;
+    auto variable = mapping ? root->OpenMDArray(mapping->ReadAsString()) : nullptr;
+    if (variable) {
+      for (const auto& a : variable->GetAttributes()) {
+        const std::string& name = a->GetName();
+        if (name == "spatial_ref" || name == "crs_wkt" || name == "long_name") continue;
+        CfAttribute c{name, "", 0, false};
+        if (a->GetDataType().GetClass() == GEDTC_STRING) {
+          c.text = a->ReadAsString() ? a->ReadAsString() : "";
+        } else {
+          c.number = a->ReadAsDouble();
+          c.is_number = true;
+        }
+        out.push_back(c);
+      }
+    }
+  }
+  std::error_code ignored;
+  std::filesystem::remove(scratch, ignored);
+  if (out.empty()) throw runtime_error("netcdf: GDAL gave no CF grid mapping for this CRS");
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> cf_time_attributes(const std::string& time_units) {
+  if (time_units == "s")
+    return {{"units", "seconds since 1970-01-01 00:00:00"},
+            {"calendar", "proleptic_gregorian"},
+            {"standard_name", "time"},
+            {"axis", "T"},
+            {"long_name", "model time (the run's clock, on a nominal epoch)"}};
+  if (time_units == "yr") return {{"units", "a"}, {"long_name", "model time in years"}};
+  return {{"units", "1"}, {"long_name", "model iterations"}};
+}
 
 void write_netcdf(const std::string& path, const Heightmap& grid, const std::string& time_units,
                   const std::vector<NetcdfFrame>& frames) {
