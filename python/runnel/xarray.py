@@ -16,7 +16,8 @@ def model_to_xarray(model):
     -------
     xarray.Dataset
         height (the exact heights), dh (their change from the initial terrain) and, for a grid
-        model with water, water_depth, each (time, y, x) in metres; coordinates x, y (pixel
+        model with water, water_depth, each (time, y, x) in metres, NaN at the terrain's NODATA
+        holes; coordinates x, y (pixel
         centres) and time (the model's clock: for a clock in seconds a datetime on the export's
         nominal epoch, 1970-01-01, as xarray decodes the NetCDF export; years and iterations as
         numbers, their units in the attribute).
@@ -36,8 +37,10 @@ def model_to_xarray(model):
     if "surface_water__depth" in model.field_names():
         fields["water_depth"] = (model.field("surface_water__depth"), "depth of the water on the surface", None)
     projected = bool(initial.crs_wkt)
+    holes = initial.holes  # NaN there, as xarray reads the export's _FillValue
     data_vars = {}
     for name, (values, long_name, standard_name) in fields.items():
+        values = np.where(holes, np.nan, np.asarray(values, dtype=np.float64))
         attrs = {"units": "m", "long_name": long_name}
         if standard_name:
             attrs["standard_name"] = standard_name

@@ -156,6 +156,16 @@ void bind_terrain(py::module_& m) {
       .def_property_readonly(
           "nodata", [](const Heightmap& t) { return t.georef.nodata; },
           "The source raster's NODATA value, or None.")
+      .def_property_readonly(
+          "holes",
+          [](const Heightmap& t) {
+            py::array_t<bool> holes({t.ny, t.nx});
+            bool* out = holes.mutable_data();
+            for (std::size_t k = 0; k < t.size(); ++k) out[k] = t.georef.hole(k);
+            return holes;
+          },
+          "Where the source had NODATA, (ny, nx) bool (a copy; all False without holes): filled "
+          "from their neighbours to run, written back as NODATA.")
       // The heights without a copy: the array looks into the terrain's own memory.
       .def_property_readonly(
           "heights",

@@ -142,3 +142,38 @@ def test_a_georeferenced_export_names_its_grid_mapping(run):
         assert d.spatial_ref.attrs["grid_mapping_name"] == "transverse_mercator"
         assert d.spatial_ref.attrs["longitude_of_central_meridian"] == pytest.approx(-87.0)  # UTM zone 16
         assert d.spatial_ref.attrs["scale_factor_at_central_meridian"] == pytest.approx(0.9996)
+
+
+def test_nodata_holes_stay_holes_in_the_series_export_and_to_xarray(tmp_path):
+    # A GeoTIFF with NODATA at (row 5, column 7): filled to run, then NaN (the _FillValue decoded) at that
+    # pixel, and only there, in every frame of the series' NetCDF and in Model.to_xarray().
+    dem = tmp_path / "holed.tif"
+    ds = gdal.GetDriverByName("GTiff").Create(str(dem), 24, 20, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform(TRANSFORM)
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(32616)
+    ds.SetProjection(srs.ExportToWkt())
+    j, i = np.mgrid[0:20, 0:24]
+    heights = (300 + 2.0 * i + 5.0 * j).astype(np.float32)
+    heights[5, 7] = -9999
+    band = ds.GetRasterBand(1)
+    band.SetNoDataValue(-9999)
+    band.WriteArray(heights)
+    ds = None
+    out = tmp_path / "run"
+    r = subprocess.run([RUNNEL_BINARY, "run", "--terrain", str(dem), "--model", "pipe", "--set", "run.steps=4",
+                        "--series-every", "2", "--quiet", "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    r = subprocess.run([RUNNEL_BINARY, "export", str(out / "series.h5"), "--format", "netcdf", "-o",
+                        str(tmp_path / "series.nc")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    hole = np.zeros((20, 24), bool)
+    hole[5, 7] = True
+    with xr.open_dataset(tmp_path / "series.nc") as d:
+        for name in ("height", "dh", "water_depth"):
+            values = d[name].values
+            assert np.isnan(values[:, hole]).all(), name
+            assert not np.isnan(values[:, ~hole]).any(), name
+    d = runnel.Model.load_checkpoint(str(out / "final.h5")).to_xarray()
+    for name in ("height", "dh", "water_depth"):
+        assert np.array_equal(np.isnan(d[name].values[0]), hole), name

@@ -5,6 +5,7 @@
 
 #include <gdal.h>
 
+#include "runnel/io/images.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 #include "test_support.hpp"
 
@@ -36,6 +37,27 @@ std::pair<double, bool> gdal_value(const std::string& path, int column, int row)
   return {v, e == CE_None && has_nodata && v == nodata};
 }
 
+// Pixels of an RGB PNG in the NODATA colour (read by GDAL's PNG driver).
+long nodata_pixels(const std::string& path) {
+  GDALAllRegister();
+  GDALDatasetH d = GDALOpen(path.c_str(), GA_ReadOnly);
+  if (!d || GDALGetRasterCount(d) < 3) return -1;
+  const int w = GDALGetRasterXSize(d), h = GDALGetRasterYSize(d);
+  std::vector<std::uint8_t> band[3];
+  for (int b = 0; b < 3; ++b) {
+    band[b].resize(static_cast<std::size_t>(w) * h);
+    if (GDALRasterIO(GDALGetRasterBand(d, b + 1), GF_Read, 0, 0, w, h, band[b].data(), w, h,
+                     GDT_Byte, 0, 0) != CE_None)
+      return -1;
+  }
+  GDALClose(d);
+  long n = 0;
+  for (std::size_t k = 0; k < band[0].size(); ++k)
+    n += band[0][k] == kNodataColour[0] && band[1][k] == kNodataColour[1] &&
+         band[2][k] == kNodataColour[2];
+  return n;
+}
+
 TEST(CliNodata, HolesComeBackAsNodataInEveryRasterAndTheMetricsLeaveThemOut) {
   test::ScratchDir dir;
   write_holed_terrain(dir.path("holes.asc"));
@@ -62,6 +84,14 @@ TEST(CliNodata, HolesComeBackAsNodataInEveryRasterAndTheMetricsLeaveThemOut) {
   for (const char* npy : {"final.npy", "drainage_area.npy"}) {
     const Heightmap raw = read_npy(dir.path("run/" + std::string(npy)), 1.0, NodataPolicy::kFill);
     EXPECT_EQ(raw.georef.holes, back.georef.holes) << npy;
+  }
+  // The pictures draw the hole in the NODATA colour (a vertex's share of the picture, zoom² pixels)
+  // rather than the heights the fill invented, and name the colour.
+  const int zoom = picture_zoom(back);
+  for (const char* png : {"height_initial.png", "height_final.png", "erosion.png"}) {
+    const long n = nodata_pixels(dir.path("run/" + std::string(png)));
+    EXPECT_GE(n, static_cast<long>(zoom / 2) * (zoom / 2)) << png;
+    EXPECT_LE(n, static_cast<long>(zoom + 1) * (zoom + 1) + 2000) << png << ": the hole alone";
   }
 }
 

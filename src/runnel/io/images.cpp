@@ -124,6 +124,15 @@ float sample(const std::vector<float>& v, int nx, int ny, int zoom, int px, int 
   return (1 - fx) * (1 - fz) * at(i, j) + fx * (1 - fz) * at(i1, j) + (1 - fx) * fz * at(i, j1) +
          fx * fz * at(i1, j1);
 }
+// Whether the vertex nearest picture pixel (px, py) is a NODATA hole: holes are drawn in the
+// NODATA colour, not as the heights a fill invented.
+bool hole_at(const Heightmap& t, int zoom, int px, int py) {
+  if (t.georef.holes.empty()) return false;
+  const int i = std::min((px + zoom / 2) / zoom, t.nx - 1),
+            j = std::min((py + zoom / 2) / zoom, t.ny - 1);
+  return t.georef.hole(static_cast<std::size_t>(j) * t.nx + i);
+}
+
 }  // namespace
 
 RgbImage terrain_picture(const Heightmap& t, float lo, float hi) {
@@ -134,6 +143,10 @@ RgbImage terrain_picture(const Heightmap& t, float lo, float hi) {
   const float range = hi > lo ? hi - lo : 1.0f;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
+      if (hole_at(t, zoom, x, y)) {
+        img.set(x, y, kNodataColour[0], kNodataColour[1], kNodataColour[2]);
+        continue;
+      }
       const Rgb c = ramp(kTerrainRamp, (sample(t.h, t.nx, t.ny, zoom, x, y) - lo) / range);
       const float s = 0.35f + 0.65f * sample(shade, t.nx, t.ny, zoom, x, y);
       img.set(x, y, to_byte(c.r * s), to_byte(c.g * s), to_byte(c.b * s));
@@ -165,6 +178,10 @@ RgbImage erosion_picture(const Heightmap& before, const Heightmap& after, double
   RgbImage img(w, map_h + bar_h);
   for (int y = 0; y < map_h; ++y) {
     for (int x = 0; x < map_w; ++x) {
+      if (hole_at(after, zoom, x, y)) {
+        img.set(x, y, kNodataColour[0], kNodataColour[1], kNodataColour[2]);
+        continue;
+      }
       const float t =
           static_cast<float>(0.5 + 0.5 * sample(change, after.nx, after.ny, zoom, x, y) / scale);
       const Rgb c = ramp(kDivergingRamp, t);
@@ -186,6 +203,11 @@ RgbImage erosion_picture(const Heightmap& before, const Heightmap& after, double
   draw_text(img, bar_x + bar_w / 2 - text_width("0", 1) / 2, ty, "0", 1);
   draw_text(img, bar_x + bar_w - text_width(right, 1), ty, right, 1);
   draw_text(img, bar_x, ty + 12, "height change dh (m)", 1, 80, 80, 80);
+  if (!after.georef.holes.empty()) {
+    const std::string nodata = "magenta: no data";
+    draw_text(img, bar_x + bar_w - text_width(nodata, 1), ty + 12, nodata, 1, kNodataColour[0],
+              kNodataColour[1], kNodataColour[2]);
+  }
   return img;
 }
 

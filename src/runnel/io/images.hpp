@@ -29,12 +29,15 @@ std::vector<float> hillshade(const Heightmap& terrain, double azimuth_deg = 315.
 // wide (bilinear between the vertices), large ones one pixel per vertex.
 int picture_zoom(const Heightmap& terrain);
 
+// NODATA holes in every map picture: a colour no ramp uses, named on the picture.
+constexpr std::uint8_t kNodataColour[3] = {255, 0, 255};
+
 // The terrain coloured by height (water-meadow green, grass, earth, rock, snow), shaded by its
-// hillshade.
+// hillshade; its NODATA holes in kNodataColour.
 RgbImage terrain_picture(const Heightmap& terrain, float min_height, float max_height);
 // Δh = after − before with a diverging colour map (red: eroded, blue: deposited) over the
 // hillshade, symmetric around 0 with ± `scale` metres at full colour, and a titled colour bar
-// beneath.
+// beneath (which names the NODATA colour when the terrain has holes).
 RgbImage erosion_picture(const Heightmap& before, const Heightmap& after, double scale);
 // A title bar above an image.
 RgbImage with_title(const RgbImage& image, const std::string& title);

@@ -10,6 +10,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/crash_isolated_read.hpp"
+#include "runnel/io/georeference_h5.hpp"
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/models/fields.hpp"
 #include "runnel/terrain/terrain_io.hpp"
@@ -192,12 +193,8 @@ void write_terrain_group(H5File& f, const CheckpointData& d) {
   f.attribute("/terrain", "cell", t.cell);
   f.attribute("/terrain", "origin_x", t.origin_x);
   f.attribute("/terrain", "origin_z", t.origin_z);
-  // The source's georeferencing (absent when it had none): the CRS as OGC WKT, its NODATA value.
-  if (!t.georef.crs_wkt.empty()) f.attribute("/terrain", "crs_wkt", t.georef.crs_wkt);
-  if (t.georef.nodata) f.attribute("/terrain", "nodata", *t.georef.nodata);
-  if (!t.georef.holes.empty())  // where the source had NODATA (1), filled to run
-    f.write("/terrain/nodata_holes",
-            std::vector<std::int32_t>(t.georef.holes.begin(), t.georef.holes.end()), grid);
+  // The source's georeferencing (absent when it had none): the CRS, its NODATA value and holes.
+  write_georeference(f, "/terrain", t);
   f.attribute("/terrain", "height_quantum", d.height_quantum);
 }
 
@@ -340,16 +337,7 @@ std::vector<hsize_t> read_terrain_group(const H5File& f, const std::string& path
   require_finite(path, "/terrain/height", d.terrain.h);
   d.terrain.origin_x = f.read_double_attribute("/terrain", "origin_x");
   d.terrain.origin_z = f.read_double_attribute("/terrain", "origin_z");
-  if (f.has_attribute("/terrain", "crs_wkt"))
-    d.terrain.georef.crs_wkt = f.read_string_attribute("/terrain", "crs_wkt");
-  if (f.has_attribute("/terrain", "nodata"))
-    d.terrain.georef.nodata = f.read_double_attribute("/terrain", "nodata");
-  if (f.exists("/terrain/nodata_holes")) {
-    for (std::int32_t v : f.read_int32("/terrain/nodata_holes", grid)) {
-      if (v != 0 && v != 1) throw input_error(path + ": /terrain/nodata_holes is not 0 or 1");
-      d.terrain.georef.holes.push_back(static_cast<std::uint8_t>(v));
-    }
-  }
+  read_georeference(f, path, "/terrain", d.terrain);
   d.height_quantum = f.read_double_attribute("/terrain", "height_quantum");
   if (!(d.height_quantum > 0))
     throw input_error(path + ": /terrain@height_quantum is not positive");

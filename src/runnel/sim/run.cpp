@@ -279,11 +279,13 @@ std::vector<double> write_terrain_outputs(const std::filesystem::path& out, Mode
   const Heightmap reference = model.erosion_reference();  // the initial one, or uplifted
   const float lo = std::min(initial.min_height(), final_terrain.min_height());
   const float hi = std::max(initial.max_height(), final_terrain.max_height());
+  // A terrain with NODATA holes says what their colour means in the title.
+  const std::string nodata = initial.georef.holes.empty() ? "" : " (magenta: no data)";
   write_png_rgb((out / "height_initial.png").string(),
-                with_title(terrain_picture(initial, lo, hi), "initial terrain"));
+                with_title(terrain_picture(initial, lo, hi), "initial terrain" + nodata));
   write_png_rgb((out / "height_final.png").string(),
                 with_title(terrain_picture(final_terrain, lo, hi),
-                           "after " + std::to_string(model.steps()) + " steps"));
+                           "after " + std::to_string(model.steps()) + " steps" + nodata));
   write_png_rgb(
       (out / "erosion.png").string(),
       with_title(erosion_picture(reference, final_terrain, erosion_scale(reference, final_terrain)),

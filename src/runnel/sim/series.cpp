@@ -6,6 +6,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/io/georeference_h5.hpp"
 #include "runnel/sim/particle_export.hpp"
 #include "runnel/sph/particle_store.hpp"
 
@@ -62,7 +63,7 @@ SeriesWriter::SeriesWriter(const fs::path& out, long long height_every, long lon
   file_->write("/grid/x", x, {ny, nx});
   file_->write("/grid/y", y, {ny, nx});
   file_->write("/grid/quads", quads, {(nx - 1) * (ny - 1), 4});
-  file_->attribute("/grid", "crs_wkt", grid_.georef.crs_wkt);
+  write_georeference(*file_, "/grid", grid_);
   file_->create_group("/particles");
   file_->create_group("/terrain");
 }

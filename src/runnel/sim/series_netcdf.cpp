@@ -9,6 +9,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/io/crash_isolated_read.hpp"
+#include "runnel/io/georeference_h5.hpp"
 #include "runnel/io/hdf5_file.hpp"
 #include "runnel/terrain/terrain_io.hpp"
 
@@ -85,7 +86,7 @@ SeriesForNetcdf read_series_for_netcdf(const std::string& series_path) {
   check_series_grid(series_path, x, y, dims[1], dims[0], grid.cell);
   grid.origin_x = x[0] - 0.5 * grid.cell;  // the vertices stand at their pixels' centres
   grid.origin_z = y.back() - 0.5 * grid.cell;
-  grid.georef.crs_wkt = series.read_string_attribute("/grid", "crs_wkt");
+  read_georeference(series, series_path, "/grid", grid);
   out.steps = series.read_int64("/height_step");
   out.times = series.read_double("/height_time", {out.steps.size()});
   check_series_frames(series_path, out.steps, out.times);
