@@ -138,6 +138,9 @@ inline float3 contact_response_on_face(float3 v, float3 n, float3 face) {
 
 // The own normal of the contact surface's triangle under (x, z), clamped to the heightmap.
 inline float3 contact_face_at(const __global float* surface, int nx, int ny, float cell, float x, float z) {
+#if !SPH_CONTACT_FACE_NORMAL
+  return (float3)(0.0f, 1.0f, 0.0f);  // unused: the response takes the interpolated normal alone
+#endif
   const TilePoint t = tile_point(nx, ny, cell, x, z);
   const int i = t.k00 % nx, j = t.k00 / nx;
   const float3 p00 = contact_vertex(surface, i, j, nx, cell), p11 = contact_vertex(surface, i + 1, j + 1, nx, cell);

@@ -22,18 +22,25 @@ from conftest import RUNNEL_BINARY  # noqa: E402
 TRANSFORM = (700000.0, 83.0, 0.0, 4000000.0, 0.0, -83.0)
 
 
-@pytest.fixture(scope="module")
-def run(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("nc")
-    dem = folder / "dem.tif"
-    ds = gdal.GetDriverByName("GTiff").Create(str(dem), 24, 20, 1, gdal.GDT_Float32)
+def write_utm_dem(path, heights, nodata=None):
+    """A 24 x 20 GeoTIFF on TRANSFORM in UTM zone 16N (made with GDAL), NODATA where given."""
+    ds = gdal.GetDriverByName("GTiff").Create(str(path), 24, 20, 1, gdal.GDT_Float32)
     ds.SetGeoTransform(TRANSFORM)
     srs = osr.SpatialReference()
     srs.ImportFromEPSG(32616)
     ds.SetProjection(srs.ExportToWkt())
+    band = ds.GetRasterBand(1)
+    if nodata is not None:
+        band.SetNoDataValue(nodata)
+    band.WriteArray(heights)
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("nc")
+    dem = folder / "dem.tif"
     j, i = np.mgrid[0:20, 0:24]
-    ds.GetRasterBand(1).WriteArray((300 + 2.0 * i + 5.0 * j + 3 * np.sin(i)).astype(np.float32))
-    ds = None
+    write_utm_dem(dem, (300 + 2.0 * i + 5.0 * j + 3 * np.sin(i)).astype(np.float32))
     out = folder / "run"
     r = subprocess.run([RUNNEL_BINARY, "run", "--terrain", str(dem), "--model", "pipe", "--set", "run.steps=5",
                         "--series-every", "2", "--quiet", "--out", str(out)], capture_output=True, text=True)
@@ -148,18 +155,10 @@ def test_nodata_holes_stay_holes_in_the_series_export_and_to_xarray(tmp_path):
     # A GeoTIFF with NODATA at (row 5, column 7): filled to run, then NaN (the _FillValue decoded) at that
     # pixel, and only there, in every frame of the series' NetCDF and in Model.to_xarray().
     dem = tmp_path / "holed.tif"
-    ds = gdal.GetDriverByName("GTiff").Create(str(dem), 24, 20, 1, gdal.GDT_Float32)
-    ds.SetGeoTransform(TRANSFORM)
-    srs = osr.SpatialReference()
-    srs.ImportFromEPSG(32616)
-    ds.SetProjection(srs.ExportToWkt())
     j, i = np.mgrid[0:20, 0:24]
     heights = (300 + 2.0 * i + 5.0 * j).astype(np.float32)
     heights[5, 7] = -9999
-    band = ds.GetRasterBand(1)
-    band.SetNoDataValue(-9999)
-    band.WriteArray(heights)
-    ds = None
+    write_utm_dem(dem, heights, nodata=-9999)
     out = tmp_path / "run"
     r = subprocess.run([RUNNEL_BINARY, "run", "--terrain", str(dem), "--model", "pipe", "--set", "run.steps=4",
                         "--series-every", "2", "--quiet", "--out", str(out)], capture_output=True, text=True)

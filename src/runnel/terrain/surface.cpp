@@ -9,18 +9,6 @@
 
 namespace runnel {
 
-double surface_height(const Heightmap& t, double x, double z) {
-  const double u = std::clamp(x / t.cell, 0.0, t.nx - 1.0),
-               v = std::clamp(z / t.cell, 0.0, t.ny - 1.0);
-  const int i = std::min(static_cast<int>(u), t.nx - 2),
-            j = std::min(static_cast<int>(v), t.ny - 2);
-  const double fx = u - i, fz = v - j;
-  const double h00 = t.at(i, j), h10 = t.at(i + 1, j), h01 = t.at(i, j + 1),
-               h11 = t.at(i + 1, j + 1);
-  if (fx >= fz) return h00 * (1 - fx) + h10 * (fx - fz) + h11 * fz;
-  return h00 * (1 - fz) + h01 * (fz - fx) + h11 * fx;
-}
-
 namespace {
 
 // The triangle holding (x, z) and the barycentric weights of its vertices, the fourth vertex of
@@ -89,6 +77,13 @@ Vec3 closest_point_on_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
 }
 
 }  // namespace
+
+double surface_height(const Heightmap& t, double x, double z) {
+  const TileWeights tw = tile_weights(t, x, z);
+  double height = 0;
+  for (int v = 0; v < 4; ++v) height += tw.w[v] * t.h[tw.k[v]];
+  return height;
+}
 
 SurfacePointReference surface_point(const Heightmap& t, const std::vector<float>& normals, double x,
                                     double z) {
