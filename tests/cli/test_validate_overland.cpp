@@ -36,13 +36,14 @@ TEST(ValidateOverlandCli, TheDefaultFluxRunsOffASmallPlaneAsTheKinematicWaveSays
   EXPECT_LT(std::fabs(test::json_number(r.out, "water_balance_rel")), 1e-4);
   EXPECT_LT(std::fabs(test::json_number(r.out, "equilibrium_outflow_error")), 0.01);
   // The depths along the plane, the hydrograph and the water stored, against the analytic values
-  // (the targets are 10 %, 5 % and 5 % at convergence; at this cell 10 %, 7.6 % and 5.2 %).
+  // (the targets are 10 %, 5 % and 5 %; at this cell 5.6 %, 5.5 % and 3.2 %). Where the faces saw
+  // the bed as steps, the first gauge's sheet (S l / 2h = 9 % of a step) was 10 % too deep.
   const std::vector<double> errors = all_numbers(r.out, "error");
   ASSERT_EQ(errors.size(), 9u) << r.out;
-  for (double e : errors) EXPECT_LT(std::fabs(e), 0.12) << r.out;
-  EXPECT_LT(errors.back(), 0.08) << "the last gauge, 2 m above the foot";
-  EXPECT_LT(test::json_number(r.out, "outflow_worst_error_of_iA"), 0.10);
-  EXPECT_LT(std::fabs(test::json_number(r.out, "storage_error")), 0.08);
+  for (double e : errors) EXPECT_LT(std::fabs(e), 0.07) << r.out;
+  EXPECT_LT(errors.back(), 0.04) << "the last gauge, 2 m above the foot";
+  EXPECT_LT(test::json_number(r.out, "outflow_worst_error_of_iA"), 0.065);
+  EXPECT_LT(std::fabs(test::json_number(r.out, "storage_error")), 0.045);
   EXPECT_TRUE(std::filesystem::exists(dir.path("out/overland.png")));
   EXPECT_NE(test::read_text(dir.path("out/godunov/outflow.csv")).find("t,rain,outflow,stored"),
             std::string::npos);

@@ -79,8 +79,8 @@ const ModelInfo& PipeModel::model_info() {
        {kSurfaceWaterVelocity, FieldIntent::kOut},
        {kSedimentSuspended, FieldIntent::kOut}},
       {},
-      200};  // 120 with Mei's pipes and law; the bed load adds its sent planes, the next heights
-             // and the talus, the godunov flux its faces' fluxes
+      224};  // 120 with Mei's pipes and law; the bed load adds its sent planes, the next heights
+             // and the talus, the godunov flux its faces' fluxes and slopes (48)
   return info;
 }
 
@@ -130,9 +130,12 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   water_kernel_ =
       Kernel(compute, program, settings_.godunov() ? "pipe_godunov_update" : "pipe_water");
   if (settings_.godunov()) {
-    face_flux_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 6 * n * sizeof(float));
-    flux_kernel_.set("face_flux", face_flux_);
-    water_kernel_.set("face_flux", face_flux_);
+    face_flux_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 8 * n * sizeof(float));
+    slopes_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(float));
+    slopes_kernel_ = Kernel(compute, program, "pipe_godunov_slopes");
+    slopes_kernel_.set("slopes", slopes_).set("rain_weight", rain_weight());
+    for (Kernel* k : {&flux_kernel_, &water_kernel_})
+      k->set("face_flux", face_flux_).set("slopes", slopes_);
   }
   erode_kernel_ = Kernel(compute, program, "pipe_erode");
   send_kernel_ = Kernel(compute, program, "pipe_send");
@@ -156,7 +159,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
 double PipeModel::scratch_bytes() const {
   return buffer_bytes({&previous_depth_, &capacity_, &cfl_speed2_, &sediment_next_, &sent_, &stats_,
                        &outflow_, &lost_, &edge_water_, &sendable_, &bed_sent_, &height_next_,
-                       &bed_moved_, &old_flux_, &face_flux_}) +
+                       &bed_moved_, &old_flux_, &face_flux_, &slopes_}) +
          (talus_ ? talus_->device_bytes() : 0.0);
 }
 
@@ -196,6 +199,13 @@ double PipeModel::take_step() {
   erode_kernel_
       .set("dissolved_fraction", static_cast<float>(-std::expm1(-settings_.dissolve * dt_)))
       .set("deposited_fraction", static_cast<float>(-std::expm1(-settings_.deposit * dt_)));
+  if (settings_.godunov()) {
+    slopes_kernel_.set("height_view", terrain.height())
+        .set("depth", depth)
+        .set("nx", nx)
+        .set("ny", ny);
+    slopes_kernel_.set("dt", dt).set("rain_on", rain_on()).launch(work);
+  }
   if (settings_.bedload()) {
     for (Kernel* k : {&flux_kernel_, &water_kernel_}) k->launch(work);
     count_edge_water(flux, dt);

@@ -100,6 +100,7 @@ class PipeModel final : public GridModel {
   cl::Buffer bed_sent_, height_next_, bed_moved_;  // bed load only
   cl::Buffer old_flux_;                            // local-inertial only: the step's copy
   cl::Buffer face_flux_;  // godunov only: each cell's right and lower faces' HLL fluxes
+  cl::Buffer slopes_;     // godunov only: each cell's limited bed and depth slopes along x and z
   Kernel bedload_kernel_;
   std::unique_ptr<ThermalRelaxation>
       talus_;  // bed load only: slopes above the angle of repose slide
@@ -108,7 +109,8 @@ class PipeModel final : public GridModel {
       lost_;
   cl::Buffer edge_water_;  // counts of water out through each edge face (pipe_edge_water)
   Kernel edge_water_kernel_;
-  cl::Buffer sendable_;  // pipe_erode's 32-bit copy of the sediment for pipe_send (pipe.cl)
+  Kernel slopes_kernel_;  // godunov only
+  cl::Buffer sendable_;   // pipe_erode's 32-bit copy of the sediment for pipe_send (pipe.cl)
   Kernel flux_kernel_, water_kernel_, erode_kernel_, send_kernel_, receive_kernel_,
       edge_outflow_kernel_, advect_kernel_, stats_kernel_;
 };
