@@ -58,9 +58,9 @@ def terrain_from_landlab(grid, field=_ELEVATION):
         (np.asarray(grid.status_at_node) == grid.BC_NODE_IS_CLOSED).reshape(grid.shape)
     )
     if closed.any():
-        terrain = _terrain_with_holes(heights.astype(np.float32), dx, closed, -9999.0)
+        terrain = _terrain_with_holes(heights, dx, closed, -9999.0)
     else:
-        terrain = Terrain(heights.astype(np.float32), dx)
+        terrain = Terrain(heights, dx)
     x0, y0 = (float(v) for v in grid.xy_of_lower_left)
     terrain.origin_x = x0 - 0.5 * dx
     terrain.origin_z = y0 - 0.5 * dx

@@ -63,6 +63,11 @@ Heightmap terrain_of_array(const py::array& array, double cell) {
   check_terrain_size("heights", heights.shape(1), heights.shape(0));
   Heightmap t(static_cast<int>(heights.shape(1)), static_cast<int>(heights.shape(0)), cell);
   std::copy(heights.data(), heights.data() + heights.size(), t.h.begin());
+  // Double precision kept as given: a model then starts from these heights, exact to the quantum.
+  if (array.dtype().is(py::dtype::of<double>())) {
+    const auto exact = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
+    t.exact.assign(exact.data(), exact.data() + exact.size());
+  }
   return t;
 }
 

@@ -47,6 +47,27 @@ def test_a_model_on_a_landlab_terrain_reads_its_rows_as_landlab_does():
     assert np.allclose(bmi_order, z, atol=1e-5), "node k of Landlab is node k of runnel's BMI"
 
 
+def test_a_landlab_dem_in_double_precision_starts_a_model_exact_to_the_quantum():
+    """A 65² DEM a kilometre high: float32 holds such heights to about 6e-5 m, sixty quanta, so the
+    model starts from Landlab's float64 heights themselves, each within half a quantum, and the
+    volume equals Landlab's own sum to the quantum."""
+    grid = RasterModelGrid((65, 65), xy_spacing=30.0)
+    rng = np.random.default_rng(7)
+    z = grid.add_field("topographic__elevation", 1000.0 + 400.0 * rng.random(grid.number_of_nodes),
+                       at="node")
+    assert np.max(np.abs(z.astype(np.float32) - z)) > 10 * QUANTUM, "float32 would lose these heights"
+    model = runnel.Model("thermal", runnel.Terrain.from_landlab(grid))
+    start = np.flipud(model.elevation()).reshape(-1)
+    assert np.max(np.abs(start - z)) <= 0.5 * QUANTUM * (1 + 1e-9)
+    area = grid.dx * grid.dy
+    gap = abs(start.sum() - z.sum()) * area
+    assert gap <= 0.5 * QUANTUM * grid.number_of_nodes * area, f"{gap} m³ from Landlab's volume"
+    # A height edited through the float32 view is the height the model takes there.
+    terrain = runnel.Terrain.from_landlab(grid)
+    terrain.heights[0, 0] = 5.0
+    assert runnel.Model("thermal", terrain).elevation()[0, 0] == 5.0
+
+
 def fbm_grid(size=33, cell=2.0):
     terrain = runnel.generate("fbm", size, size, cell, seed=4, params={"relief": 0.3})
     return terrain.to_landlab()

@@ -34,6 +34,11 @@ struct Heightmap {
   double origin_z = 0.0;  // m
   Georeference georef;
   std::vector<float> h;  // m
+  // The heights as a caller gave them in double precision (Python's float64 arrays, a Landlab
+  // grid), or empty. A model's fixed-point heights are made from these, so a float64 terrain is
+  // exact to the quantum; a vertex whose float height no longer is this value rounded (edited
+  // since, filled as a hole) takes its float height.
+  std::vector<double> exact;  // m
 
   Heightmap() = default;
   Heightmap(int nx_, int ny_, double cell_, float fill = 0.0f)
@@ -43,6 +48,10 @@ struct Heightmap {
   float& at(int i, int j) { return h[static_cast<std::size_t>(j) * nx + i]; }
   float at(int i, int j) const { return h[static_cast<std::size_t>(j) * nx + i]; }
 
+  // The height a model starts vertex k at: the exact height where the float one still is it.
+  double start_height(std::size_t k) const {
+    return exact.size() == h.size() && static_cast<float>(exact[k]) == h[k] ? exact[k] : h[k];
+  }
   float min_height() const;
   float max_height() const;
   // V_terrain = cell² · Σ_v h_v (physics.md §1): the one definition of terrain volume, in m³.

@@ -20,7 +20,7 @@ namespace {
 // Heights rounded to the quantum, as the device keeps them.
 std::vector<std::int64_t> to_fixed(const Heightmap& t, double quantum) {
   std::vector<std::int64_t> f(t.size());
-  for (std::size_t k = 0; k < f.size(); ++k) f[k] = std::llround(t.h[k] / quantum);
+  for (std::size_t k = 0; k < f.size(); ++k) f[k] = std::llround(t.start_height(k) / quantum);
   return f;
 }
 

@@ -43,9 +43,9 @@ DeviceTerrain::DeviceTerrain(ComputeContext& compute, const Heightmap& terrain, 
 void DeviceTerrain::upload(const Heightmap& terrain) {
   std::vector<std::int64_t> fixed(terrain.size());
   for (std::size_t k = 0; k < fixed.size(); ++k) {
-    const double quanta = terrain.h[k] / quantum_;
+    const double quanta = terrain.start_height(k) / quantum_;
     if (!(std::fabs(quanta) <= kMaxHeightQuanta)) {
-      throw input_error("terrain height " + format_number(terrain.h[k]) +
+      throw input_error("terrain height " + format_number(terrain.start_height(k)) +
                         " m is not a finite multiple of erosion.height_quantum = " +
                         format_number(quantum_) + " m within 2^53 quanta (the fixed-point " +
                         "heights' range with headroom for the run): raise erosion.height_quantum");
