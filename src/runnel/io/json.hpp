@@ -1,97 +1,71 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-#include <cmath>
-#include <cstdint>
-#include <sstream>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace runnel {
 
-// A small JSON object writer for reports (metrics.json, bench and validate output). Keys keep
-// their insertion order; numbers are written with enough digits to round-trip.
+// A JSON object for reports (metrics.json, bench and validate output), held as nlohmann-json's
+// ordered document: keys keep their insertion order, strings are escaped and numbers written to
+// round-trip by the library. str() lays it out on one line with a space after each colon and comma
+// (`{"key": value, ...}`), which keeps a report greppable and a command's output one line.
 class JsonObject {
  public:
+  using Document = nlohmann::ordered_json;
+
+  template <typename T, typename = std::enable_if_t<std::is_arithmetic_v<T>>>
+  JsonObject& add(const std::string& key, T value) {
+    doc_[key] = value;  // a NaN or an infinity is written as null (JSON has none)
+    return *this;
+  }
   JsonObject& add(const std::string& key, const std::string& value) {
-    return raw(key, quote(value));
+    doc_[key] = value;
+    return *this;
   }
-  JsonObject& add(const std::string& key, const char* value) { return raw(key, quote(value)); }
-  JsonObject& add(const std::string& key, double value) { return raw(key, number(value)); }
-  JsonObject& add(const std::string& key, float value) { return raw(key, number(value)); }
-  JsonObject& add(const std::string& key, int value) { return raw(key, std::to_string(value)); }
-  JsonObject& add(const std::string& key, long value) { return raw(key, std::to_string(value)); }
-  JsonObject& add(const std::string& key, long long value) {
-    return raw(key, std::to_string(value));
+  JsonObject& add(const std::string& key, const char* value) {
+    return add(key, std::string(value));
   }
-  JsonObject& add(const std::string& key, unsigned value) {
-    return raw(key, std::to_string(value));
+  JsonObject& add(const std::string& key, const JsonObject& value) {
+    doc_[key] = value.doc_;
+    return *this;
   }
-  JsonObject& add(const std::string& key, unsigned long value) {
-    return raw(key, std::to_string(value));
-  }
-  JsonObject& add(const std::string& key, unsigned long long value) {
-    return raw(key, std::to_string(value));
-  }
-  JsonObject& add(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
-  JsonObject& add(const std::string& key, const JsonObject& value) { return raw(key, value.str()); }
   JsonObject& add(const std::string& key, const std::vector<JsonObject>& values) {
-    std::string s = "[";
-    for (std::size_t k = 0; k < values.size(); ++k) s += (k ? ", " : "") + values[k].str();
-    return raw(key, s + "]");
+    Document array = Document::array();
+    for (const JsonObject& v : values) array.push_back(v.doc_);
+    doc_[key] = std::move(array);
+    return *this;
   }
-  // A pre-formatted JSON value.
-  JsonObject& raw(const std::string& key, const std::string& json) {
-    body_ += (body_.empty() ? "" : ", ") + quote(key) + ": " + json;
+  // Any other JSON value (an array of numbers, say).
+  JsonObject& add(const std::string& key, Document value) {
+    doc_[key] = std::move(value);
     return *this;
   }
   // Appends every entry of `other`.
   JsonObject& merge(const JsonObject& other) {
-    if (!other.body_.empty()) body_ += (body_.empty() ? "" : ", ") + other.body_;
+    for (const auto& [key, value] : other.doc_.items()) doc_[key] = value;
     return *this;
   }
-  std::string str() const { return "{" + body_ + "}"; }
-
-  static std::string quote(const std::string& s) {
-    std::string out = "\"";
-    for (unsigned char c : s) {
-      switch (c) {
-        case '"':
-          out += "\\\"";
-          break;
-        case '\\':
-          out += "\\\\";
-          break;
-        case '\n':
-          out += "\\n";
-          break;
-        case '\t':
-          out += "\\t";
-          break;
-        case '\r':
-          out += "\\r";
-          break;
-        default:
-          if (c < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
-            out += buf;
-          } else {
-            out += static_cast<char>(c);
-          }
-      }
-    }
-    return out + "\"";
-  }
-  static std::string number(double v) {
-    if (!std::isfinite(v)) return "null";  // JSON has no NaN or infinity
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-  }
+  const Document& document() const { return doc_; }
+  std::string str() const { return layout(doc_.is_null() ? Document::object() : doc_); }
 
  private:
-  std::string body_;
+  static std::string layout(const Document& v) {
+    if (v.is_object()) {
+      std::string s = "{";
+      for (const auto& [key, value] : v.items())
+        s += (s.size() > 1 ? ", " : "") + Document(key).dump() + ": " + layout(value);
+      return s + "}";
+    }
+    if (v.is_array()) {
+      std::string s = "[";
+      for (const Document& item : v) s += (s.size() > 1 ? ", " : "") + layout(item);
+      return s + "]";
+    }
+    return v.dump();
+  }
+  Document doc_;
 };
 
 }  // namespace runnel

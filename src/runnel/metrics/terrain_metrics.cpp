@@ -479,14 +479,9 @@ std::vector<std::pair<std::string, double>> terrain_metric_values(const Heightma
 
 JsonObject terrain_metrics_json(const std::vector<std::pair<std::string, double>>& values,
                                 const Heightmap& after) {
-  std::string histogram = "[";
-  const auto hist = slope_histogram(after);
-  for (std::size_t k = 0; k < hist.size(); ++k)
-    histogram += (k ? ", " : "") + std::to_string(hist[k]);
-  histogram += "]";
   JsonObject o;
   for (auto& [name, value] : values) o.add(name, value);
-  o.raw("slope_histogram_5deg", histogram);
+  o.add("slope_histogram_5deg", JsonObject::Document(slope_histogram(after)));
   return o;
 }
 

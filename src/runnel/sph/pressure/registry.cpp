@@ -44,8 +44,8 @@ const PressureMethod& pressure_method(const std::string& name) {
   std::string registered;
   for (const std::string& n : pressure_method_names())
     registered += (registered.empty() ? "" : ", ") + n;
-  throw input_error("sph.solver: unknown solver " + quoted(name) + " (registered: " + registered +
-                    ")");
+  throw input_error("sph.solver: unknown solver " + runnel::quoted(name) +
+                    " (registered: " + registered + ")");
 }
 
 }  // namespace runnel
