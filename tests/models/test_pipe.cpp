@@ -175,6 +175,50 @@ TEST(PipeModel, StepsMatchThePlainCppReference) {
   }
 }
 
+// The Godunov flux's water over ten steps of rain on a random rough terrain, against its plain C++
+// oracle, with outflow and closed edges: the reconstructed bed's slopes, the faces and the update.
+// Nothing erodes (capacity 0), so the oracle steps the same bed.
+TEST(PipeModel, TheGodunovWaterMatchesThePlainCppReference) {
+  const int nx = 19, ny = 15;
+  const Heightmap rough = test::rough_terrain(nx, ny, 1.0f, 12);
+  for (const char* edges : {"outflow", "closed"}) {
+    Parameters p = mei_parameters();
+    p.set("pipe.edges", std::string(edges));
+    p.set("pipe.flux", std::string("godunov"));
+    p.set("pipe.capacity", 0.0);
+    p.set("pipe.rain", 0.2);
+    PipeModel model(compute(), p, rough);
+    pipe_reference::State ref = oracle_start(model);
+    const DeviceTerrain& terrain = model.state().terrain();
+    const PipeSettings settings = PipeSettings::from(p);
+    for (int k = 0; k < 10; ++k) {
+      pipe_reference::godunov_water(ref, nx, ny, terrain.cell(), terrain.quantum(), settings,
+                                    model.dt());
+      model.step();
+    }
+    const auto depth = model.depth();
+    double worst = 0, deepest = 0;
+    for (std::size_t k = 0; k < depth.size(); ++k) {
+      worst = std::max(worst, std::fabs(depth[k] - ref.depth[k]));
+      deepest = std::max(deepest, ref.depth[k]);
+    }
+    EXPECT_GT(deepest, 0.1) << edges;
+    EXPECT_LT(worst, 1e-5 * std::max(1.0, deepest)) << edges << ": m, float against double";
+    for (const auto& [name, oracle] : {std::pair{kSurfaceWaterOutflux, &ref.flux},
+                                       std::pair{kSurfaceWaterVelocity, &ref.velocity}}) {
+      const auto values = model.state().download_float(name);
+      ASSERT_EQ(values.size(), oracle->size());
+      double field_worst = 0, field_scale = 0;
+      for (std::size_t k = 0; k < values.size(); ++k) {
+        field_worst = std::max(field_worst, std::fabs(values[k] - (*oracle)[k]));
+        field_scale = std::max(field_scale, std::fabs((*oracle)[k]));
+      }
+      EXPECT_GT(field_scale, 0.0) << name;
+      EXPECT_LT(field_worst, 1e-3 * field_scale) << edges << " " << name;
+    }
+  }
+}
+
 // pipe_send shares at most kPipeSendable quanta of a cell's sediment (32-bit arithmetic, pipe.cl).
 // A fine quantum and a large capacity put several times that in cells: the kernels still follow the
 // oracle, which applies the same rule in 64 bits and double precision (a wrapped 32-bit share would

@@ -21,4 +21,10 @@ struct State {
 void step(State& state, int nx, int ny, double cell, double quantum, const PipeSettings& settings,
           double dt, std::uint64_t seed, std::uint64_t step_index);
 
+// The water of one step of length dt under pipe.flux = "godunov" (cl/models/pipe_godunov.cl: the
+// bed's and depth's slopes, the faces, the update) in plain C++ and double precision: the depths,
+// velocities and the faces' outflows (pipe_godunov_reference.cpp).
+void godunov_water(State& state, int nx, int ny, double cell, double quantum,
+                   const PipeSettings& settings, double dt);
+
 }  // namespace runnel::pipe_reference
