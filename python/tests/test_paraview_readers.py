@@ -116,3 +116,51 @@ def test_paraview_draws_the_particles_in_every_representation(tmp_path):
     assert red["Points"] >= 10 * last, red
     assert red["Surface"] >= 10 * last, red
     assert red["Point Gaussian"] >= last, red
+
+
+# Runs inside pvpython: series.pvd through ParaView's own reader for it, every time step, each
+# block's name, points, cells and arrays.
+BLOCKS = r"""
+import json, sys
+from paraview import simple, servermanager
+from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet
+reader = simple.OpenDataFile(sys.argv[1])
+frames = []
+for t in reader.TimestepValues:
+    reader.UpdatePipeline(time=t)
+    data = servermanager.Fetch(reader)
+    blocks = {}
+    for b in range(data.GetNumberOfBlocks()):
+        name = data.GetMetaData(b).Get(vtkCompositeDataSet.NAME())
+        piece = data.GetBlock(b).GetBlock(0)
+        point_data = piece.GetPointData()
+        blocks[name] = {"points": piece.GetNumberOfPoints(), "cells": piece.GetNumberOfCells(),
+                        "arrays": [point_data.GetArrayName(i) for i in range(point_data.GetNumberOfArrays())]}
+    frames.append({"time": t, "reader": reader.GetXMLName(), "blocks": blocks})
+print(json.dumps(frames))
+"""
+
+
+def test_paraview_opens_the_vtk_series_as_named_terrain_and_particle_blocks(tmp_path):
+    out = tmp_path / "run"
+    r = subprocess.run([RUNNEL_BINARY, "run", "--generate", "fbm", "--set", "terrain.size=33", "--set", "run.steps=30",
+                        "--series-every", "10", "--particles-every", "10", "--quiet", "--out", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    script = tmp_path / "blocks.py"
+    script.write_text(BLOCKS)
+    r = subprocess.run([PVPYTHON, str(script), str(out / "series.pvd")], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-3000:]
+    frames = json.loads(r.stdout.strip().splitlines()[-1])
+    assert [f["time"] for f in frames][0] == 0.0 and len(frames) == 4, "steps 0, 10, 20 and 30"
+    end = json.loads((out / "metrics.json").read_text())["sim_time"]
+    assert frames[-1]["time"] == pytest.approx(end)
+    for f in frames:
+        assert f["reader"] == "PVDReader"
+        assert set(f["blocks"]) == {"terrain", "particles"}, f
+        terrain = f["blocks"]["terrain"]
+        assert terrain["points"] == 33 * 33 and terrain["cells"] == 32 * 32, f
+        assert {"height", "dh", "depth", "speed", "velocity"} <= set(terrain["arrays"]), f
+    last = frames[-1]["blocks"]["particles"]
+    assert last["points"] > 10 and last["cells"] == last["points"], "each particle a vertex cell"
+    assert {"velocity", "density", "sediment", "age", "id"} <= set(last["arrays"])

@@ -60,9 +60,11 @@ void add_output_flags(CLI::App& cmd, OutputFlags& flags) {
   cmd.add_option("--keep-checkpoints", flags.keep_checkpoints, "keep the newest K checkpoints")
       ->check(whole_in(1, 1000000))
       ->capture_default_str();
-  cmd.add_option("--series-every", flags.series_every,
-                 "append the heightmap to DIR/series.h5 every N steps (series.xmf indexes it for "
-                 "ParaView); 0 (the default): no series")
+  cmd.add_option(
+         "--series-every", flags.series_every,
+         "append the heightmap to DIR/series.h5 every N steps (series.xmf indexes it for "
+         "ParaView and VisIt; series.pvd with series_vtk/ holds the same frames as VTK files, "
+         "terrain and particles as named blocks); 0 (the default): no series")
       ->check(whole_in(0, kMaxSteps));
   cmd.add_option(
          "--particles-every", flags.particles_every,

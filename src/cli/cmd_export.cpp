@@ -115,7 +115,10 @@ void add_export_command(CLI::App& app) {
       if (std::filesystem::path(opt->output).extension() != "." + opt->format)
         throw input_error("-o " + opt->output + ": a " + opt->format + " file is named ." +
                           opt->format);
-      (opt->format == "ply" ? write_particles_ply : write_particles_vtp)(opt->output, data);
+      if (opt->format == "ply")
+        write_particles_ply(opt->output, data);
+      else
+        write_particles_vtp(opt->output, data);
       std::fprintf(stderr, "runnel: wrote %s (%zu particles, step %llu)\n",
                    terminal_safe(opt->output).c_str(), data.particles.size(),
                    static_cast<unsigned long long>(data.steps));

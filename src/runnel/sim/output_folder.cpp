@@ -37,6 +37,15 @@ std::vector<fs::path> earlier_outputs(const fs::path& dir) {
   std::error_code ec;
   for (const std::string& name : run_output_names())
     if (fs::exists(fs::symlink_status(dir / name, ec))) found.push_back(dir / name);
+  // The series' VTK frames (series_vtk/terrain_*.vts, particles_*.vtp), unless the folder is a
+  // link.
+  if (!fs::is_symlink(dir / "series_vtk", ec))
+    for (const auto& e : fs::directory_iterator(dir / "series_vtk", ec)) {
+      const std::string f = e.path().filename().string(), x = e.path().extension().string();
+      if ((f.rfind("terrain_", 0) == 0 && x == ".vts") ||
+          (f.rfind("particles_", 0) == 0 && x == ".vtp"))
+        found.push_back(e.path());
+    }
   if (fs::is_symlink(dir / "checkpoints", ec)) return found;
   for (const auto& e : fs::directory_iterator(dir / "checkpoints", ec)) {
     const std::string f = e.path().filename().string();
@@ -48,25 +57,12 @@ std::vector<fs::path> earlier_outputs(const fs::path& dir) {
 }  // namespace
 
 const std::vector<std::string>& run_output_names() {
-  static const std::vector<std::string> names = {"final.h5",
-                                                 "height_initial.png",
-                                                 "height_final.png",
-                                                 "erosion.png",
-                                                 "final.asc",
-                                                 "final.npy",
-                                                 "final.tif",
-                                                 "erosion.tif",
-                                                 "drainage_area.npy",
-                                                 "metrics.json",
-                                                 "probes.csv",
-                                                 "outflow.csv",
-                                                 "series.h5",
-                                                 "series.h5.partial",
-                                                 "series.xmf",
-                                                 "geology.png",
-                                                 "exposed_layer.tif",
-                                                 "exposed_layer.npy",
-                                                 "sediment_thickness.tif"};
+  static const std::vector<std::string> names = {
+      "final.h5",          "height_initial.png", "height_final.png",  "erosion.png",
+      "final.asc",         "final.npy",          "final.tif",         "erosion.tif",
+      "drainage_area.npy", "metrics.json",       "probes.csv",        "outflow.csv",
+      "series.h5",         "series.h5.partial",  "series.xmf",        "series.pvd",
+      "geology.png",       "exposed_layer.tif",  "exposed_layer.npy", "sediment_thickness.tif"};
   return names;
 }
 

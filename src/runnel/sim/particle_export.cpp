@@ -6,6 +6,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
+#include "runnel/io/vtk_xml.hpp"
 
 namespace runnel {
 
@@ -63,75 +64,40 @@ void write_particles_ply(const std::string& path, const CheckpointData& d) {
   });
 }
 
-void write_particles_vtp(const std::string& path, const CheckpointData& d) {
-  static_assert(std::endian::native == std::endian::little,
-                "the appended data is written as it lies in memory");
-  require_particles(path, d);
-  const HostParticles& p = d.particles;
+void write_particles_vtp(const std::string& path, const HostParticles& p,
+                         const Heightmap& terrain) {
   const std::size_t n = p.size();
-  const MapParticles m = map_particles(p, d.terrain);
+  const MapParticles m = map_particles(p, terrain);
   std::vector<std::int64_t> connectivity(n), offsets(n);
   for (std::size_t k = 0; k < n; ++k) {
     connectivity[k] = static_cast<std::int64_t>(k);
     offsets[k] = static_cast<std::int64_t>(k + 1);
   }
-  // The arrays in the order their blocks follow in the appended data, each block its byte count
-  // (UInt64) and its bytes.
-  struct Array {
-    const char* name;
-    const char* type;
-    int components;
-    const void* data;
-    std::size_t bytes;
-  };
-  const std::vector<Array> point_data = {
-      {"velocity", "Float32", 3, m.velocity.data(), m.velocity.size() * sizeof(float)},
-      {"density", "Float32", 1, p.f[kRho].data(), n * sizeof(float)},
-      {"sediment", "Int32", 1, p.sediment.data(), n * sizeof(std::int32_t)},
-      {"age", "Float32", 1, p.f[kAge].data(), n * sizeof(float)},
-      {"id", "UInt32", 1, m.id.data(), n * sizeof(std::uint32_t)}};
-  const Array points = {"Points", "Float64", 3, m.position.data(),
-                        m.position.size() * sizeof(double)};
-  const Array cells[2] = {{"connectivity", "Int64", 1, connectivity.data(), n * 8},
-                          {"offsets", "Int64", 1, offsets.data(), n * 8}};
-  std::size_t offset = 0;
-  const auto declare = [&](const Array& a) {
-    char line[256];
-    std::snprintf(line, sizeof line,
-                  "<DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "
-                  "format=\"appended\" offset=\"%zu\"/>\n",
-                  a.type, a.name, a.components, offset);
-    offset += sizeof(std::uint64_t) + a.bytes;
-    return std::string(line);
-  };
-  std::string xml =
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
-      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PolyData>\n";
-  char piece[160];
-  std::snprintf(piece, sizeof piece,
-                "<Piece NumberOfPoints=\"%zu\" NumberOfVerts=\"%zu\" NumberOfLines=\"0\" "
-                "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
-                n, n);
-  xml += piece;
-  xml += "<PointData Scalars=\"density\" Vectors=\"velocity\">\n";
-  for (const Array& a : point_data) xml += declare(a);
-  xml += "</PointData>\n<Points>\n" + declare(points) + "</Points>\n<Verts>\n";
-  for (const Array& a : cells) xml += declare(a);
-  xml += "</Verts>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
-  write_file_atomically(path, [&](std::FILE* f) {
-    std::fwrite(xml.data(), 1, xml.size(), f);
-    std::vector<const Array*> order;
-    for (const Array& a : point_data) order.push_back(&a);
-    order.push_back(&points);
-    for (const Array& a : cells) order.push_back(&a);
-    for (const Array* a : order) {
-      const std::uint64_t bytes = a->bytes;
-      std::fwrite(&bytes, sizeof bytes, 1, f);
-      if (bytes > 0) std::fwrite(a->data, 1, a->bytes, f);
-    }
-    std::fputs("\n</AppendedData>\n</VTKFile>\n", f);
-    if (std::ferror(f)) throw runtime_error(path + ": write failed");
-  });
+  const std::vector<VtkSection> sections = {
+      {"PointData",
+       "Scalars=\"density\" Vectors=\"velocity\"",
+       {{"velocity", "Float32", 3, m.velocity.data(), m.velocity.size() * sizeof(float)},
+        {"density", "Float32", 1, p.f[kRho].data(), n * sizeof(float)},
+        {"sediment", "Int32", 1, p.sediment.data(), n * sizeof(std::int32_t)},
+        {"age", "Float32", 1, p.f[kAge].data(), n * sizeof(float)},
+        {"id", "UInt32", 1, m.id.data(), n * sizeof(std::uint32_t)}}},
+      {"Points",
+       "",
+       {{"Points", "Float64", 3, m.position.data(), m.position.size() * sizeof(double)}}},
+      {"Verts",
+       "",
+       {{"connectivity", "Int64", 1, connectivity.data(), n * 8},
+        {"offsets", "Int64", 1, offsets.data(), n * 8}}}};
+  write_vtk_xml(path, "PolyData", "",
+                "NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfVerts=\"" +
+                    std::to_string(n) +
+                    "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\"",
+                sections);
+}
+
+void write_particles_vtp(const std::string& path, const CheckpointData& d) {
+  require_particles(path, d);
+  write_particles_vtp(path, d.particles, d.terrain);
 }
 
 }  // namespace runnel

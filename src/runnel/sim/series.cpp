@@ -7,6 +7,7 @@
 #include "runnel/core/error.hpp"
 #include "runnel/io/atomic_file.hpp"
 #include "runnel/io/georeference_h5.hpp"
+#include "runnel/io/vtk_xml.hpp"
 #include "runnel/sim/particle_export.hpp"
 #include "runnel/sph/particle_store.hpp"
 
@@ -17,6 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kPartial = "series.h5.partial";
+constexpr const char* kVtkFolder = "series_vtk";  // the frames as VTK files, indexed by series.pvd
 
 std::string step_name(std::uint64_t step) {
   char name[32];
@@ -66,15 +68,27 @@ SeriesWriter::SeriesWriter(const fs::path& out, long long height_every, long lon
   write_georeference(*file_, "/grid", grid_);
   file_->create_group("/particles");
   file_->create_group("/terrain");
+  // The frames' folder: never written through a link (the output folder's rule for checkpoints/).
+  if (fs::is_symlink(out_ / kVtkFolder))
+    throw input_error(
+        "--out " + out_.string() + ": " + kVtkFolder +
+        " is a link; runnel neither writes nor removes through it (choose another --out)");
+  fs::create_directories(out_ / kVtkFolder);
 }
 
 SeriesWriter::~SeriesWriter() = default;
 
 void SeriesWriter::start(Model& model) {
   if (!file_) return;
-  file_->attribute("/", "time_units", std::string(time_units(model.info().clock)));
-  if (height_every_ > 0) write_terrain(model);
-  if (particle_every_ > 0) write_particles(model);
+  try {
+    file_->attribute("/", "time_units", std::string(time_units(model.info().clock)));
+    if (height_every_ > 0) write_terrain(model);
+    if (particle_every_ > 0) write_particles(model);
+  } catch (...) {
+    broken_ = true;  // the first frame half written (a full disk): the file is removed now, as
+    keep_written();  // the run stops before its steps, where a failed run keeps what it wrote
+    throw;
+  }
 }
 
 void SeriesWriter::after_step(Model& model) {
@@ -131,6 +145,37 @@ void SeriesWriter::write_terrain(Model& model) {
     }
     file_->write(group + "/velocity", velocity, {nx * ny, 3});
   }
+  write_terrain_vtk(step, points, t.h, change, water);
+}
+
+// The terrain frame as VTK's structured grid (series_vtk/terrain_STEP.vts): the surface's points
+// and the frame's fields, for series.pvd.
+void SeriesWriter::write_terrain_vtk(std::uint64_t step, const std::vector<double>& points,
+                                     const std::vector<float>& height,
+                                     const std::vector<float>& change,
+                                     const WaterView& water) const {
+  const std::size_t n = height.size();
+  std::vector<float> velocity;
+  std::vector<VtkArray> fields = {{"height", "Float32", 1, height.data(), n * sizeof(float)},
+                                  {"dh", "Float32", 1, change.data(), n * sizeof(float)}};
+  if (has_water_depth_)
+    fields.push_back({"depth", "Float32", 1, water.depth.data(), n * sizeof(float)});
+  if (has_speed_) fields.push_back({"speed", "Float32", 1, water.speed.data(), n * sizeof(float)});
+  if (has_velocity_) {
+    velocity.assign(3 * n, 0.0f);
+    for (std::size_t k = 0; k < n; ++k) {
+      velocity[3 * k] = water.velocity[2 * k];
+      velocity[3 * k + 1] = -water.velocity[2 * k + 1];
+    }
+    fields.push_back({"velocity", "Float32", 3, velocity.data(), velocity.size() * sizeof(float)});
+  }
+  const std::string extent =
+      "0 " + std::to_string(grid_.nx - 1) + " 0 " + std::to_string(grid_.ny - 1) + " 0 0";
+  write_vtk_xml(
+      (out_ / kVtkFolder / ("terrain_" + step_name(step) + ".vts")).string(), "StructuredGrid",
+      "WholeExtent=\"" + extent + "\"", "Extent=\"" + extent + "\"",
+      {{"PointData", "Scalars=\"height\"", fields},
+       {"Points", "", {{"Points", "Float64", 3, points.data(), points.size() * sizeof(double)}}}});
 }
 
 void SeriesWriter::write_particles(Model& model) {
@@ -154,6 +199,8 @@ void SeriesWriter::write_particles(Model& model) {
   std::vector<std::uint32_t> vertices(n);
   for (std::size_t k = 0; k < n; ++k) vertices[k] = static_cast<std::uint32_t>(k);
   file_->write(group + "/vertices", vertices, {n});
+  write_particles_vtp((out_ / kVtkFolder / ("particles_" + step_name(step) + ".vtp")).string(), p,
+                      grid_);
 }
 
 void SeriesWriter::finish(Model& model) {
@@ -184,6 +231,28 @@ void SeriesWriter::publish() {
     fs::rename(out_ / kPartial, temporary);
   });
   write_xdmf();
+  write_pvd();
+}
+
+// series.pvd: the VTK frames as one time series of two named blocks, terrain and particles, as
+// ParaView's PVD reader shows them (its default XDMF3 reader gives series.xmf's two grids as
+// unnamed pieces of one block).
+void SeriesWriter::write_pvd() const {
+  std::string x =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  const auto entry = [&](const Frame& f, int part, const char* name, const char* extension) {
+    char time[64];
+    std::snprintf(time, sizeof time, "%.17g", f.time);
+    x += "<DataSet timestep=\"" + std::string(time) + "\" part=\"" + std::to_string(part) +
+         "\" name=\"" + name + "\" file=\"" + kVtkFolder + "/" + name + "_" + step_name(f.step) +
+         extension + "\"/>\n";
+  };
+  for (const Frame& f : height_frames_) entry(f, 0, "terrain", ".vts");
+  // Every particle frame, empty ones too: the reader builds its blocks from the parts it finds at
+  // a time, and a part that appears later would not be shown.
+  for (const Frame& f : particle_frames_) entry(f, 1, "particles", ".vtp");
+  x += "</Collection>\n</VTKFile>\n";
+  write_text_atomically((out_ / "series.pvd").string(), x);
 }
 
 void SeriesWriter::keep_written() noexcept {

@@ -19,8 +19,10 @@ namespace runnel {
 // has water), SPH particle snapshots every `particle_every` steps (/particles/STEP/...), the
 // frames' steps and times, the grid's map coordinates and quads; and series.xmf, the XDMF index
 // ParaView (its XDMF3 and legacy readers) and VisIt open as a time series of a terrain surface and
-// a particle cloud. The first frame is the state the run starts from and the last its end, whatever
-// the interval. Written as series.h5.partial during the run, renamed when it ends.
+// a particle cloud; and series.pvd with series_vtk/, the same frames as VTK files, which ParaView
+// opens as two named blocks (terrain, particles). The first frame is the state the run starts from
+// and the last its end, whatever the interval. Written as series.h5.partial during the run, renamed
+// when it ends.
 class SeriesWriter {
  public:
   SeriesWriter(const std::filesystem::path& out, long long height_every, long long particle_every,
@@ -47,7 +49,11 @@ class SeriesWriter {
   };
   void write_terrain(Model& model);
   void write_particles(Model& model);
+  void write_terrain_vtk(std::uint64_t step, const std::vector<double>& points,
+                         const std::vector<float>& height, const std::vector<float>& change,
+                         const WaterView& water) const;
   void write_xdmf() const;
+  void write_pvd() const;
   void publish();
   // The terrain frame's fields beyond the height: which the model has (the same every frame).
   bool has_water_depth_ = false, has_speed_ = false, has_velocity_ = false;
