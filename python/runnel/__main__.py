@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""`python -m runnel ...`: the command-line tool installed with the package, as `runnel ...`."""
+"""`python -m runnel ...`: the command-line tool installed with the package, as `runnel ...`;
+`python -m runnel plot OUT` draws a command's figures with Matplotlib (runnel.plot, as `runnel-plot OUT`)."""
 import os
 import shutil
 import subprocess
@@ -17,6 +18,10 @@ def _command_line_tool():
 
 
 def main():
+    if sys.argv[1:2] == ["plot"]:
+        from .plot import main as plot
+
+        return plot(sys.argv[2:])
     tool = _command_line_tool()
     if tool is None:
         sys.stderr.write(

@@ -1,0 +1,177 @@
+# SPDX-License-Identifier: MIT
+"""Figures for papers from the files runnel's commands write, drawn with Matplotlib as PNG and PDF.
+
+``python -m runnel plot OUT`` (or ``runnel-plot OUT``) looks at what the folder holds and draws it:
+
+- ``runnel compare --out OUT``: ``hydrograph`` (the outflow over time of each model with a clock in seconds,
+  from ``MODEL/outflow.csv``)
+  and ``volumes`` (each model's eroded and deposited volume, from ``metrics.csv``);
+- ``runnel validate overland --out OUT``: ``hydrograph``, each run's outflow over the rain on the plane
+  (``RUN/outflow.csv``);
+- ``runnel validate hydrostatic --out OUT``: ``pressure``, each layer's pressure beside ρ0 g d
+  (``pressure.csv``);
+- ``runnel validate dambreak --out OUT``: ``front``, the surge front over time (``front.csv``);
+- ``runnel run --out OUT`` with ``run.outflow_every``: ``hydrograph`` (``outflow.csv``).
+
+The figures are written into ``OUT/figures/`` as ``NAME.png`` and ``NAME.pdf`` (beside, not over, the
+commands' own quick-look pictures); :func:`plot` returns the Matplotlib figures by name. A folder none of these wrote is refused with the files it would need.
+"""
+import csv
+import pathlib
+
+from . import InputError
+
+FORMATS = ("png", "pdf")
+
+
+def _read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        raise InputError(f"{path}: holds no rows")
+    return {key: [float(r[key]) if _is_number(r[key]) else r[key] for r in rows] for key in rows[0]}
+
+
+def _is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def _figure(title, x_label, y_label):
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(6.4, 4.2), layout="constrained")
+    axes = figure.add_subplot()
+    axes.set_title(title)
+    axes.set_xlabel(x_label)
+    axes.set_ylabel(y_label)
+    axes.grid(True, alpha=0.3)
+    return figure, axes
+
+
+def _hydrograph(runs, title, share_of_rain):
+    """Outflow against time for each (label, outflow.csv columns)."""
+    figure, axes = _figure(title, "t (s)", "outflow / rain" if share_of_rain else "outflow (m³/s)")
+    for label, table in runs:
+        outflow = table["outflow"]
+        if share_of_rain:
+            rain = max(table["rain"])
+            outflow = [q / rain for q in outflow] if rain > 0 else outflow
+        axes.plot(table["t"], outflow, label=label)
+    axes.legend()
+    return figure
+
+
+def _compare(folder):
+    metrics = _read_csv(folder / "metrics.csv")
+    figures = {}
+    # The models with a clock in seconds (an iteration is no time).
+    runs = [(model, _read_csv(folder / model / "outflow.csv")) for model, clock in zip(metrics["model"], metrics["clock"])
+            if clock == "s" and (folder / model / "outflow.csv").is_file()]
+    if runs:
+        figures["hydrograph"] = _hydrograph(runs, "the water leaving the terrain", share_of_rain=False)
+    figure, axes = _figure("eroded and deposited volume", "model", "volume (m³)")
+    models = metrics["model"]
+    place = range(len(models))
+    axes.bar([p - 0.2 for p in place], metrics["eroded_volume_m3"], width=0.4, label="eroded")
+    axes.bar([p + 0.2 for p in place], metrics["deposited_volume_m3"], width=0.4, label="deposited")
+    axes.set_xticks(list(place), models)
+    axes.set_yscale("symlog", linthresh=1.0)
+    axes.legend()
+    figures["volumes"] = figure
+    return figures
+
+
+def _overland(folder):
+    runs = [(path.parent.name, _read_csv(path)) for path in sorted(folder.glob("*/outflow.csv"))]
+    return {"hydrograph": _hydrograph(runs, "rain off the plane: the outflow hydrograph", share_of_rain=True)}
+
+
+def _hydrostatic(folder):
+    table = _read_csv(folder / "pressure.csv")
+    figure, axes = _figure("hydrostatic tank: pressure against depth", "depth (m)", "pressure (Pa)")
+    axes.plot(table["depth"], table["expected"], color="black", label="ρ0 g d")
+    axes.plot(table["depth"], table["pressure"], "o", label="runnel, per layer")
+    axes.legend()
+    return {"pressure": figure}
+
+
+def _dambreak(folder):
+    table = _read_csv(folder / "front.csv")
+    figure, axes = _figure("dam break: the surge front", "t* = t √(g/L)", "x / L")
+    axes.plot(table["t_star"], table["x_over_L"], label="runnel")
+    axes.legend()
+    return {"front": figure}
+
+
+def _run(folder):
+    return {"hydrograph": _hydrograph([("runnel", _read_csv(folder / "outflow.csv"))], "the water leaving the terrain",
+                                      share_of_rain=False)}
+
+
+# What each command leaves in its folder, in the order they are recognised.
+_KINDS = (
+    ("runnel compare", lambda f: (f / "metrics.csv").is_file() and (f / "report.md").is_file(), _compare),
+    ("runnel validate hydrostatic", lambda f: (f / "pressure.csv").is_file(), _hydrostatic),
+    ("runnel validate dambreak", lambda f: (f / "front.csv").is_file(), _dambreak),
+    ("runnel run", lambda f: (f / "outflow.csv").is_file(), _run),
+    ("runnel validate overland", lambda f: any(f.glob("*/outflow.csv")), _overland),
+)
+
+
+def plot(folder, formats=FORMATS):
+    """Draws the figures of a folder a runnel command wrote, into its ``figures/`` folder.
+
+    Parameters
+    ----------
+    folder : str or path-like
+        The command's ``--out`` folder.
+    formats : tuple of str, optional
+        The files written for each figure (default PNG and PDF).
+
+    Returns
+    -------
+    dict
+        The Matplotlib figures by name (``hydrograph``, ``volumes``, ``pressure``, ``front``).
+    """
+    folder = pathlib.Path(folder)
+    if not folder.is_dir():
+        raise InputError(f"{folder}: not a folder")
+    for _, recognise, draw in _KINDS:
+        if recognise(folder):
+            figures = draw(folder)
+            (folder / "figures").mkdir(exist_ok=True)
+            for name, figure in figures.items():
+                for extension in formats:
+                    figure.savefig(folder / "figures" / f"{name}.{extension}", dpi=200)
+            return figures
+    raise InputError(
+        f"{folder}: holds none of the files runnel-plot draws: metrics.csv and report.md (runnel compare), "
+        "pressure.csv (validate hydrostatic), front.csv (validate dambreak), outflow.csv (runnel run with "
+        "run.outflow_every) or RUN/outflow.csv (validate overland)"
+    )
+
+
+def main(argv=None):
+    """``runnel-plot OUT``: draws a folder's figures; exit 2 with one line on stderr for a bad folder."""
+    import sys
+
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) != 1 or args[0] in ("-h", "--help"):
+        sys.stderr.write("usage: runnel-plot OUT   (the --out folder of runnel compare, run or validate)\n")
+        return 0 if args and args[0] in ("-h", "--help") else 2
+    try:
+        figures = plot(args[0])
+    except InputError as error:
+        sys.stderr.write(f"runnel-plot: {error}\n")
+        return 2
+    names = ", ".join(f"{name}.{extension}" for name in figures for extension in FORMATS)
+    sys.stdout.write(f"runnel-plot: wrote {names} in {pathlib.Path(args[0]) / 'figures'}\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
