@@ -174,7 +174,8 @@ __kernel void pipe_godunov_faces(const __global float* height_view, const __glob
 }
 
 __kernel void pipe_godunov_update(__global float* depth, __global float* velocity, __global float* flux,
-                                  const __global float* face_flux, const __global float* slopes, __global float* previous_depth,
+                                  const __global float* face_flux, const __global float* slopes,
+                                  __global float* previous_depth,
                                   const __global float* height_view, __global float* capacity, const int nx,
                                   const int ny, const float cell, const float dt, const __global float* rain_weight,
                                   const float rain_on, const float evaporation_factor, __global float* cfl_speed2) {
@@ -182,7 +183,7 @@ __kernel void pipe_godunov_update(__global float* depth, __global float* velocit
   if (k >= n) return;
   const int j = grid_row(k, nx), i = k - j * nx;
   const float g = PIPE_GRAVITY, rain = dt * PIPE_RAIN * rain_on;
-  const float z = height_view[k], h = depth[k] + rain * RAIN_WEIGHT(rain_weight, k);
+  const float h = depth[k] + rain * RAIN_WEIGHT(rain_weight, k);
   const float u = velocity[k], v = velocity[n + k];
   // The four faces' fluxes, oriented along +x and +z, the normal momentum as this cell sees it.
   const GodunovFace right = {face_flux[0 * n + k], face_flux[1 * n + k], 0.0f, face_flux[3 * n + k]};
@@ -195,8 +196,11 @@ __kernel void pipe_godunov_update(__global float* depth, __global float* velocit
                                   : face_of(edge_flux_before(h, v, u));
   const float s = dt / cell;
   const float h_new = fmax(0.0f, h - s * (right.mass - left.mass + lower.mass - upper.mass));
-  float qx = h * u - s * (right.momentum_a - left.momentum_b + lower.tangential - upper.tangential + g * h * slopes[0 * n + k]);
-  float qz = h * v - s * (lower.momentum_a - upper.momentum_b + right.tangential - left.tangential + g * h * slopes[2 * n + k]);
+  // The momentum: the faces' fluxes and the bed's centred source g h Δz over the cell.
+  float qx = h * u - s * (right.momentum_a - left.momentum_b + lower.tangential - upper.tangential +
+                          g * h * slopes[0 * n + k]);
+  float qz = h * v - s * (lower.momentum_a - upper.momentum_b + right.tangential - left.tangential +
+                          g * h * slopes[2 * n + k]);
   float un = 0.0f, vn = 0.0f;
   if (h_new > GODUNOV_DRY) {
     un = qx / h_new, vn = qz / h_new;
