@@ -7,7 +7,8 @@
   from ``MODEL/outflow.csv``)
   and ``volumes`` (each model's eroded and deposited volume, from ``metrics.csv``);
 - ``runnel validate overland --out OUT``: ``hydrograph``, each run's outflow over the rain on the plane
-  (``RUN/outflow.csv``);
+  (``RUN/outflow.csv``) beside the kinematic wave's, and ``profile``, the depths at the gauges beside the
+  steady depth (``overland.json``);
 - ``runnel validate hydrostatic --out OUT``: ``pressure``, each layer's pressure beside ρ0 g d
   (``pressure.csv``);
 - ``runnel validate dambreak --out OUT``: ``front``, the surge front over time (``front.csv``);
@@ -85,9 +86,68 @@ def _compare(folder):
     return figures
 
 
+class KinematicPlane:
+    """The kinematic wave for rain i on a plane of length L, slope S and Manning's n, raining for D
+    (Woolhiser & Liggett 1967): q = (√S/n) h^(5/3), the analytic curves `runnel validate overland`
+    scores against (docs/validation.md)."""
+
+    def __init__(self, length, slope, manning_n, rain_mm_h, duration):
+        self.length, self.duration = length, duration
+        self.alpha = slope**0.5 / manning_n
+        self.rain = rain_mm_h / 3.6e6
+
+    def depth(self, x):
+        """The steady depth at x, m."""
+        return (self.rain * x / self.alpha) ** 0.6
+
+    def equilibrium_time(self):
+        return (self.length / (self.alpha * self.rain ** (2.0 / 3.0))) ** 0.6
+
+    def outflow_share(self, t):
+        """The outflow per unit width at the foot over i L, at time t."""
+        i, a, length = self.rain, self.alpha, self.length
+        if t <= 0:
+            return 0.0
+        if t <= self.duration:
+            return min(1.0, a * (i * t) ** (5.0 / 3.0) / (i * length))
+        # After the rain: the characteristic that reaches the foot at t started at x0 with depth h,
+        # x0 = a h^(5/3) / i, and moved at (5/3) a h^(2/3) since the rain stopped.
+        low, high = 0.0, self.depth(length)
+        for _ in range(60):
+            h = 0.5 * (low + high)
+            if a * h ** (5.0 / 3.0) / i + (5.0 / 3.0) * a * h ** (2.0 / 3.0) * (t - self.duration) > length:
+                high = h
+            else:
+                low = h
+        return a * low ** (5.0 / 3.0) / (i * length)
+
+
 def _overland(folder):
     runs = [(path.parent.name, _read_csv(path)) for path in sorted(folder.glob("*/outflow.csv"))]
-    return {"hydrograph": _hydrograph(runs, "rain off the plane: the outflow hydrograph", share_of_rain=True)}
+    figure = _hydrograph(runs, "rain off the plane: the outflow hydrograph", share_of_rain=True)
+    figures = {"hydrograph": figure}
+    case_file = folder / "overland.json"
+    if not case_file.is_file():
+        return figures
+    import json
+
+    case = json.loads(case_file.read_text())
+    plane = KinematicPlane(case["length_m"], case["slope"], case["manning_n"], case["rain_mm_h"],
+                           case["rain_duration_s"])
+    end = max(max(table["t"]) for _, table in runs) if runs else 2 * plane.duration
+    times = [end * k / 400 for k in range(401)]
+    figure.axes[0].plot(times, [plane.outflow_share(t) for t in times], color="black", label="kinematic wave")
+    figure.axes[0].legend()
+    profile, axes = _figure("the depth at equilibrium", "x (m)", "depth (m)")
+    xs = [plane.length * k / 200 for k in range(201)]
+    axes.plot(xs, [plane.depth(x) for x in xs], color="black", label="kinematic wave")
+    for run in case["runs"]:
+        gauges = run.get("gauges", [])
+        if gauges:
+            axes.plot([g["x_m"] for g in gauges], [g["depth_m"] for g in gauges], "o", label=run["run"])
+    axes.legend()
+    figures["profile"] = profile
+    return figures
 
 
 def _hydrostatic(folder):
@@ -135,7 +195,7 @@ def plot(folder, formats=FORMATS):
     Returns
     -------
     dict
-        The Matplotlib figures by name (``hydrograph``, ``volumes``, ``pressure``, ``front``).
+        The Matplotlib figures by name (``hydrograph``, ``volumes``, ``profile``, ``pressure``, ``front``).
     """
     folder = pathlib.Path(folder)
     if not folder.is_dir():

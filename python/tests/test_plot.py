@@ -53,3 +53,36 @@ def test_a_folder_no_command_wrote_is_refused_with_the_files_it_needs(tmp_path):
     assert r.returncode == 2
     assert r.stderr.count("\n") == 1 and "metrics.csv" in r.stderr and "pressure.csv" in r.stderr, r.stderr
     assert not list(tmp_path.iterdir()), "nothing written"
+
+
+def test_the_overland_case_is_drawn_beside_the_kinematic_wave(tmp_path):
+    import json
+
+    out = tmp_path / "overland"
+    r = subprocess.run([RUNNEL_BINARY, "validate", "overland", "--models", "godunov", "--length", "20", "--rain",
+                        "80000", "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    case = json.loads((out / "overland.json").read_text())
+    plane = runnel.plot.KinematicPlane(case["length_m"], case["slope"], case["manning_n"], case["rain_mm_h"],
+                                       case["rain_duration_s"])
+    # The analytic curves are the C++ scorer's: the same t_e; and after the rain the water that leaves is
+    # the water the sheet held, (5/8) L h(L) per unit width.
+    assert plane.equilibrium_time() == pytest.approx(case["equilibrium_time_s"], rel=1e-12)
+    assert plane.outflow_share(plane.equilibrium_time()) == pytest.approx(1.0, rel=1e-9)
+    a, i, length = plane.alpha, plane.rain, plane.length
+
+    def arrival(h):  # when the characteristic of depth h reaches the foot after the rain
+        return plane.duration + (length - a * h ** (5 / 3) / i) / (5 / 3 * a * h ** (2 / 3))
+
+    h_half = 0.5 * plane.depth(length)
+    assert plane.outflow_share(arrival(h_half)) == pytest.approx(a * h_half ** (5 / 3) / (i * length), rel=1e-9)
+    hs = [plane.depth(length) * (1 - k / 20000) ** 3 for k in range(20000)]
+    after = sum(0.5 * a * (h0 ** (5 / 3) + h1 ** (5 / 3)) * (arrival(h1) - arrival(h0)) for h0, h1 in zip(hs, hs[1:]))
+    stored = 5.0 / 8.0 * length * plane.depth(length)
+    assert after == pytest.approx(stored, rel=1e-3)
+    figures = runnel.plot.plot(out)
+    assert set(figures) == {"hydrograph", "profile"}
+    model, analytic = figures["hydrograph"].axes[0].get_lines()
+    assert model.get_label() == "godunov" and analytic.get_label() == "kinematic wave"
+    gauges = figures["profile"].axes[0].get_lines()[1]
+    assert list(gauges.get_ydata()) == [g["depth_m"] for g in case["runs"][0]["gauges"]]

@@ -464,6 +464,8 @@ JsonObject validate_overland(ComputeContext& compute, const OverlandCase& c) {
   } else {
     write_figure((scratch / "overland.png").string(), c, g, records);
     o.add("figure", (scratch / "overland.png").string());
+    // The scores beside the runs' outflow.csv, for runnel.plot's figures.
+    write_text_atomically((scratch / "overland.json").string(), o.str() + "\n");
   }
   return o;
 }

@@ -27,7 +27,7 @@ struct OverlandCase {
   // The runs: pipes, local-inertial, godunov (the pipe model's fluxes), wcsph, dfsph.
   std::vector<std::string> runs = {"pipes", "local-inertial", "godunov", "wcsph", "dfsph"};
   Parameters params = default_parameters();  // further overrides (--set)
-  std::string out_dir;                       // each run's outflow.csv and the figure; empty: none
+  std::string out_dir;  // each run's outflow.csv, overland.json and the figure; empty: none
   bool progress = false;
 
   // The analytic plane the case is scored against (the rain in m/s, the duration resolved).
