@@ -2,7 +2,9 @@
 """ParaView itself opens the series: pvpython (Debian's paraview) reads series.xmf with its default
 XDMF3 reader and with the legacy XDMF reader, and finds every frame's points and fields, the first
 frame at t = 0 and the last at the run's end, for a grid model (water depth, velocity, Δh) and SPH."""
+import contextlib
 import json
+import os
 import shutil
 import subprocess
 
@@ -95,7 +97,26 @@ print(json.dumps(red))
 """
 
 
-@pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="xvfb-run is not installed (scripts/setup.sh)")
+@contextlib.contextmanager
+def x_server():
+    """An Xvfb server of our own, used once it says it is ready: -displayfd writes the display's number
+    when the server accepts clients (xvfb-run -a waits a fixed time, and on a busy machine pvpython
+    connected before the server was up and aborted)."""
+    read, write = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", "1280x900x24", "-nolisten", "tcp",
+                               "-noreset"], pass_fds=(write,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    os.close(write)
+    with os.fdopen(read) as ready:
+        number = ready.readline().strip()
+    try:
+        assert number, "Xvfb did not start"
+        yield ":" + number
+    finally:
+        server.terminate()
+        server.wait(timeout=60)
+
+
+@pytest.mark.skipif(shutil.which("Xvfb") is None, reason="Xvfb is not installed (scripts/setup.sh)")
 def test_paraview_draws_the_particles_in_every_representation(tmp_path):
     # The particles alone (no terrain frames): every red pixel is a particle. Each particle is a vertex
     # cell of its own; a point set without cells reads as points but draws nothing in Points and Surface.
@@ -108,8 +129,9 @@ def test_paraview_draws_the_particles_in_every_representation(tmp_path):
     assert last > 10, "the last frame holds particles"
     script = tmp_path / "draw.py"
     script.write_text(DRAW)
-    r = subprocess.run(["xvfb-run", "-a", PVPYTHON, str(script), str(out / "series.xmf"), str(tmp_path)],
-                       capture_output=True, text=True, timeout=300)
+    with x_server() as display:
+        r = subprocess.run([PVPYTHON, str(script), str(out / "series.xmf"), str(tmp_path)], capture_output=True,
+                           text=True, timeout=300, env={**os.environ, "DISPLAY": display})
     assert r.returncode == 0, r.stderr[-3000:]
     red = json.loads(r.stdout.strip().splitlines()[-1])
     # Points of 6 pixels: tens of pixels each (some overlap); the Gaussian splats at least one each.
