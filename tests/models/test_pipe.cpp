@@ -129,6 +129,25 @@ void step_beside_oracle(PipeModel& model, pipe_reference::State& ref, const Para
   }
 }
 
+// The outfluxes and velocities against the oracle's, within 1e-3 of the largest. Fields of several
+// components come back interleaved per vertex (the device stores them one plane per component), as
+// the oracle holds them.
+void expect_water_fields_match(PipeModel& model, const pipe_reference::State& ref,
+                               const std::string& edges) {
+  for (const auto& [name, oracle] : {std::pair{kSurfaceWaterOutflux, &ref.flux},
+                                     std::pair{kSurfaceWaterVelocity, &ref.velocity}}) {
+    const auto values = model.state().download_float(name);
+    ASSERT_EQ(values.size(), oracle->size());
+    double field_worst = 0, field_scale = 0;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      field_worst = std::max(field_worst, std::fabs(values[k] - (*oracle)[k]));
+      field_scale = std::max(field_scale, std::fabs((*oracle)[k]));
+    }
+    EXPECT_GT(field_scale, 0.0) << name;
+    EXPECT_LT(field_worst, 1e-3 * field_scale) << edges << " " << name;
+  }
+}
+
 // Five adaptive steps on a random rough terrain against the plain C++ oracle (pipe_reference),
 // with outflow edges and Manning friction (the defaults) and with closed edges.
 TEST(PipeModel, StepsMatchThePlainCppReference) {
@@ -155,20 +174,7 @@ TEST(PipeModel, StepsMatchThePlainCppReference) {
     double worst = 0;
     for (std::size_t k = 0; k < n; ++k) worst = std::max(worst, std::fabs(depth[k] - ref.depth[k]));
     EXPECT_LT(worst, 1e-5) << edges << ": m, float against double over five steps";
-    // Fields of several components come back interleaved per vertex (the device stores them one
-    // plane per component), as the oracle holds them.
-    for (const auto& [name, oracle] : {std::pair{kSurfaceWaterOutflux, &ref.flux},
-                                       std::pair{kSurfaceWaterVelocity, &ref.velocity}}) {
-      const auto values = model.state().download_float(name);
-      ASSERT_EQ(values.size(), oracle->size());
-      double field_worst = 0, field_scale = 0;
-      for (std::size_t k = 0; k < values.size(); ++k) {
-        field_worst = std::max(field_worst, std::fabs(values[k] - (*oracle)[k]));
-        field_scale = std::max(field_scale, std::fabs((*oracle)[k]));
-      }
-      EXPECT_GT(field_scale, 0.0) << name;
-      EXPECT_LT(field_worst, 1e-3 * field_scale) << edges << " " << name;
-    }
+    expect_water_fields_match(model, ref, edges);
     EXPECT_NEAR(static_cast<double>(model.outflow_quanta()), static_cast<double>(ref.outflow),
                 4.0 + 1e-3 * ref.outflow)
         << edges;
@@ -204,18 +210,7 @@ TEST(PipeModel, TheGodunovWaterMatchesThePlainCppReference) {
     }
     EXPECT_GT(deepest, 0.1) << edges;
     EXPECT_LT(worst, 1e-5 * std::max(1.0, deepest)) << edges << ": m, float against double";
-    for (const auto& [name, oracle] : {std::pair{kSurfaceWaterOutflux, &ref.flux},
-                                       std::pair{kSurfaceWaterVelocity, &ref.velocity}}) {
-      const auto values = model.state().download_float(name);
-      ASSERT_EQ(values.size(), oracle->size());
-      double field_worst = 0, field_scale = 0;
-      for (std::size_t k = 0; k < values.size(); ++k) {
-        field_worst = std::max(field_worst, std::fabs(values[k] - (*oracle)[k]));
-        field_scale = std::max(field_scale, std::fabs((*oracle)[k]));
-      }
-      EXPECT_GT(field_scale, 0.0) << name;
-      EXPECT_LT(field_worst, 1e-3 * field_scale) << edges << " " << name;
-    }
+    expect_water_fields_match(model, ref, edges);
   }
 }
 

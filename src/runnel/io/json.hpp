@@ -47,7 +47,6 @@ class JsonObject {
     for (const auto& [key, value] : other.doc_.items()) doc_[key] = value;
     return *this;
   }
-  const Document& document() const { return doc_; }
   std::string str() const { return layout(doc_.is_null() ? Document::object() : doc_); }
 
  private:

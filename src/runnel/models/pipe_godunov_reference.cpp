@@ -47,6 +47,15 @@ Face face_of(const Flux& f) {
   return {f[0], f[1], f[1], f[2]};
 }
 
+// The map's edge after a cell (its right or lower face) and before one (its left or upper face),
+// for its depth and normal and tangential velocities: a mirror (closed) or dry, lower ground.
+Face edge_after(double h, double un, double ut, bool closed, double g) {
+  return face_of(closed ? hll(h, un, ut, h, -un, ut, g) : hll(h, un, ut, 0, 0, 0, g));
+}
+Face edge_before(double h, double un, double ut, bool closed, double g) {
+  return face_of(closed ? hll(h, -un, ut, h, un, ut, g) : hll(0, 0, 0, h, un, ut, g));
+}
+
 Face reconstructed(double za, double ha, double una, double uta, double zb, double hb, double unb,
                    double utb, double g) {
   const double z = std::max(za, zb);
@@ -81,44 +90,30 @@ void godunov_water(State& st, int nx, int ny, double l, double q, const PipeSett
         slope[k][2 * d + 1] = std::copysign(std::min(std::fabs(dh), std::fabs(bed)), dh);
       }
     }
-  const double u_of = 0;  // a dry, lower ground beyond an open edge
   auto velocity = [&](std::size_t k, int c) { return st.velocity[2 * k + c]; };
+  // The face between cells k and m along direction d (0: x, 1: z), each side's bed and depth moved
+  // half a cell along their slopes; the normal velocity is component d.
+  auto between = [&](std::size_t k, std::size_t m, int d) {
+    return reconstructed(z[k] + 0.5 * slope[k][2 * d], h[k] + 0.5 * slope[k][2 * d + 1],
+                         velocity(k, d), velocity(k, 1 - d), z[m] - 0.5 * slope[m][2 * d],
+                         h[m] - 0.5 * slope[m][2 * d + 1], velocity(m, d), velocity(m, 1 - d), g);
+  };
   // Each cell's right (x) and lower (z) faces.
   std::vector<Face> right(n), lower(n);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * nx + i;
       const double u = velocity(k, 0), v = velocity(k, 1);
-      if (i < nx - 1) {
-        const std::size_t m = k + 1;
-        right[k] = reconstructed(z[k] + 0.5 * slope[k][0], h[k] + 0.5 * slope[k][1], u, v,
-                                 z[m] - 0.5 * slope[m][0], h[m] - 0.5 * slope[m][1], velocity(m, 0),
-                                 velocity(m, 1), g);
-      } else {
-        right[k] =
-            face_of(s.closed() ? hll(h[k], u, v, h[k], -u, v, g) : hll(h[k], u, v, 0, u_of, 0, g));
-      }
-      if (j < ny - 1) {
-        const std::size_t m = k + nx;
-        lower[k] = reconstructed(z[k] + 0.5 * slope[k][2], h[k] + 0.5 * slope[k][3], v, u,
-                                 z[m] - 0.5 * slope[m][2], h[m] - 0.5 * slope[m][3], velocity(m, 1),
-                                 velocity(m, 0), g);
-      } else {
-        lower[k] =
-            face_of(s.closed() ? hll(h[k], v, u, h[k], -v, u, g) : hll(h[k], v, u, 0, u_of, 0, g));
-      }
+      right[k] = i < nx - 1 ? between(k, k + 1, 0) : edge_after(h[k], u, v, s.closed(), g);
+      lower[k] = j < ny - 1 ? between(k, k + nx, 1) : edge_after(h[k], v, u, s.closed(), g);
     }
   const double sdt = dt / l;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * nx + i;
       const double u = velocity(k, 0), v = velocity(k, 1);
-      const Face left = i > 0 ? right[k - 1]
-                              : face_of(s.closed() ? hll(h[k], -u, v, h[k], u, v, g)
-                                                   : hll(0, 0, 0, h[k], u, v, g));
-      const Face upper = j > 0 ? lower[k - nx]
-                               : face_of(s.closed() ? hll(h[k], -v, u, h[k], v, u, g)
-                                                    : hll(0, 0, 0, h[k], v, u, g));
+      const Face left = i > 0 ? right[k - 1] : edge_before(h[k], u, v, s.closed(), g);
+      const Face upper = j > 0 ? lower[k - nx] : edge_before(h[k], v, u, s.closed(), g);
       const Face& r = right[k];
       const Face& b = lower[k];
       const double h_new = std::max(0.0, h[k] - sdt * (r.mass - left.mass + b.mass - upper.mass));

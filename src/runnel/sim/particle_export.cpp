@@ -64,10 +64,8 @@ void write_particles_ply(const std::string& path, const CheckpointData& d) {
   });
 }
 
-void write_particles_vtp(const std::string& path, const HostParticles& p,
-                         const Heightmap& terrain) {
+void write_particles_vtp(const std::string& path, const HostParticles& p, const MapParticles& m) {
   const std::size_t n = p.size();
-  const MapParticles m = map_particles(p, terrain);
   std::vector<std::int64_t> connectivity(n), offsets(n);
   for (std::size_t k = 0; k < n; ++k) {
     connectivity[k] = static_cast<std::int64_t>(k);
@@ -97,7 +95,7 @@ void write_particles_vtp(const std::string& path, const HostParticles& p,
 
 void write_particles_vtp(const std::string& path, const CheckpointData& d) {
   require_particles(path, d);
-  write_particles_vtp(path, d.particles, d.terrain);
+  write_particles_vtp(path, d.particles, map_particles(d.particles, d.terrain));
 }
 
 }  // namespace runnel

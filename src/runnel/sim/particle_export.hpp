@@ -28,8 +28,8 @@ void write_particles_ply(const std::string& path, const CheckpointData& data);
 // field a point array, so ParaView's default reader draws the particles and colours them by any
 // field (its PLY reader reads the positions only: neither cells nor other properties).
 void write_particles_vtp(const std::string& path, const CheckpointData& data);
-// The same for particles in memory, on `terrain`'s map frame (the series' snapshots).
+// The same for particles in memory, already in the map frame (`mapped`: map_particles of them).
 void write_particles_vtp(const std::string& path, const HostParticles& particles,
-                         const Heightmap& terrain);
+                         const MapParticles& mapped);
 
 }  // namespace runnel

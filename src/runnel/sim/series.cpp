@@ -137,38 +137,32 @@ void SeriesWriter::write_terrain(Model& model) {
   if (has_water_depth_) file_->write(group + "/depth", water.depth, {ny, nx});
   if (has_speed_) file_->write(group + "/speed", water.speed, {ny, nx});
   has_velocity_ = !water.velocity.empty();
-  if (has_velocity_) {  // the water's (x east, z south) → the map frame's (east, north, up)
-    std::vector<float> velocity(3 * nx * ny, 0.0f);
+  std::vector<float> velocity;  // the water's (x east, z south) → the map frame's (east, north, up)
+  if (has_velocity_) {
+    velocity.assign(3 * nx * ny, 0.0f);
     for (std::size_t k = 0; k < nx * ny; ++k) {
       velocity[3 * k] = water.velocity[2 * k];
       velocity[3 * k + 1] = -water.velocity[2 * k + 1];
     }
     file_->write(group + "/velocity", velocity, {nx * ny, 3});
   }
-  write_terrain_vtk(step, points, t.h, change, water);
+  write_terrain_vtk(step, points, t.h, change, water, velocity);
 }
 
 // The terrain frame as VTK's structured grid (series_vtk/terrain_STEP.vts): the surface's points
 // and the frame's fields, for series.pvd.
 void SeriesWriter::write_terrain_vtk(std::uint64_t step, const std::vector<double>& points,
                                      const std::vector<float>& height,
-                                     const std::vector<float>& change,
-                                     const WaterView& water) const {
+                                     const std::vector<float>& change, const WaterView& water,
+                                     const std::vector<float>& velocity) const {
   const std::size_t n = height.size();
-  std::vector<float> velocity;
   std::vector<VtkArray> fields = {{"height", "Float32", 1, height.data(), n * sizeof(float)},
                                   {"dh", "Float32", 1, change.data(), n * sizeof(float)}};
   if (has_water_depth_)
     fields.push_back({"depth", "Float32", 1, water.depth.data(), n * sizeof(float)});
   if (has_speed_) fields.push_back({"speed", "Float32", 1, water.speed.data(), n * sizeof(float)});
-  if (has_velocity_) {
-    velocity.assign(3 * n, 0.0f);
-    for (std::size_t k = 0; k < n; ++k) {
-      velocity[3 * k] = water.velocity[2 * k];
-      velocity[3 * k + 1] = -water.velocity[2 * k + 1];
-    }
+  if (has_velocity_)
     fields.push_back({"velocity", "Float32", 3, velocity.data(), velocity.size() * sizeof(float)});
-  }
   const std::string extent =
       "0 " + std::to_string(grid_.nx - 1) + " 0 " + std::to_string(grid_.ny - 1) + " 0 0";
   write_vtk_xml(
@@ -200,7 +194,7 @@ void SeriesWriter::write_particles(Model& model) {
   for (std::size_t k = 0; k < n; ++k) vertices[k] = static_cast<std::uint32_t>(k);
   file_->write(group + "/vertices", vertices, {n});
   write_particles_vtp((out_ / kVtkFolder / ("particles_" + step_name(step) + ".vtp")).string(), p,
-                      grid_);
+                      m);
 }
 
 void SeriesWriter::finish(Model& model) {

@@ -51,7 +51,7 @@ class SeriesWriter {
   void write_particles(Model& model);
   void write_terrain_vtk(std::uint64_t step, const std::vector<double>& points,
                          const std::vector<float>& height, const std::vector<float>& change,
-                         const WaterView& water) const;
+                         const WaterView& water, const std::vector<float>& velocity) const;
   void write_xdmf() const;
   void write_pvd() const;
   void publish();
