@@ -291,19 +291,33 @@ __kernel void pipe_advect(const __global long* sediment, __global long* sediment
 }
 
 // Largest depth and counted speed (pipe_water's cfl_speed2) per block of cells, for the adaptive
-// time step.
-__kernel void pipe_stats(const __global float* depth, const __global float* cfl_speed2, const int n,
+// time step, and the sums that give the flow's Froude number: the mean of the counted cells'
+// Froude numbers weighted by their discharge per width, inside the map (a map edge's cell is a
+// brink, where the water leaves at critical depth whatever the flux). The local-inertial flux's
+// equations hold a sheet only below Froude 3/5 (docs/models.md); weighting by discharge counts the
+// sheet and the channels, not a wetting front's thin tip.
+__kernel void pipe_stats(const __global float* depth, const __global float* cfl_speed2, const int nx, const int ny,
                          const int chunk, __global float* stats) {
-  const int b = get_global_id(0);
+  const int b = get_global_id(0), n = nx * ny;
   // Maxima of the bits: a non-negative float orders as its bits do, and NaN's bits lie above
   // infinity's, so a NaN reaches the host (which stops the run) without a test per cell; the sign
   // bit is cleared (a −0 would otherwise be the largest). An integer max is a reduction the loop
   // vectoriser knows; fmax with NaN selects is not.
   uint dmax = 0u, vmax2 = 0u;
+  float discharge = 0.0f, discharge_froude = 0.0f;
   for (int k = b * chunk; k < min(n, (b + 1) * chunk); ++k) {
-    dmax = max(dmax, as_uint(depth[k]) & 0x7fffffffu);
-    vmax2 = max(vmax2, as_uint(cfl_speed2[k]) & 0x7fffffffu);
+    const float d = depth[k], v2 = cfl_speed2[k];
+    dmax = max(dmax, as_uint(d) & 0x7fffffffu);
+    vmax2 = max(vmax2, as_uint(v2) & 0x7fffffffu);
+    const int j = grid_row(k, nx), i = k - j * nx;
+    if (i > 0 && i < nx - 1 && j > 0 && j < ny - 1 && v2 > 0.0f) {
+      const float speed = sqrt(v2), q = speed * d;
+      discharge += q;
+      discharge_froude += q * speed / sqrt(PIPE_GRAVITY * d);
+    }
   }
-  stats[2 * b] = as_float(dmax);
-  stats[2 * b + 1] = sqrt(as_float(vmax2));
+  stats[4 * b] = as_float(dmax);
+  stats[4 * b + 1] = sqrt(as_float(vmax2));
+  stats[4 * b + 2] = discharge;
+  stats[4 * b + 3] = discharge_froude;
 }

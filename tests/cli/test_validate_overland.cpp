@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "runnel/core/text.hpp"
 #include "runnel/validation/kinematic_wave.hpp"
 #include "test_support.hpp"
 
@@ -88,6 +89,37 @@ TEST(ValidateOverlandCli, DfsphWithFloorImagesCarriesTheRainOffAShortPlane) {
   EXPECT_LT(std::fabs(test::json_number(r.out, "water_balance_rel")), 1e-12);
   EXPECT_LT(std::fabs(test::json_number(r.out, "equilibrium_outflow_error")), 0.05) << r.out;
   EXPECT_LT(std::fabs(test::json_number(r.out, "rise_time_95_error")), 0.15) << r.out;
+}
+
+// The flow's Froude number each pipe run reports (weighted by discharge) against the kinematic
+// sheet's, F(x) = (√S/n) h(x)^(2/3) / √(g h(x)) ∝ x^(1/10) weighted by q = i x: (20/21) F(L). On
+// the steep plane (F(L) = 1.13) the local-inertial flux's equations turn the sheet into roll waves
+// (they hold it only below 3/5) and its run says so; on a plane ten times gentler (F(L) = 0.36,
+// the same depths) it does not.
+TEST(ValidateOverlandCli, TheLocalInertialFluxSaysWhenTheFlowIsTooFastForItsEquations) {
+  for (const double slope : {0.2, 0.02}) {
+    KinematicPlane plane;
+    plane.length = 20, plane.slope = slope, plane.manning_n = 0.1;
+    plane.rain = 80000 / 3.6e6 * std::sqrt(slope / 0.2);  // the same depths on either plane
+    const double foot = plane.equilibrium_depth(plane.length);
+    const double sheet_froude =
+        20.0 / 21.0 * plane.alpha() * std::pow(foot, 2.0 / 3.0) / std::sqrt(9.81 * foot);
+    const auto r = test::run_cli(
+        {"validate", "overland", "--models", "godunov,local-inertial", "--cell", "0.2", "--length",
+         "20", "--slope", format_number(slope), "--rain", format_number(plane.rain * 3.6e6)});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<double> froude = all_numbers(r.out, "flow_froude_max");
+    ASSERT_EQ(froude.size(), 2u) << r.out;
+    EXPECT_NEAR(froude[0], sheet_froude, 0.06 * sheet_froude) << "godunov, slope " << slope;
+    // One caution at most, the local-inertial run's: godunov carries the sheet at either slope.
+    const std::size_t caution = r.out.find("\"caution\": ");
+    EXPECT_EQ(caution != std::string::npos, slope > 0.1) << r.out;
+    if (caution != std::string::npos) {
+      EXPECT_NE(r.out.find("local-inertial\\\": the flow reached Froude", caution),
+                std::string::npos);
+      EXPECT_EQ(r.out.find("\"caution\": ", caution + 1), std::string::npos) << r.out;
+    }
+  }
 }
 
 TEST(ValidateOverlandCli, ARunThatStopsIsReportedAndTheOthersGoOn) {

@@ -256,7 +256,7 @@ namespace {
 // largest counted speed (pipe_water's cfl_speed2) per block; a NaN in either reaches the host; a −0
 // is not a maximum.
 TEST(PipeModel, StatsKernelFindsTheMaximaAndLetsANaNThrough) {
-  const int n = 300, blocks = 3, chunk = 100;
+  const int nx = 30, ny = 10, n = nx * ny, blocks = 3, chunk = 100;
   cl::Program& program = compute().program({"cl/common.cl", "cl/models/pipe.cl"},
                                            PipeSettings::from(mei_parameters()).build_options());
   Kernel stats(compute(), program, "pipe_stats");
@@ -274,21 +274,30 @@ TEST(PipeModel, StatsKernelFindsTheMaximaAndLetsANaNThrough) {
                       v.size() * sizeof(float), const_cast<float*>(v.data()));
   };
   cl::Buffer d = upload(depth), v = upload(speed2),
-             out(compute().context(), CL_MEM_READ_WRITE, 2 * blocks * sizeof(float));
-  stats.set("depth", d).set("cfl_speed2", v).set("n", n).set("chunk", chunk).set("stats", out);
-  stats.launch(blocks);
-  std::vector<float> got(2 * blocks);
+             out(compute().context(), CL_MEM_READ_WRITE, 4 * blocks * sizeof(float));
+  stats.set("depth", d).set("cfl_speed2", v).set("nx", nx).set("ny", ny).set("chunk", chunk);
+  stats.set("stats", out).launch(blocks);
+  std::vector<float> got(4 * blocks);
   compute().queue().enqueueReadBuffer(out, CL_TRUE, 0, got.size() * sizeof(float), got.data());
   EXPECT_TRUE(std::isnan(got[1])) << "block 0: the NaN speed";
-  EXPECT_TRUE(std::isnan(got[4])) << "block 2: the NaN depth";
-  // Block 1 (cells 100..199) on the host.
+  EXPECT_TRUE(std::isnan(got[8])) << "block 2: the NaN depth";
+  // Block 1 (cells 100..199) on the host; its discharge and discharge-weighted Froude sums count
+  // only the cells off the map's edge (the edge cells are brinks).
   float dmax = 0, v2max = 0;
+  double discharge = 0, discharge_froude = 0;
   for (int k = 100; k < 200; ++k) {
     dmax = std::max(dmax, depth[k]);
     v2max = std::max(v2max, speed2[k]);
+    const int i = k % nx, j = k / nx;
+    if (i == 0 || i == nx - 1 || j == 0 || j == ny - 1 || !(speed2[k] > 0)) continue;
+    const double speed = std::sqrt(static_cast<double>(speed2[k])), h = depth[k];
+    discharge += speed * h;
+    discharge_froude += speed * h * speed / std::sqrt(9.81 * h);
   }
-  EXPECT_EQ(got[2], dmax);
-  EXPECT_FLOAT_EQ(got[3], std::sqrt(v2max));
+  EXPECT_EQ(got[4], dmax);
+  EXPECT_FLOAT_EQ(got[5], std::sqrt(v2max));
+  EXPECT_NEAR(got[6], discharge, 1e-5 * discharge);
+  EXPECT_NEAR(got[7], discharge_froude, 1e-5 * discharge_froude);
   EXPECT_FALSE(std::signbit(got[0])) << "a −0 depth is not the maximum of block 0";
   EXPECT_GT(got[0], 0.02f);
 }

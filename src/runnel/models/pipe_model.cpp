@@ -78,7 +78,7 @@ const ModelInfo& PipeModel::model_info() {
        {kSurfaceWaterOutflux, FieldIntent::kOut},
        {kSurfaceWaterVelocity, FieldIntent::kOut},
        {kSedimentSuspended, FieldIntent::kOut}},
-      {},
+      {"flow_froude_max"},
       224};  // 120 with Mei's pipes and law; the bed load adds its sent planes, the next heights
              // and the talus, the godunov flux its faces' fluxes and slopes (48)
   return info;
@@ -102,7 +102,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
   sendable_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_int));
   if (!settings_.semi_lagrangian())
     sent_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(cl_int));
-  stats_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * kStatBlocks * sizeof(float));
+  stats_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * kStatBlocks * sizeof(float));
   outflow_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   lost_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(cl_long));
   compute.queue().enqueueFillBuffer(outflow_, cl_long{0}, 0, sizeof(cl_long));
@@ -302,18 +302,25 @@ void PipeModel::choose_next_dt() {
   // The depth and the speeds the CFL limit counts, as pipe_water left them in the step just taken.
   stats_kernel_.set("depth", state_.buffer(depth_))
       .set("cfl_speed2", cfl_speed2_)
-      .set("n", n)
+      .set("nx", state_.terrain().nx())
+      .set("ny", state_.terrain().ny())
       .set("chunk", chunk)
       .set("stats", stats_)
       .launch(kStatBlocks);
-  std::vector<float> stats(2 * kStatBlocks);
+  std::vector<float> stats(4 * kStatBlocks);
   compute_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, stats.size() * sizeof(float),
                                      stats.data());
-  double d_max = 0, v_max = 0;
+  double d_max = 0, v_max = 0, discharge = 0, discharge_froude = 0;
   for (int b = 0; b < kStatBlocks; ++b) {
-    d_max = std::max(d_max, static_cast<double>(stats[2 * b]));
-    v_max = std::max(v_max, static_cast<double>(stats[2 * b + 1]));
+    d_max = std::max(d_max, static_cast<double>(stats[4 * b]));
+    v_max = std::max(v_max, static_cast<double>(stats[4 * b + 1]));
+    discharge += stats[4 * b + 2];
+    discharge_froude += stats[4 * b + 3];
   }
+  const double froude = discharge > 0 ? discharge_froude / discharge : 0.0;
+  if (std::isfinite(froude))
+    flow_froude_max_micro_ =
+        std::max(flow_froude_max_micro_, static_cast<std::int64_t>(std::llround(froude * 1e6)));
   if (!std::isfinite(d_max) || !std::isfinite(v_max)) {
     throw runtime_error("pipe model at t = " + format_number(time() + dt_) +
                         " s: water depth or velocity is not finite");
@@ -349,6 +356,7 @@ std::vector<std::pair<std::string, std::int64_t>> PipeModel::counters() {
   if (settings_.bedload()) c.emplace_back("bed_moved_quanta", bed_moved_quanta());
   const std::array<long long, 4> out = edge_water_counts();
   for (int e = 0; e < 4; ++e) c.emplace_back(kEdgeWaterCounters[e], out[e]);
+  c.emplace_back("flow_froude_max_micro", flow_froude_max_micro_);
   return c;
 }
 
@@ -366,6 +374,7 @@ void PipeModel::restore_counters(const std::vector<std::pair<std::string, std::i
   for (int e = 0; e < 4; ++e) faces[first_face[e]] = counter_value_or(c, kEdgeWaterCounters[e], 0);
   compute_.queue().enqueueWriteBuffer(edge_water_, CL_TRUE, 0, faces.size() * sizeof(cl_long),
                                       faces.data());
+  flow_froude_max_micro_ = counter_value_or(c, "flow_froude_max_micro", 0);
   if (settings_.bedload()) {
     const cl_long moved = counter_value(c, "bed_moved_quanta");
     compute_.queue().enqueueWriteBuffer(bed_moved_, CL_TRUE, 0, sizeof(moved), &moved);
@@ -383,10 +392,34 @@ JsonObject PipeModel::diagnostics() {
       .add("initial_water_volume_m3", initial_water_volume())
       .add("law", settings_.law)
       .add("flux", settings_.flux)
+      .add("flow_froude_max", flow_froude_max())
       .add("bed_load_moved_m3",
            static_cast<double>(bed_moved_quanta()) * state_.terrain().volume_quantum())
       .add("edges", settings_.edges)
       .add("transport", settings_.transport);
+}
+
+std::vector<std::pair<std::string, double>> PipeModel::summary_values() {
+  return {{model_info().summary_names[0], flow_froude_max()}};
+}
+
+// Without the advection term the local-inertial equations carry a disturbance of a sheet under
+// Manning's friction at sqrt(g h) against the kinematic wave's (5/3) u: above Froude 3/5 the
+// kinematic wave outruns the dynamic waves and grows into roll waves (Whitham's criterion; the
+// full shallow-water equations hold to Froude 3/2). docs/models.md derives it.
+std::string PipeModel::caution() {
+  constexpr double kInertialFroudeLimit = 0.6;
+  if (!settings_.inertial() || flow_froude_max() <= kInertialFroudeLimit) return {};
+  char line[400];
+  std::snprintf(
+      line, sizeof line,
+      "pipe.flux = \"local-inertial\": the flow reached Froude %.2f (its discharge-weighted "
+      "mean; metrics.json: flow_froude_max), where its equations, without advection, let a "
+      "sheet's disturbances grow into roll waves (they hold a sheet steady only below Froude "
+      "0.6 under Manning's friction; docs/models.md); "
+      "pipe.flux = \"godunov\" carries such flow",
+      flow_froude_max());
+  return line;
 }
 
 }  // namespace runnel

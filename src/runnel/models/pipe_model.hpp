@@ -74,6 +74,11 @@ class PipeModel final : public GridModel {
   double rain_volume() override;
   double scenario_rain_rate() const override { return settings_.rain; }
   JsonObject diagnostics() override;
+  std::string caution() override;
+  std::vector<std::pair<std::string, double>> summary_values() override;
+  // The flow's Froude number (the water's inside the map, weighted by its discharge; pipe_stats),
+  // its largest so far.
+  double flow_froude_max() const { return static_cast<double>(flow_froude_max_micro_) * 1e-6; }
 
  protected:
   double take_step() override;
@@ -90,6 +95,8 @@ class PipeModel final : public GridModel {
   std::array<long long, 4> edge_water_counts();
   PipeSettings settings_;
   double dt_ = 0;
+  // In millionths, an integer so that a checkpoint carries it exactly.
+  std::int64_t flow_froude_max_micro_ = 0;
   int depth_, flux_, velocity_, sediment_;  // GridState handles
   void transport(cl::Buffer& sediment, cl::Buffer& flux, cl::Buffer& velocity, float dt);
   // pipe.law = "bedload": the grains the flow rolls along the bed, moved between the cells'

@@ -145,6 +145,8 @@ struct RunRecord {
   long long steps = 0;
   double wall_seconds = 0;
   double bed_moved = 0;  // Σ |Δh| · cell² at the end (m³): the case assumes a fixed bed
+  std::string caution;   // the model's own, when it ran outside what it holds
+  std::vector<std::pair<std::string, double>> model_values;  // Model::summary_values()
 };
 
 RunRecord run_case(ComputeContext& compute, const OverlandCase& c, const PlaneGrid& g,
@@ -188,6 +190,8 @@ RunRecord run_case(ComputeContext& compute, const OverlandCase& c, const PlaneGr
   for (std::size_t k = 0; k < before.h.size(); ++k)
     r.bed_moved += std::fabs(static_cast<double>(after.h[k]) - before.h[k]) * g.cell * g.cell;
   r.steps = static_cast<long long>(model->steps());
+  r.caution = model->caution();
+  r.model_values = model->summary_values();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!c.out_dir.empty()) {
     const std::filesystem::path dir =
@@ -274,6 +278,12 @@ JsonObject run_header(const std::string& run, double spacing) {
   return o;
 }
 
+JsonObject model_values_json(const std::vector<std::pair<std::string, double>>& values) {
+  JsonObject o;
+  for (const auto& [name, value] : values) o.add(name, value);
+  return o;
+}
+
 JsonObject run_json(const RunRecord& r, const RunScore& s) {
   std::vector<JsonObject> gauges;
   for (std::size_t k = 0; k < r.gauge_x.size(); ++k)
@@ -281,8 +291,9 @@ JsonObject run_json(const RunRecord& r, const RunScore& s) {
                          .add("x_m", r.gauge_x[k])
                          .add("depth_m", r.gauge_depth[k])
                          .add("error", s.depth_errors[k]));
-  return run_header(r.name, r.spacing)
-      .add("steps", r.steps)
+  JsonObject run = run_header(r.name, r.spacing);
+  if (!r.caution.empty()) run.add("caution", r.caution);
+  return run.add("steps", r.steps)
       .add("wall_seconds", r.wall_seconds)
       .add("depth_worst_error", s.depth_worst)
       .add("depth_mean_error", s.depth_mean)
@@ -295,6 +306,7 @@ JsonObject run_json(const RunRecord& r, const RunScore& s) {
       .add("rise_time_95_error", s.rise)
       .add("water_balance_rel", s.balance)
       .add("bed_moved_m3", r.bed_moved)
+      .merge(model_values_json(r.model_values))
       .add("meets_targets", s.meets)
       .add("gauges", gauges);
 }
