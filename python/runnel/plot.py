@@ -11,11 +11,17 @@
   steady depth (``overland.json``);
 - ``runnel validate hydrostatic --out OUT``: ``pressure``, each layer's pressure beside ρ0 g d
   (``pressure.csv``);
-- ``runnel validate dambreak --out OUT``: ``front``, the surge front over time (``front.csv``);
+- ``runnel validate dambreak --out OUT``: ``front``, the surge front over time (``front.csv``) beside the
+  experiment's points, a second reading of them and a peer code's (``front_reference.csv``);
+- ``runnel validate mobile-bed --out OUT`` (``--models`` puts each model in ``OUT/MODEL``): ``gauges``, the
+  water surface at the four gauges over time beside the measured one (``gauges.csv``), and ``profiles``, the
+  final bed along the three profiles beside the repeats' band (``profiles.csv``);
+- ``runnel sweep SWEEP.toml --out OUT``: ``METRIC_vs_PARAMETER``, each collected metric against each varied
+  numeric parameter, one line per model, the mean over the other axes (``manifest.csv``, ``results.csv``);
 - ``runnel run --out OUT`` with ``run.outflow_every``: ``hydrograph`` (``outflow.csv``).
 
-The figures are written into ``OUT/figures/`` as ``NAME.png`` and ``NAME.pdf`` (beside, not over, the
-commands' own quick-look pictures); :func:`plot` returns the Matplotlib figures by name. A folder none of these wrote is refused with the files it would need.
+The figures are written into ``OUT/figures/`` as ``NAME.png`` and ``NAME.pdf`` (beside the commands' own
+map pictures); :func:`plot` returns the Matplotlib figures by name. A folder none of these wrote is refused with the files it would need.
 """
 import csv
 import pathlib
@@ -53,7 +59,7 @@ def _figure(title, x_label, y_label):
     return figure, axes
 
 
-def _hydrograph(runs, title, share_of_rain):
+def _hydrograph(runs, title, share_of_rain, colours=None):
     """Outflow against time for each (label, outflow.csv columns)."""
     figure, axes = _figure(title, "t (s)", "outflow / rain" if share_of_rain else "outflow (m³/s)")
     for label, table in runs:
@@ -61,7 +67,7 @@ def _hydrograph(runs, title, share_of_rain):
         if share_of_rain:
             rain = max(table["rain"])
             outflow = [q / rain for q in outflow] if rain > 0 else outflow
-        axes.plot(table["t"], outflow, label=label)
+        axes.plot(table["t"], outflow, label=label, color=(colours or {}).get(label))
     axes.legend()
     return figure
 
@@ -124,7 +130,8 @@ class KinematicPlane:
 
 def _overland(folder):
     runs = [(path.parent.name, _read_csv(path)) for path in sorted(folder.glob("*/outflow.csv"))]
-    figure = _hydrograph(runs, "rain off the plane: the outflow hydrograph", share_of_rain=True)
+    colours = {label: f"C{k}" for k, (label, _) in enumerate(runs)}  # one colour a run in both figures
+    figure = _hydrograph(runs, "rain off the plane: the outflow hydrograph", share_of_rain=True, colours=colours)
     figures = {"hydrograph": figure}
     case_file = folder / "overland.json"
     if not case_file.is_file():
@@ -143,8 +150,10 @@ def _overland(folder):
     axes.plot(xs, [plane.depth(x) for x in xs], color="black", label="kinematic wave")
     for run in case["runs"]:
         gauges = run.get("gauges", [])
+        label = run["run"] + (f"-{run['spacing_m']:g}" if "spacing_m" in run else "")  # its folder's name
         if gauges:
-            axes.plot([g["x_m"] for g in gauges], [g["depth_m"] for g in gauges], "o", label=run["run"])
+            axes.plot([g["x_m"] for g in gauges], [g["depth_m"] for g in gauges], "o", label=label,
+                      color=colours.get(label))
     axes.legend()
     figures["profile"] = profile
     return figures
@@ -162,9 +171,106 @@ def _hydrostatic(folder):
 def _dambreak(folder):
     table = _read_csv(folder / "front.csv")
     figure, axes = _figure("dam break: the surge front", "t* = t √(g/L)", "x / L")
-    axes.plot(table["t_star"], table["x_over_L"], label="runnel")
+    reference = folder / "front_reference.csv"
+    if reference.is_file():
+        points = _read_csv(reference)
+        for source, marker in zip(dict.fromkeys(points["source"]), ("s", "^", "o")):
+            rows = [k for k, s in enumerate(points["source"]) if s == source]
+            axes.plot([points["t_star"][k] for k in rows], [points["x_over_L"][k] for k in rows], marker,
+                      fillstyle="none", label=source)
+    axes.plot(table["t_star"], table["x_over_L"], color="C3", label="runnel")
     axes.legend()
     return {"front": figure}
+
+
+def _mobile_bed(folder):
+    """The Soares-Frazão et al. (2012) flume: one folder's model, or each model's ``MODEL/`` folder."""
+    folders = [folder] if (folder / "gauges.csv").is_file() else sorted(p.parent for p in folder.glob("*/gauges.csv"))
+    for f in folders:
+        if not (f / "profiles.csv").is_file():
+            raise InputError(f"{f / 'profiles.csv'}: missing (runnel validate mobile-bed writes it beside gauges.csv)")
+    gauges = [_read_csv(f / "gauges.csv") for f in folders]
+    profiles = [_read_csv(f / "profiles.csv") for f in folders]
+    from matplotlib.figure import Figure
+
+    figures = {}
+    names = list(dict.fromkeys(gauges[0]["gauge"]))
+    figure = Figure(figsize=(3.2 * len(names), 3.4), layout="constrained")
+    figure.suptitle("Soares-Frazão et al. 2012: the water surface at the gauges")
+    for g, name in enumerate(names):
+        axes = figure.add_subplot(1, len(names), g + 1)
+        axes.set_title(name)
+        axes.set_xlabel("t (s)")
+        if g == 0:
+            axes.set_ylabel("water surface (m)")
+        axes.grid(True, alpha=0.3)
+        for m, table in enumerate(gauges):
+            for source in dict.fromkeys(table["source"]):
+                if source == "measured" and m > 0:
+                    continue  # the experiment once
+                rows = [k for k in range(len(table["t"])) if table["gauge"][k] == name and table["source"][k] == source]
+                style = {"color": "black", "marker": "o", "markersize": 2, "linestyle": "none"} if source == "measured" else {}
+                axes.plot([table["t"][k] for k in rows], [table["surface"][k] for k in rows], label=source, **style)
+        if g == 0:
+            axes.legend(fontsize="small")
+    figures["gauges"] = figure
+    names = list(dict.fromkeys(profiles[0]["profile"]))
+    figure = Figure(figsize=(4.2 * len(names), 3.4), layout="constrained")
+    figure.suptitle("Soares-Frazão et al. 2012: the final bed")
+    for p, name in enumerate(names):
+        axes = figure.add_subplot(1, len(names), p + 1)
+        first = profiles[0]
+        rows = [k for k in range(len(first["x"])) if first["profile"][k] == name]
+        axes.set_title(f"{name} (y = {first['y'][rows[0]]:g} m)")
+        axes.set_xlabel("x (m)")
+        if p == 0:
+            axes.set_ylabel("bed (m)")
+        axes.grid(True, alpha=0.3)
+        x = [first["x"][k] for k in rows]
+        axes.fill_between(x, [first["low"][k] for k in rows], [first["high"][k] for k in rows], color="0.8",
+                          label="the repeats' band")
+        axes.plot(x, [first["mean"][k] for k in rows], color="black", linewidth=0.8, label="the repeats' mean")
+        for table in profiles:
+            rows = [k for k in range(len(table["x"])) if table["profile"][k] == name]
+            axes.plot([table["x"][k] for k in rows], [table["simulated"][k] for k in rows], label=table["model"][rows[0]])
+        if p == 0:
+            axes.legend(fontsize="small")
+    figures["profiles"] = figure
+    return figures
+
+
+def _sweep(folder):
+    """Each metric against each varied numeric parameter, a line per model (the mean over the other axes)."""
+    with open(folder / "manifest.csv", newline="") as f:
+        header = next(csv.reader(f))
+    axes_names = header[1:header.index("state")]
+    with open(folder / "results.csv", newline="") as f:
+        members = list(csv.DictReader(f))
+    if not members:
+        raise InputError(f"{folder / 'results.csv'}: no member is done yet; nothing to draw")
+    metrics = [name for name in members[0] if name != "member" and name not in axes_names]
+    figures = {}
+    for axis in axes_names:
+        if axis == "run.model" or not all(_is_number(m[axis]) for m in members):
+            continue  # only numeric parameters have an x axis
+        for metric in metrics:
+            figure, plot_axes = _figure(f"{metric} against {axis}", axis, metric)
+            models = dict.fromkeys(m.get("run.model", "") for m in members)
+            for model in models:
+                sums = {}
+                for m in members:
+                    if m.get("run.model", "") != model or not _is_number(m[metric]):
+                        continue
+                    total, count = sums.get(float(m[axis]), (0.0, 0))
+                    sums[float(m[axis])] = (total + float(m[metric]), count + 1)
+                x = sorted(sums)
+                if x:
+                    plot_axes.plot(x, [sums[v][0] / sums[v][1] for v in x], "o-", label=model or "members")
+            plot_axes.legend()
+            figures[f"{metric}_vs_{axis}"] = figure
+    if not figures:
+        raise InputError(f"{folder}: the sweep varies no numeric parameter to draw its metrics against")
+    return figures
 
 
 def _run(folder):
@@ -177,6 +283,8 @@ _KINDS = (
     ("runnel compare", lambda f: (f / "metrics.csv").is_file() and (f / "report.md").is_file(), _compare),
     ("runnel validate hydrostatic", lambda f: (f / "pressure.csv").is_file(), _hydrostatic),
     ("runnel validate dambreak", lambda f: (f / "front.csv").is_file(), _dambreak),
+    ("runnel validate mobile-bed", lambda f: (f / "gauges.csv").is_file() or any(f.glob("*/gauges.csv")), _mobile_bed),
+    ("runnel sweep", lambda f: (f / "manifest.csv").is_file() and (f / "results.csv").is_file(), _sweep),
     ("runnel run", lambda f: (f / "outflow.csv").is_file(), _run),
     ("runnel validate overland", lambda f: any(f.glob("*/outflow.csv")), _overland),
 )
@@ -195,7 +303,8 @@ def plot(folder, formats=FORMATS):
     Returns
     -------
     dict
-        The Matplotlib figures by name (``hydrograph``, ``volumes``, ``profile``, ``pressure``, ``front``).
+        The Matplotlib figures by name (``hydrograph``, ``volumes``, ``profile``, ``pressure``, ``front``,
+        ``gauges``, ``profiles``, ``METRIC_vs_PARAMETER``).
     """
     folder = pathlib.Path(folder)
     if not folder.is_dir():
@@ -210,7 +319,8 @@ def plot(folder, formats=FORMATS):
             return figures
     raise InputError(
         f"{folder}: holds none of the files runnel-plot draws: metrics.csv and report.md (runnel compare), "
-        "pressure.csv (validate hydrostatic), front.csv (validate dambreak), outflow.csv (runnel run with "
+        "pressure.csv (validate hydrostatic), front.csv (validate dambreak), gauges.csv and profiles.csv "
+        "(validate mobile-bed), manifest.csv and results.csv (runnel sweep), outflow.csv (runnel run with "
         "run.outflow_every) or RUN/outflow.csv (validate overland)"
     )
 
@@ -221,7 +331,7 @@ def main(argv=None):
 
     args = sys.argv[1:] if argv is None else argv
     if len(args) != 1 or args[0] in ("-h", "--help"):
-        sys.stderr.write("usage: runnel-plot OUT   (the --out folder of runnel compare, run or validate)\n")
+        sys.stderr.write("usage: runnel-plot OUT   (the --out folder of runnel compare, run, sweep or validate)\n")
         return 0 if args and args[0] in ("-h", "--help") else 2
     try:
         figures = plot(args[0])

@@ -86,3 +86,63 @@ def test_the_overland_case_is_drawn_beside_the_kinematic_wave(tmp_path):
     assert model.get_label() == "godunov" and analytic.get_label() == "kinematic wave"
     gauges = figures["profile"].axes[0].get_lines()[1]
     assert list(gauges.get_ydata()) == [g["depth_m"] for g in case["runs"][0]["gauges"]]
+
+
+def test_the_dam_break_front_is_drawn_beside_each_reference_it_is_judged_against(tmp_path):
+    (tmp_path / "front.csv").write_text("t_star,x_over_L\n0,1\n0.5,1.4\n1,1.9\n")
+    (tmp_path / "front_reference.csv").write_text(
+        "source,t_star,x_over_L\nKoshizuka & Oka 1996,0.4,1.3\nKoshizuka & Oka 1996,0.9,1.8\n"
+        '"Koshizuka & Oka 1996, read again (PySPH)",0.45,1.31\n'
+        '"PySPH, the same instant release, 67 across l",0.5,1.45\n')
+    figures = runnel.plot.plot(tmp_path, formats=("png",))
+    lines = {line.get_label(): line for line in figures["front"].axes[0].get_lines()}
+    assert list(lines["Koshizuka & Oka 1996"].get_ydata()) == [1.3, 1.8]
+    assert list(lines["Koshizuka & Oka 1996, read again (PySPH)"].get_xdata()) == [0.45]
+    assert list(lines["PySPH, the same instant release, 67 across l"].get_ydata()) == [1.45]
+    assert list(lines["runnel"].get_ydata()) == [1, 1.4, 1.9]
+
+
+def test_the_mobile_bed_flume_is_drawn_beside_the_measurements(tmp_path):
+    out = tmp_path / "flume"
+    r = subprocess.run([RUNNEL_BINARY, "validate", "mobile-bed", "--resolution", "5", "--models", "pipe", "--out",
+                        str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    figures = runnel.plot.plot(out, formats=("png",))
+    assert set(figures) == {"gauges", "profiles"}
+    table = rows(out / "pipe" / "gauges.csv")
+    first = figures["gauges"].axes[0]
+    lines = {line.get_label(): line for line in first.get_lines()}
+    measured = [float(r["surface"]) for r in table if r["gauge"] == "G1" and r["source"] == "measured"]
+    simulated = [float(r["surface"]) for r in table if r["gauge"] == "G1" and r["source"] == "pipe"]
+    assert measured and list(lines["measured"].get_ydata()) == measured
+    assert simulated and list(lines["pipe"].get_ydata()) == simulated
+    assert [a.get_title() for a in figures["gauges"].axes] == ["G1", "G2", "G3", "G4"]
+    bed = rows(out / "pipe" / "profiles.csv")
+    s1 = [float(r["simulated"]) for r in bed if r["profile"] == bed[0]["profile"]]
+    assert list(figures["profiles"].axes[0].get_lines()[-1].get_ydata()) == s1
+    # A flume folder without its profiles is refused by name.
+    (out / "pipe" / "profiles.csv").unlink()
+    with pytest.raises(runnel.InputError, match="profiles.csv"):
+        runnel.plot.plot(out)
+
+
+def test_a_sweep_draws_each_metric_against_each_numeric_parameter_per_model(tmp_path):
+    (tmp_path / "base.toml").write_text('[run]\nmodel = "pipe"\nsteps = 10\n[terrain]\nsize = 33\n')
+    (tmp_path / "sweep.toml").write_text(
+        '[sweep]\nbase = "base.toml"\nmetrics = ["eroded_volume"]\n[axes]\nmodel = ["pipe", "olsen"]\n'
+        '"rain.intensity" = [2000.0, 60000.0]\nseed = [1, 2]\n')
+    out = tmp_path / "out"
+    r = subprocess.run([RUNNEL_BINARY, "sweep", str(tmp_path / "sweep.toml"), "--out", str(out), "--quiet"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    figures = runnel.plot.plot(out, formats=("png",))
+    assert set(figures) == {"eroded_volume_vs_rain.intensity", "eroded_volume_vs_run.seed"}
+    results = rows(out / "results.csv")
+    lines = {line.get_label(): line for line in figures["eroded_volume_vs_rain.intensity"].axes[0].get_lines()}
+    assert set(lines) == {"pipe", "olsen"}
+    for model, line in lines.items():
+        assert list(line.get_xdata()) == [2000.0, 60000.0]
+        for x, y in zip(line.get_xdata(), line.get_ydata()):
+            members = [float(m["eroded_volume"]) for m in results
+                       if m["run.model"] == model and float(m["rain.intensity"]) == x]
+            assert len(members) == 2 and y == pytest.approx(sum(members) / 2, rel=1e-12)

@@ -40,7 +40,7 @@ struct SweepOptions {
   std::string file, out = "runnel-sweep", time_limit = "24:00:00";
   int jobs = 0;
   long long member = -1;
-  bool extend = false, force = false, slurm = false, quiet = false, collect = false, report = false;
+  bool extend = false, force = false, slurm = false, quiet = false, collect = false;
 };
 
 int run_workers(const SweepOptions& opt, const SweepSpec& spec,
@@ -165,6 +165,11 @@ int run_mpi(const SweepOptions& opt, const SweepSpec& spec,
 }
 
 // Expands the sweep (counted first), then runs it, one member, its SLURM script, or its tables.
+// Where the sweep's charts come from: the Python package draws them from results.csv.
+std::string figures_hint(const std::string& out) {
+  return " (figures: python3 -m runnel plot " + terminal_safe(out) + ")";
+}
+
 void sweep(SweepOptions opt) {
   const SweepSpec spec = read_sweep(opt.file);
   // Counted before anything is expanded: a sweep of 10^5 members is refused at once.
@@ -181,10 +186,10 @@ void sweep(SweepOptions opt) {
     throw input_error("--member " + std::to_string(opt.member) + ": the sweep has members 0 to " +
                       std::to_string(members.size() - 1));
   }
-  if (launched_by_mpi() && opt.member < 0 && !opt.slurm && !opt.collect && !opt.report) {
+  if (launched_by_mpi() && opt.member < 0 && !opt.slurm && !opt.collect) {
     const int failed = run_mpi(opt, spec, members);
     std::cout << terminal_safe(opt.out) << "/results.csv: " << members.size() - failed << " of "
-              << members.size() << " members done\n";
+              << members.size() << " members done" << figures_hint(opt.out) << "\n";
     if (failed > 0) throw runtime_error("sweep: " + std::to_string(failed) + " members failed");
     return;
   }
@@ -201,12 +206,8 @@ void sweep(SweepOptions opt) {
               << " members\n";
     return;
   }
-  if (opt.collect || opt.report) {
+  if (opt.collect) {
     write_sweep_tables(spec, members, opt.out);
-    if (opt.report) {
-      for (const std::string& file : write_sweep_report(spec, members, opt.out))
-        std::cout << file << "\n";
-    }
     return;
   }
   if (opt.member >= 0) {
@@ -222,7 +223,7 @@ void sweep(SweepOptions opt) {
       "--out " + opt.out + ": another runnel sweep is running in this folder; wait for it to end");
   const int failed = run_workers(opt, spec, members);
   std::cout << terminal_safe(opt.out) << "/results.csv: " << members.size() - failed << " of "
-            << members.size() << " members done\n";
+            << members.size() << " members done" << figures_hint(opt.out) << "\n";
   if (failed > 0) {
     throw runtime_error("sweep: " + std::to_string(failed) + " members failed (messages in " +
                         opt.out + "/manifest.csv); run the command again to retry them");
@@ -239,7 +240,8 @@ void add_sweep_command(CLI::App& app) {
       "normal run in DIR/members/NNNN, listed in DIR/manifest.csv with the metrics of the done "
       "ones "
       "in DIR/results.csv. Re-running skips done members and redoes interrupted ones; "
-      "--member N runs one (a SLURM array task); see docs/sweeps.md");
+      "--member N runs one (a SLURM array task); `python -m runnel plot DIR` draws each metric "
+      "against each varied parameter; see docs/sweeps.md");
   cmd->add_option("sweep", opt->file, "sweep file (TOML: [sweep] base, combine, metrics; [axes])")
       ->required();
   cmd->add_option("--out", opt->out, "the sweep's folder (created)")->capture_default_str();
@@ -256,9 +258,6 @@ void add_sweep_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--collect", opt->collect,
                 "only rewrite manifest.csv and results.csv from the members");
-  cmd->add_flag("--report", opt->report,
-                "draw DIR/report_METRIC_vs_PARAMETER.png for the done members: each metric against "
-                "each varied numeric parameter, one line per model");
   cmd->add_flag("--quiet", opt->quiet, "no progress output");
   cmd->callback([opt] { sweep(*opt); });
 }

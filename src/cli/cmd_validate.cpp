@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 // runnel validate: the SPH reference cases, a JSON summary on stdout and CSVs in --out.
 #include <unistd.h>
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "cli/commands.hpp"
 #include "runnel/core/error.hpp"
+#include "runnel/core/text.hpp"
 #include "runnel/sim/scenario.hpp"
 #include "runnel/terrain/terrain_source.hpp"
 #include "runnel/validation/mobile_bed.hpp"
@@ -137,18 +140,22 @@ void validate(const ValidateFlags& opt, const CLI::App& cmd) {
   ComputeContext compute(opt.device);
   if (opt.which == "overland") {
     print_overland(compute, opt, v);
-    return;
-  }
-  if (opt.which == "mobile-bed" && !opt.models.empty()) {
+  } else if (opt.which == "mobile-bed" && !opt.models.empty()) {
     print_mobile_bed_runs(compute, v, opt.models);
-    return;
+  } else {
+    const ValidationResult r = opt.which == "hydrostatic" ? validate_hydrostatic(compute, v)
+                               : opt.which == "dambreak"  ? validate_dambreak(compute, v)
+                               : opt.which == "droplet"   ? validate_droplet(compute, v)
+                               : opt.which == "mobile-bed"
+                                   ? validate_mobile_bed(compute, v)
+                                   : validate_erosion_convergence(compute, v);
+    std::cout << r.summary_json() << "\n";
   }
-  const ValidationResult r = opt.which == "hydrostatic"  ? validate_hydrostatic(compute, v)
-                             : opt.which == "dambreak"   ? validate_dambreak(compute, v)
-                             : opt.which == "droplet"    ? validate_droplet(compute, v)
-                             : opt.which == "mobile-bed" ? validate_mobile_bed(compute, v)
-                                                         : validate_erosion_convergence(compute, v);
-  std::cout << r.summary_json() << "\n";
+  // The charts are the Python package's, drawn from the tables the case wrote.
+  const std::vector<std::string> charted = {"hydrostatic", "dambreak", "mobile-bed", "overland"};
+  if (!opt.out.empty() && std::find(charted.begin(), charted.end(), opt.which) != charted.end())
+    std::fprintf(stderr, "runnel: its figures: python3 -m runnel plot %s\n",
+                 terminal_safe(opt.out).c_str());
 }
 
 }  // namespace
@@ -188,8 +195,9 @@ void add_validate_command(CLI::App& app) {
                   "default: 65 x 65 fBm hills with 2 m cells; --set terrain.cell=... for a file "
                   "without one); the storm scales with its cell size (60,000 mm/h on 2 m cells)");
   cmd->add_option("--out", opt->out,
-                  "folder for pressure.csv / front.csv, or mobile-bed's flume, run and "
-                  "mobile_bed.png (created)");
+                  "folder (created) for the case's tables: pressure.csv, front.csv, mobile-bed's "
+                  "flume, run, gauges.csv and profiles.csv, overland's runs and overland.json; "
+                  "`python -m runnel plot DIR` draws them");
   cmd->add_option("--set", opt->sets, "parameter key=value (repeatable; see 'runnel params')");
   cmd->add_option("--models", opt->models,
                   "mobile-bed: the models to run it with, each in DIR/MODEL (e.g. pipe,sph; "

@@ -120,17 +120,6 @@ TEST(CliSweep, SerialParallelAndMemberByMemberGiveIdenticalResults) {
   EXPECT_NE(r.err.find("holds another sweep"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 
-  // The summary figures: each metric against each numeric axis, one line per model.
-  r = run_cli({"sweep", sweep, "--out", dir.path("serial"), "--report"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* figure :
-       {"report_eroded_volume_vs_pipe.rain.png", "report_hypsometric_integral_vs_run.seed.png"}) {
-    const std::string png = test::read_text(dir.path(std::string("serial/") + figure));
-    ASSERT_GT(png.size(), 1000u) << figure;
-    EXPECT_EQ(png.substr(1, 3), "PNG") << figure;
-  }
-  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 6) << r.out;
-
   // The SLURM array script runs one member per task.
   r = run_cli(
       {"sweep", sweep, "--out", dir.path("serial"), "--slurm-script", "--time", "02:00:00"});

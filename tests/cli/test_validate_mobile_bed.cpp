@@ -21,7 +21,15 @@ TEST(ValidateMobileBedCli, RunsThePipeModelAndSphEachInItsOwnFolder) {
   EXPECT_NE(sph, std::string::npos) << r.out;
   for (const char* model : {"pipe", "sph"}) {
     const std::string run = dir.path(std::string("out/") + model);
-    EXPECT_TRUE(std::filesystem::exists(run + "/mobile_bed.png")) << model;
+    // The tables runnel.plot draws: each gauge measured and simulated, each profile's points.
+    const std::string gauges = test::read_text(run + "/gauges.csv");
+    EXPECT_EQ(gauges.substr(0, gauges.find('\n')), "gauge,x,y,source,t,surface");
+    for (const char* gauge : {"\nG1,", "\nG2,", "\nG3,", "\nG4,"})
+      EXPECT_NE(gauges.find(gauge), std::string::npos) << model << gauge;
+    EXPECT_NE(gauges.find(",measured,"), std::string::npos) << model;
+    EXPECT_NE(gauges.find(std::string(",") + model + ","), std::string::npos) << model;
+    const std::string profiles = test::read_text(run + "/profiles.csv");
+    EXPECT_EQ(profiles.substr(0, profiles.find('\n')), "profile,y,x,low,high,mean,model,simulated");
     EXPECT_TRUE(std::filesystem::exists(run + "/" + model + "/probes.csv")) << model;
     EXPECT_NE(test::read_text(run + "/" + model + "/metrics.json").find("\"mass_balance_abs\": 0"),
               std::string::npos)

@@ -158,13 +158,14 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
   const std::string csv = metrics_csv(results);
   write_text_atomically((out / "metrics.csv").string(), csv);
   write_compare_png((out / "compare.png").string(), initial, results);
-  const bool hydrograph = write_hydrograph_png((out / "hydrograph.png").string(), results);
   std::string report = report_markdown(results, budget, initial, options);
-  if (hydrograph)
+  if (std::any_of(results.begin(), results.end(),
+                  [](const ModelResult& r) { return !r.hydrograph.empty(); }))
     report +=
-        "\nThe water leaving the terrain over its edges, each model with a clock in seconds "
-        "(its DIR/MODEL/outflow.csv holds the rain and the water stored beside it):\n\n"
-        "![outflow hydrograph of each model](hydrograph.png)\n";
+        "\nThe water leaving the terrain over its edges, each model with a clock in seconds, is in "
+        "its MODEL/outflow.csv beside the rain and the water stored; `python -m runnel plot DIR` "
+        "(or `runnel-plot DIR`) draws the hydrographs and the eroded and deposited volumes into "
+        "DIR/figures/ as PNG and PDF.\n";
   write_text_atomically((out / "report.md").string(), report);
   return results;
 }

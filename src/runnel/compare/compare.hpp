@@ -66,9 +66,6 @@ std::vector<ModelResult> run_compare(ComputeContext& compute, const Parameters& 
 
 // metrics.csv: a header, then a row per model.
 std::string metrics_csv(const std::vector<ModelResult>& results);
-// hydrograph.png: each model's outflow against time in one chart; false (nothing written) when no
-// model's clock is in seconds.
-bool write_hydrograph_png(const std::string& path, const std::vector<ModelResult>& results);
 // compare.png: the initial terrain, then each model's final terrain above its erosion map, all
 // with one height range and one Δh colour scale.
 void write_compare_png(const std::string& path, const Heightmap& initial,

@@ -8,7 +8,6 @@
 #include "runnel/compare/compare.hpp"
 #include "runnel/ground/geology_picture.hpp"
 #include "runnel/io/images.hpp"
-#include "runnel/io/plot.hpp"
 #include "runnel/terrain/height_steps.hpp"
 
 namespace runnel::compare {
@@ -185,23 +184,6 @@ std::string layers_table(const std::vector<ModelResult>& results) {
 }
 
 }  // namespace
-
-bool write_hydrograph_png(const std::string& path, const std::vector<ModelResult>& results) {
-  Plot plot("outflow hydrograph", "t (s)", "outflow (m3/s)");
-  std::size_t drawn = 0;
-  for (const ModelResult& r : results) {
-    if (r.hydrograph.empty()) continue;
-    std::vector<double> t, q;
-    for (const HydrographPoint& row : r.hydrograph) {
-      t.push_back(row.t);
-      q.push_back(row.outflow);
-    }
-    plot.line(t, q, plot_series_colour(drawn++), r.model);
-  }
-  if (drawn == 0) return false;
-  write_png_rgb(path, with_title(plot.render(), "runnel compare: the water leaving the terrain"));
-  return true;
-}
 
 std::string report_markdown(const std::vector<ModelResult>& results, const RainBudget& budget,
                             const Heightmap& initial, const Options& options) {

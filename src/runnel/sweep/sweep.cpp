@@ -17,7 +17,6 @@
 #include "runnel/core/input_file.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
-#include "runnel/io/plot.hpp"
 #include "runnel/metrics/terrain_metrics.hpp"
 #include "runnel/models/checkpoint.hpp"
 #include "runnel/models/registry.hpp"
@@ -115,10 +114,6 @@ std::string read_text(const fs::path& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-std::string member_model(const SweepMember& m) {
-  return m.params.text("run.model");
 }
 
 // The newest step_XXXXXXXX.h5 in `dir` (names sort by step), or "" when there is none.
@@ -412,70 +407,6 @@ void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepMember>& m
   }
   write_text_atomically((fs::path(out) / "manifest.csv").string(), manifest);
   write_text_atomically((fs::path(out) / "results.csv").string(), results);
-}
-
-std::vector<std::string> write_sweep_report(const SweepSpec& spec,
-                                            const std::vector<SweepMember>& members,
-                                            const std::string& out) {
-  // The done members' metric values, from their result rows (member, axis values..., metrics...).
-  std::map<std::size_t, std::vector<double>> values;
-  for (const SweepMember& m : members) {
-    if (member_state(out, m.index) != MemberState::kDone) continue;
-    std::string row = read_text(fs::path(member_dir(out, m.index)) / "result.csv");
-    std::vector<double> metrics;
-    std::size_t field = 0, start = 0;
-    while (start <= row.size()) {
-      const std::size_t end = std::min(row.find(',', start), row.find('\n', start));
-      if (field > spec.axes.size())
-        metrics.push_back(std::strtod(row.substr(start, end - start).c_str(), nullptr));
-      if (end == std::string::npos || row[end] == '\n') break;
-      start = end + 1;
-      ++field;
-    }
-    values[m.index] = metrics;
-  }
-  if (values.empty()) throw input_error(out + ": no member is done yet; nothing to report");
-  std::size_t model_axis = spec.axes.size();
-  for (std::size_t a = 0; a < spec.axes.size(); ++a)
-    if (spec.axes[a].key == "run.model") model_axis = a;
-  static const PlotColour colours[] = {
-      kPlotSimulation, kPlotSecondary, kPlotReference, {30, 150, 60}, {150, 60, 160}};
-  std::vector<std::string> written;
-  for (std::size_t a = 0; a < spec.axes.size(); ++a) {
-    const SweepAxis& axis = spec.axes[a];
-    char* end = nullptr;
-    std::strtod(axis.values.front().c_str(), &end);
-    if (a == model_axis || *end != '\0') continue;  // only numeric parameters have an x axis
-    for (std::size_t k = 0; k < spec.metrics.size(); ++k) {
-      Plot plot("runnel sweep: " + spec.metrics[k] + " against " + axis.key, axis.key,
-                spec.metrics[k]);
-      std::vector<std::string> models =
-          model_axis < spec.axes.size() ? spec.axes[model_axis].values
-                                        : std::vector<std::string>{member_model(members.front())};
-      for (std::size_t g = 0; g < models.size(); ++g) {
-        std::map<double, std::pair<double, int>> mean;  // x → (sum, count) over the other axes
-        for (const SweepMember& m : members) {
-          if (!values.count(m.index) ||
-              (model_axis < spec.axes.size() && m.values[model_axis] != models[g]))
-            continue;
-          auto& [sum, count] = mean[std::strtod(m.values[a].c_str(), nullptr)];
-          sum += values[m.index][k];
-          ++count;
-        }
-        std::vector<double> x, y;
-        for (auto& [key, acc] : mean) {
-          x.push_back(key);
-          y.push_back(acc.first / acc.second);
-        }
-        if (!x.empty()) plot.line(x, y, colours[g % 5], models[g]);
-      }
-      const std::string file =
-          (fs::path(out) / ("report_" + spec.metrics[k] + "_vs_" + axis.key + ".png")).string();
-      plot.write(file);
-      written.push_back(file);
-    }
-  }
-  return written;
 }
 
 namespace {

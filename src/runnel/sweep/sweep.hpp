@@ -69,13 +69,6 @@ void run_member(const SweepSpec& spec, const SweepMember& member, const std::str
 void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepMember>& members,
                         const std::string& out, const std::vector<std::size_t>& running = {});
 
-// The summary figures of a sweep's done members: for each varied numeric parameter, each collected
-// metric against it, one line per model (the mean over the other axes), as
-// DIR/report_METRIC_vs_PARAMETER.png. Returns the files written.
-std::vector<std::string> write_sweep_report(const SweepSpec& spec,
-                                            const std::vector<SweepMember>& members,
-                                            const std::string& out);
-
 // A SLURM array script that runs the members of the sweep, one per task, resumable on requeue.
 std::string slurm_script(const SweepSpec& spec, const std::vector<SweepMember>& members,
                          const std::string& out, const std::string& runnel_binary,

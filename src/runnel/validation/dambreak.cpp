@@ -20,7 +20,6 @@
 #include <filesystem>
 
 #include "runnel/io/atomic_file.hpp"
-#include "runnel/io/plot.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/validation/tank.hpp"
 #include "runnel/validation/validation.hpp"
@@ -66,40 +65,34 @@ std::vector<std::pair<double, double>> track_surge_front(SphSolver& solver, doub
   return front;
 }
 
-// front.csv and front.png: runnel's front beside the experiment, its second reading and the
-// peer's instant release.
+// front.csv: runnel's front; front_reference.csv: what it is judged against, the experiment, the
+// same figure read a second time (the spread of two readings) and the peer's instant release, one
+// row a point. runnel.plot draws them together (`python -m runnel plot OUT`).
 void write_front_files(const std::string& out_dir,
                        const std::vector<std::pair<double, double>>& front,
                        const std::vector<double>& exp_t, const std::vector<double>& exp_x,
-                       const FrontReading& peer, int resolution, double tank) {
+                       const FrontReading& peer, double tank) {
   const auto out = std::filesystem::path(out_dir);
   write_file_atomically((out / "front.csv").string(), [&](std::FILE* f) {
     std::fprintf(f, "t_star,x_over_L\n");
     for (auto& [ts, x] : front) std::fprintf(f, "%.2f,%.6f\n", ts, x);
   });
-  std::vector<double> sim_t, sim_x;
-  for (auto& [ts, x] : front) sim_t.push_back(ts), sim_x.push_back(x);
-  Plot plot("dam break: surge front", "t* = t sqrt(g/L)", "x/L");
-  plot.points(exp_t, exp_x, kPlotReference, "koshizuka & oka 1996");
-  // The same figure read a second time: the spread of two readings, beside the one scored.
   const auto& readings = dambreak_other_readings();
   const auto again = std::find_if(readings.begin(), readings.end(), [](const FrontReading& r) {
     return r.name == "koshizuka_oka_pysph";
   });
-  std::vector<double> again_t, again_x;
-  for (const FrontSample& m : again->samples) {
-    if (m.x_over_l >= tank) continue;
-    again_t.push_back(m.t_star);
-    again_x.push_back(m.x_over_l);
-  }
-  plot.points(again_t, again_x, kPlotSecondary, "koshizuka & oka 1996, read again (pysph)");
-  std::vector<double> peer_t, peer_x;
-  for (const FrontSample& m : peer.samples)
-    peer_t.push_back(m.t_star), peer_x.push_back(m.x_over_l);
-  plot.points(peer_t, peer_x, kPlotPeer, "pysph, the same instant release, 67 across l");
-  plot.line(sim_t, sim_x, kPlotSimulation,
-            "runnel, " + std::to_string(resolution) + " particles across l");
-  plot.write((out / "front.png").string());
+  write_file_atomically((out / "front_reference.csv").string(), [&](std::FILE* f) {
+    std::fprintf(f, "source,t_star,x_over_L\n");
+    for (std::size_t k = 0; k < exp_t.size(); ++k)
+      std::fprintf(f, "Koshizuka & Oka 1996,%.6g,%.6g\n", exp_t[k], exp_x[k]);
+    for (const FrontSample& m : again->samples)
+      if (m.x_over_l < tank)
+        std::fprintf(f, "\"Koshizuka & Oka 1996, read again (PySPH)\",%.6g,%.6g\n", m.t_star,
+                     m.x_over_l);
+    for (const FrontSample& m : peer.samples)
+      std::fprintf(f, "\"PySPH, the same instant release, 67 across l\",%.6g,%.6g\n", m.t_star,
+                   m.x_over_l);
+  });
 }
 
 }  // namespace
@@ -158,8 +151,7 @@ ValidationResult validate_dambreak(ComputeContext& compute, const ValidationOpti
           .add("worst_surge_gap", peer_gap.worst)
           .add("compared_points", static_cast<long long>(peer_gap.points.size()));
 
-  if (!options.out_dir.empty())
-    write_front_files(options.out_dir, front, exp_t, exp_x, peer, resolution, tank);
+  if (!options.out_dir.empty()) write_front_files(options.out_dir, front, exp_t, exp_x, peer, tank);
   double late_worst = 0;  // the experiment from t* = 1.4 on
   for (const SurgeComparison& p : target.points)
     if (p.t_star >= kExperimentFrom) late_worst = std::max(late_worst, p.error);

@@ -16,7 +16,6 @@
 #include <map>
 
 #include "runnel/io/atomic_file.hpp"
-#include "runnel/io/plot.hpp"
 #include "runnel/sph/sph_solver.hpp"
 #include "runnel/validation/tank.hpp"
 #include "runnel/validation/validation.hpp"
@@ -28,15 +27,9 @@ namespace {
 // Per layer of the tank (by height above the floor): Σ depth, Σ pressure, Σ expected, count.
 using LayerProfile = std::map<int, std::array<double, 4>>;
 
-// pressure.csv and pressure.png: each layer's mean pressure against its depth, beside ρ0 g d.
+// pressure.csv: each layer's mean pressure against its depth, beside ρ0 g d (runnel.plot draws it).
 void write_pressure_profile(const std::string& out_dir, const LayerProfile& profile) {
   const std::filesystem::path out(out_dir);
-  std::vector<double> depth_curve, pressure_curve, expected_curve;
-  for (auto& [layer, row] : profile) {
-    depth_curve.push_back(row[0] / row[3]);
-    pressure_curve.push_back(row[1] / row[3]);
-    expected_curve.push_back(row[2] / row[3]);
-  }
   write_file_atomically((out / "pressure.csv").string(), [&](std::FILE* f) {
     std::fprintf(f, "depth,pressure,expected,particles\n");
     for (auto& [layer, row] : profile) {
@@ -44,10 +37,6 @@ void write_pressure_profile(const std::string& out_dir, const LayerProfile& prof
                    row[3]);
     }
   });
-  Plot plot("hydrostatic tank: pressure against depth", "depth (m)", "pressure (Pa)");
-  plot.line(depth_curve, expected_curve, kPlotReference, "rho0 g d");
-  plot.points(depth_curve, pressure_curve, kPlotSimulation, "runnel, per layer");
-  plot.write((out / "pressure.png").string());
 }
 
 // What the settling tank's final quarter gave, per particle and as a whole.

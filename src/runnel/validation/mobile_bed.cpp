@@ -15,8 +15,7 @@
 
 #include "runnel/core/error.hpp"
 #include "runnel/core/text.hpp"
-#include "runnel/io/images.hpp"
-#include "runnel/io/plot.hpp"
+#include "runnel/io/atomic_file.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/run.hpp"
 #include "runnel/sim/scenario.hpp"
@@ -158,31 +157,35 @@ std::pair<double, double> scour_and_crest(const std::vector<double>& x,
   return {kSandSurface - lowest, highest - kSandSurface};
 }
 
-void write_figure(const std::string& path, const std::string& model,
+// gauges.csv (each gauge's water surface over time, measured and simulated, a row a sample) and
+// profiles.csv (each final bed profile beside the repeats' band and mean, a row a point): what
+// runnel.plot draws (`python -m runnel plot OUT`).
+void write_tables(const std::filesystem::path& out, const std::string& model,
                   const std::vector<GaugeScore>& gauges,
                   const std::vector<ProfileScore>& profiles) {
-  // The four gauges on the top row, the three profiles below.
-  const int w = 480, h = 360;
-  RgbImage figure(4 * w, 2 * h);
-  for (std::size_t g = 0; g < gauges.size() && g < 4; ++g) {
-    const MobileBedGauge& m = soares_frazao_gauges()[g];
-    Plot plot(
-        "gauge " + m.name + " (x " + format_number(m.x) + ", y +-" + format_number(-m.y) + ")",
-        "t (s)", "water surface (m)");
-    plot.points(m.t, m.surface, kPlotReference, "measured");
-    plot.line(gauges[g].simulated.t, gauges[g].simulated.surface, kPlotSimulation, model);
-    figure.paste(plot.render(w, h), static_cast<int>(g) * w, 0);
-  }
-  for (std::size_t p = 0; p < profiles.size() && p < 3; ++p) {
-    const ProfileScore& s = profiles[p];
-    Plot plot("final bed " + s.name + " (y " + format_number(soares_frazao_profiles()[p].y) + ")",
-              "x (m)", "bed (m)");
-    plot.points(s.x, s.low, kPlotReference, "repeats' band");
-    plot.points(s.x, s.high, kPlotReference, "");
-    plot.line(s.x, s.simulated, kPlotSimulation, model);
-    figure.paste(plot.render(w, h), static_cast<int>(p) * w, h);
-  }
-  write_png_rgb(path, with_title(figure, "Soares-Frazao et al. 2012: dam break over a mobile bed"));
+  write_file_atomically((out / "gauges.csv").string(), [&](std::FILE* f) {
+    std::fprintf(f, "gauge,x,y,source,t,surface\n");
+    for (std::size_t g = 0; g < gauges.size(); ++g) {
+      const MobileBedGauge& m = soares_frazao_gauges()[g];
+      for (std::size_t k = 0; k < m.t.size(); ++k)
+        std::fprintf(f, "%s,%g,%g,measured,%.6g,%.6g\n", m.name.c_str(), m.x, m.y, m.t[k],
+                     m.surface[k]);
+      const Series& run = gauges[g].simulated;
+      for (std::size_t k = 0; k < run.t.size(); ++k)
+        std::fprintf(f, "%s,%g,%g,%s,%.6g,%.6g\n", m.name.c_str(), m.x, m.y, model.c_str(),
+                     run.t[k], run.surface[k]);
+    }
+  });
+  write_file_atomically((out / "profiles.csv").string(), [&](std::FILE* f) {
+    std::fprintf(f, "profile,y,x,low,high,mean,model,simulated\n");
+    for (std::size_t p = 0; p < profiles.size(); ++p) {
+      const ProfileScore& s = profiles[p];
+      for (std::size_t k = 0; k < s.x.size(); ++k)
+        std::fprintf(f, "%s,%g,%.6g,%.6g,%.6g,%.6g,%s,%.6g\n", s.name.c_str(),
+                     soares_frazao_profiles()[p].y, s.x[k], s.low[k], s.high[k], s.mean[k],
+                     model.c_str(), s.simulated[k]);
+    }
+  });
 }
 
 }  // namespace
@@ -217,7 +220,7 @@ ValidationResult validate_mobile_bed(ComputeContext& compute, const ValidationOp
   std::vector<ProfileScore> profiles;
   for (const MobileBedProfile& p : soares_frazao_profiles())
     profiles.push_back(score_profile(p, bed, model->initial_terrain()));
-  write_figure((out / "mobile_bed.png").string(), model->info().name, gauges, profiles);
+  write_tables(out, model->info().name, gauges, profiles);
 
   double worst = 0;
   std::vector<JsonObject> gauge_json, profile_json;
@@ -260,10 +263,7 @@ ValidationResult validate_mobile_bed(ComputeContext& compute, const ValidationOp
                   .add("scour_below_gate_measured_m", scour_measured)
                   .add("deposit_crest_m", crest)
                   .add("deposit_crest_measured_m", crest_measured);
-  if (options.out_dir.empty())
-    fs::remove_all(out);
-  else
-    r.details.add("figure", (out / "mobile_bed.png").string());
+  if (options.out_dir.empty()) fs::remove_all(out);
   return r;
 }
 

@@ -36,8 +36,8 @@ double outside_band(double value, double low, double high);
 // 20 s with the pipe model, or the model --set run.model names (resolution: cells a metre,
 // default 20), scored against the gauges (water-surface RMSE and arrival, mirrored pairs
 // averaged) and the final bed along the three profiles (RMSE and worst error against the band of
-// the four repeats, scour below the gate, the deposit's crest); mobile_bed.png and the run's own
-// outputs in out_dir.
+// the four repeats, scour below the gate, the deposit's crest); gauges.csv, profiles.csv and the
+// run's own outputs in out_dir.
 ValidationResult validate_mobile_bed(ComputeContext& compute, const ValidationOptions& options);
 
 }  // namespace runnel

@@ -13,7 +13,6 @@
 #include "runnel/core/error.hpp"
 #include "runnel/core/text.hpp"
 #include "runnel/io/atomic_file.hpp"
-#include "runnel/io/plot.hpp"
 #include "runnel/models/registry.hpp"
 #include "runnel/sim/hydrograph.hpp"
 #include "runnel/terrain/probes.hpp"
@@ -311,42 +310,6 @@ JsonObject run_json(const RunRecord& r, const RunScore& s) {
       .add("gauges", gauges);
 }
 
-void write_figure(const std::string& path, const OverlandCase& c, const PlaneGrid& g,
-                  const std::vector<RunRecord>& records) {
-  const KinematicPlane plane = c.plane();
-  const double te = plane.equilibrium_time(), W = g.width(), iA = plane.rain * W * plane.length;
-  Plot hydro("outflow hydrograph", "t / t_e", "outflow / (rain x area)");
-  Plot profile("depth at equilibrium", "x (m)", "depth (m)");
-  std::vector<double> t, q, x, h;
-  const double end = plane.duration + (c.recession > 0 ? c.recession : te);
-  for (int k = 0; k <= 400; ++k) {
-    t.push_back(end * k / 400 / te);
-    q.push_back(plane.outflow(end * k / 400) * W / iA);
-    x.push_back(plane.length * k / 400);
-    h.push_back(plane.equilibrium_depth(plane.length * k / 400));
-  }
-  hydro.line(t, q, kPlotReference, "kinematic wave");
-  profile.line(x, h, kPlotReference, "kinematic wave");
-  for (std::size_t k = 0; k < records.size(); ++k) {
-    const RunRecord& r = records[k];
-    const std::string label =
-        is_sph(r.name) ? r.name + " " + format_number(r.spacing) + " m" : r.name;
-    std::vector<double> rt, rq;
-    for (std::size_t m = 1; m < r.rows.size(); ++m) {
-      const double span = r.rows[m].t - r.rows[m - 1].t;
-      rt.push_back(0.5 * (r.rows[m].t + r.rows[m - 1].t) / te);
-      rq.push_back((r.rows[m].budget.outflow - r.rows[m - 1].budget.outflow) / span / iA);
-    }
-    const PlotColour colour = plot_series_colour(k);
-    hydro.line(rt, rq, colour, label);
-    profile.points(r.gauge_x, r.gauge_depth, colour, label);
-  }
-  RgbImage figure(1800, 640);
-  figure.paste(hydro.render(900, 640), 0, 0);
-  figure.paste(profile.render(900, 640), 900, 0);
-  write_png_rgb(path, with_title(figure, "rain on a plane against the kinematic wave"));
-}
-
 }  // namespace
 
 const std::vector<std::string>& overland_run_names() {
@@ -474,9 +437,8 @@ JsonObject validate_overland(ComputeContext& compute, const OverlandCase& c) {
   if (c.out_dir.empty()) {
     fs::remove_all(scratch);
   } else {
-    write_figure((scratch / "overland.png").string(), c, g, records);
-    o.add("figure", (scratch / "overland.png").string());
-    // The scores beside the runs' outflow.csv, for runnel.plot's figures.
+    // The scores beside the runs' outflow.csv: runnel.plot draws the hydrographs and the depths
+    // beside the kinematic wave from them (`python -m runnel plot OUT`).
     write_text_atomically((scratch / "overland.json").string(), o.str() + "\n");
   }
   return o;
