@@ -134,6 +134,13 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
     slopes_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 4 * n * sizeof(float));
     slopes_kernel_ = Kernel(compute, program, "pipe_godunov_slopes");
     slopes_kernel_.set("slopes", slopes_).set("rain_weight", rain_weight());
+    edge_before_ =
+        cl::Buffer(ctx, CL_MEM_READ_WRITE,
+                   3 * static_cast<std::size_t>(terrain.nx + terrain.ny) * sizeof(float));
+    edges_kernel_ = Kernel(compute, program, "pipe_godunov_edges");
+    edges_kernel_.set("face_flux", face_flux_).set("edge_before", edge_before_);
+    edges_kernel_.set("rain_weight", rain_weight());
+    water_kernel_.set("edge_before", edge_before_);
     for (Kernel* k : {&flux_kernel_, &water_kernel_})
       k->set("face_flux", face_flux_).set("slopes", slopes_);
   }
@@ -159,7 +166,7 @@ PipeModel::PipeModel(ComputeContext& compute, const Parameters& params, const He
 double PipeModel::scratch_bytes() const {
   return buffer_bytes({&previous_depth_, &capacity_, &cfl_speed2_, &sediment_next_, &sent_, &stats_,
                        &outflow_, &lost_, &edge_water_, &sendable_, &bed_sent_, &height_next_,
-                       &bed_moved_, &old_flux_, &face_flux_, &slopes_}) +
+                       &bed_moved_, &old_flux_, &face_flux_, &slopes_, &edge_before_}) +
          (talus_ ? talus_->device_bytes() : 0.0);
 }
 
@@ -205,13 +212,23 @@ double PipeModel::take_step() {
         .set("nx", nx)
         .set("ny", ny);
     slopes_kernel_.set("dt", dt).set("rain_on", rain_on()).launch(work);
+    edges_kernel_.set("depth", depth).set("velocity", velocity).set("nx", nx).set("ny", ny);
+    edges_kernel_.set("dt", dt).set("rain_on", rain_on());
   }
+  // The water's flux, then (godunov) the map's edge faces over it, then the cells' water.
+  const auto move_water = [&] {
+    flux_kernel_.launch(work);
+    if (settings_.godunov())
+      edges_kernel_.launch(round_up_work(2 * static_cast<std::size_t>(nx + ny)));
+    water_kernel_.launch(work);
+  };
   if (settings_.bedload()) {
-    for (Kernel* k : {&flux_kernel_, &water_kernel_}) k->launch(work);
+    move_water();
     count_edge_water(flux, dt);
     move_bed_load(depth, flux, dt);
   } else {
-    for (Kernel* k : {&flux_kernel_, &water_kernel_, &erode_kernel_}) k->launch(work);
+    move_water();
+    erode_kernel_.launch(work);
     count_edge_water(flux, dt);
     transport(sediment, flux, velocity, dt);
     std::swap(sediment, sediment_next_);  // the state's field now holds the transported sediment

@@ -106,8 +106,10 @@ class PipeModel final : public GridModel {
   void relax_talus(double dt);
   cl::Buffer bed_sent_, height_next_, bed_moved_;  // bed load only
   cl::Buffer old_flux_;                            // local-inertial only: the step's copy
-  cl::Buffer face_flux_;  // godunov only: each cell's right and lower faces' HLL fluxes
-  cl::Buffer slopes_;     // godunov only: each cell's limited bed and depth slopes along x and z
+  cl::Buffer face_flux_;    // godunov only: each cell's right and lower faces' HLL fluxes
+  cl::Buffer slopes_;       // godunov only: each cell's limited bed and depth slopes along x and z
+  cl::Buffer edge_before_;  // godunov only: the first column's left and first row's upper faces
+  Kernel edges_kernel_;     // godunov only: the faces on the map's edges
   Kernel bedload_kernel_;
   std::unique_ptr<ThermalRelaxation>
       talus_;  // bed load only: slopes above the angle of repose slide
