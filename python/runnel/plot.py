@@ -249,13 +249,13 @@ def _sweep(folder):
     if not members:
         raise InputError(f"{folder / 'results.csv'}: no member is done yet; nothing to draw")
     metrics = [name for name in members[0] if name != "member" and name not in axes_names]
+    models = dict.fromkeys(m.get("run.model", "") for m in members)
     figures = {}
     for axis in axes_names:
         if axis == "run.model" or not all(_is_number(m[axis]) for m in members):
             continue  # only numeric parameters have an x axis
         for metric in metrics:
             figure, plot_axes = _figure(f"{metric} against {axis}", axis, metric)
-            models = dict.fromkeys(m.get("run.model", "") for m in members)
             for model in models:
                 sums = {}
                 for m in members:
